@@ -1,0 +1,1 @@
+// Module analysis: filled in by its issue.

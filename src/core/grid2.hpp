@@ -1,0 +1,39 @@
+#pragma once
+// Geometry of a uniform Cartesian 2D grid: cell (i, j) spans [x0 + i dx, x0 + (i+1) dx) x [y0 + j dy, ...).
+// Index ranges are explicit (i0..i1) so that a later MPI decomposition can own a sub-block with ghost layers.
+#include <cstddef>
+#include <algorithm>
+#include <cmath>
+
+#include "core/vec2.hpp"
+
+namespace fluidbed {
+
+struct Grid2 {
+  int nx = 0;
+  int ny = 0;
+  double dx = 0.0;
+  double dy = 0.0;
+  double x0 = 0.0;
+  double y0 = 0.0;
+
+  static Grid2 uniform(double width, double height, int nx_, int ny_) {
+    return Grid2{nx_, ny_, width / nx_, height / ny_, 0.0, 0.0};
+  }
+
+  double width() const { return nx * dx; }
+  double height() const { return ny * dy; }
+  std::size_t cells() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
+  /// Row-major cell index, i fastest.
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i);
+  }
+  double xc(int i) const { return x0 + (i + 0.5) * dx; }
+  double yc(int j) const { return y0 + (j + 0.5) * dy; }
+  Vec2 centre(int i, int j) const { return {xc(i), yc(j)}; }
+  /// Cell column holding x, clamped to the grid.
+  int cell_i(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0) / dx)), 0, nx - 1); }
+  int cell_j(double y) const { return std::clamp(static_cast<int>(std::floor((y - y0) / dy)), 0, ny - 1); }
+};
+
+}  // namespace fluidbed

@@ -1,0 +1,1 @@
+// Module coupling: filled in by its issue.

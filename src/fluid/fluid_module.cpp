@@ -1,0 +1,1 @@
+// Module fluid: filled in by its issue.

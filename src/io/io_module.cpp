@@ -1,0 +1,1 @@
+// Module io: filled in by its issue.

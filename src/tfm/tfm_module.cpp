@@ -1,0 +1,1 @@
+// Module tfm: filled in by its issue.
