@@ -1,0 +1,80 @@
+#pragma once
+// Cundall-Strack linear spring, dashpot and Coulomb slider (paper Eqs. 2-8) as pure functions.
+#include <cmath>
+#include <numbers>
+
+#include "core/vec2.hpp"
+
+namespace fluidbed {
+
+/// Parameters of one kind of contact (a species pair, or a species and a wall).
+struct ContactParams {
+  double k_n = 800.0;  ///< normal stiffness, N/m
+  double k_t = 800.0;  ///< tangential stiffness, N/m
+  double eta_n = 0.0;  ///< normal damping, kg/s
+  double eta_t = 0.0;  ///< tangential damping, kg/s
+  double mu = 0.3;     ///< Coulomb friction coefficient
+};
+
+/// Eq. 8: dashpot coefficient that gives restitution e for a linear spring k acting on mass m_eff
+/// (the reduced mass of the pair, or the particle mass against a wall).
+inline double damping_from_restitution(double m_eff, double k, double e) {
+  const double l = std::log(1.0 / e);
+  return 2.0 * std::sqrt(m_eff * k) * l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
+
+/// Duration of a linear spring-dashpot contact (time from touch to separation at zero overlap).
+inline double contact_duration(double m_eff, double k, double eta) {
+  const double w0sq = k / m_eff;
+  const double g = eta / (2.0 * m_eff);
+  return std::numbers::pi / std::sqrt(w0sq - g * g);
+}
+
+/// Paper Table 3 item 5: t_cr = 2 pi sqrt(m/k), the period of one particle on one spring.
+inline double critical_time(double m, double k) { return 2.0 * std::numbers::pi * std::sqrt(m / k); }
+
+inline double reduced_mass(double m1, double m2) { return m1 * m2 / (m1 + m2); }
+
+/// Geometry and motion of one contact as seen from particle i.
+struct ContactKinematics {
+  Vec2 n;         ///< unit normal from i towards the partner
+  double overlap; ///< > 0 while in contact, m
+  Vec2 v_rel;     ///< velocity of i's contact point relative to the partner's, m/s
+};
+
+struct ContactForce {
+  Vec2 f;          ///< force on i, N
+  Vec2 f_t;        ///< its tangential part, N (gives the torque)
+};
+
+/// Eqs. 2-7 with the tangential spring accumulated over the life of the contact (Cundall & Strack 1979).
+/// `xi` is the tangential spring elongation; it is rotated into the current tangent plane, advanced by the
+/// tangential slip, and truncated at the Coulomb limit so that spring plus dashpot equals the sliding force
+/// (the treatment of LAMMPS gran/hooke/history). The expressions are antisymmetric under exchange of the
+/// partners, bit for bit, so that both partners of a pair evaluate the same contact with opposite signs.
+inline ContactForce linear_spring_dashpot(const ContactParams& p, const ContactKinematics& c, double dt, Vec2& xi) {
+  const double vn = dot(c.v_rel, c.n);
+  const Vec2 v_n = vn * c.n;       // Eq. 5
+  const Vec2 v_t = c.v_rel - v_n;  // Eq. 4
+  const Vec2 f_n = (-p.k_n * c.overlap) * c.n - p.eta_n * v_n;  // Eq. 2
+
+  // Rotate the stored spring into the current tangent plane, keeping its length.
+  const double xi_len2 = norm2(xi);
+  if (xi_len2 > 0.0) {
+    Vec2 xi_t = xi - dot(xi, c.n) * c.n;
+    const double t_len2 = norm2(xi_t);
+    xi = t_len2 > 0.0 ? std::sqrt(xi_len2 / t_len2) * xi_t : Vec2{};
+  }
+  xi += dt * v_t;
+  Vec2 f_t = -p.k_t * xi - p.eta_t * v_t;  // Eq. 3
+
+  const double ft_max = p.mu * norm(f_n);  // Eq. 6
+  const double ft2 = norm2(f_t);
+  if (ft2 > ft_max * ft_max) {
+    f_t = (ft_max / std::sqrt(ft2)) * f_t;  // Eq. 7: slide at the Coulomb limit
+    xi = (-1.0 / p.k_t) * (f_t + p.eta_t * v_t);
+  }
+  return {f_n + f_t, f_t};
+}
+
+}  // namespace fluidbed

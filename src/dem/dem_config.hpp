@@ -1,0 +1,46 @@
+#pragma once
+// Configuration of the discrete element model; defaults are the paper's Table 1 (DEM column).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "dem/particle_store.hpp"
+
+namespace fluidbed {
+
+/// Restitution and friction of one kind of contact (paper, Table 3 item 3: per pair, walls separate).
+struct InteractionParams {
+  double restitution = 0.9;
+  double friction = 0.3;
+};
+
+struct WallConfig {
+  bool left = true;
+  bool right = true;
+  bool bottom = true;
+  bool top = false;  ///< the paper's top is the gas outlet
+};
+
+struct DemConfig {
+  std::vector<Species> species{Species{}};
+  double stiffness = 800.0;              ///< k of Eqs. 2-3, N/m
+  double tangential_stiffness_ratio = 1.0;  ///< k_t / k_n (the paper uses one k for both)
+  /// Restitution and friction per unordered species pair, row-major n_species x n_species (symmetric).
+  std::vector<InteractionParams> pair{InteractionParams{}};
+  /// Particle-wall restitution and friction per species.
+  std::vector<InteractionParams> wall{InteractionParams{}};
+  double width = 0.6;    ///< domain, m
+  double height = 1.0;
+  WallConfig walls{};
+  Vec2 gravity{0.0, -9.81};
+  double dt = 2e-4;      ///< s
+  double skin = 0.0004;  ///< Verlet skin, m (0: rebuild the neighbour list every step)
+
+  std::size_t n_species() const { return species.size(); }
+  const InteractionParams& pair_params(int a, int b) const {
+    return pair[static_cast<std::size_t>(a) * species.size() + static_cast<std::size_t>(b)];
+  }
+};
+
+}  // namespace fluidbed

@@ -1,0 +1,251 @@
+#include "dem/dem_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace fluidbed {
+
+std::vector<ContactParams> make_pair_params(const DemConfig& c) {
+  const std::size_t ns = c.n_species();
+  std::vector<ContactParams> t(ns * ns);
+  for (std::size_t a = 0; a < ns; ++a) {
+    for (std::size_t b = 0; b < ns; ++b) {
+      const InteractionParams& ip = c.pair_params(static_cast<int>(a), static_cast<int>(b));
+      const double m_eff = reduced_mass(c.species[a].mass(), c.species[b].mass());
+      ContactParams& p = t[a * ns + b];
+      p.k_n = c.stiffness;
+      p.k_t = c.stiffness * c.tangential_stiffness_ratio;
+      p.eta_n = damping_from_restitution(m_eff, p.k_n, ip.restitution);  // Eq. 8, reduced mass
+      p.eta_t = p.eta_n;  // the paper's single dashpot eta for both directions (Eqs. 2-3)
+      p.mu = ip.friction;
+    }
+  }
+  return t;
+}
+
+std::vector<ContactParams> make_wall_params(const DemConfig& c) {
+  std::vector<ContactParams> t(c.n_species());
+  for (std::size_t a = 0; a < c.n_species(); ++a) {
+    ContactParams& p = t[a];
+    p.k_n = c.stiffness;
+    p.k_t = c.stiffness * c.tangential_stiffness_ratio;
+    p.eta_n = damping_from_restitution(c.species[a].mass(), p.k_n, c.wall[a].restitution);  // Eq. 8, wall fixed
+    p.eta_t = p.eta_n;
+    p.mu = c.wall[a].friction;
+  }
+  return t;
+}
+
+DemSolver::DemSolver(DemConfig config, ParticleStore particles)
+    : config_(std::move(config)), p_(std::move(particles)) {
+  pair_params_ = make_pair_params(config_);
+  wall_params_ = make_wall_params(config_);
+  double d_max = 0.0;
+  for (const Species& s : config_.species) d_max = std::max(d_max, s.diameter);
+  cell_size_ = d_max + config_.skin;
+  wall_xi_.assign(p_.size(), {});
+}
+
+void DemSolver::rebuild() {
+  const std::size_t n = p_.size();
+  // Keep the old lists keyed by partner id: storage slots change with the re-sort below.
+  const bool have_old = nbr_.offset.size() == n + 1;
+  std::vector<std::size_t> old_offset;
+  std::vector<std::int64_t> old_partner_id;
+  std::vector<Vec2> old_xi;
+  if (have_old) {
+    old_offset = std::move(nbr_.offset);
+    old_partner_id.resize(nbr_.partner.size());
+    for (std::size_t k = 0; k < nbr_.partner.size(); ++k) old_partner_id[k] = p_.id[nbr_.partner[k]];
+    old_xi = std::move(nbr_.history);
+  }
+
+  const std::vector<std::size_t> order = sort_by_cell(p_, cell_size_);
+  p_.permute(order);
+  {
+    std::vector<std::array<Vec2, 4>> w(n);
+    for (std::size_t k = 0; k < n; ++k) w[k] = wall_xi_[order[k]];
+    wall_xi_.swap(w);
+  }
+  build_neighbor_list(p_, cell_size_, config_.skin, nbr_);
+
+  if (have_old) {
+    const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const std::size_t o = order[i];
+      for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+        const std::int64_t pid = p_.id[nbr_.partner[k]];
+        for (std::size_t q = old_offset[o]; q < old_offset[o + 1]; ++q) {
+          if (old_partner_id[q] == pid) {
+            nbr_.history[k] = old_xi[q];
+            break;
+          }
+        }
+      }
+    }
+  }
+  x_build_ = p_.x;
+  y_build_ = p_.y;
+  need_rebuild_ = false;
+  ++rebuilds_;
+}
+
+double DemSolver::compute_forces() {
+  const std::size_t n = p_.size();
+  const double dt = config_.dt;
+  const double W = config_.width;
+  const double H = config_.height;
+  const WallConfig walls = config_.walls;
+  const std::size_t ns = config_.n_species();
+  double max_ov = 0.0;
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static) reduction(max : max_ov)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const double xi = p_.x[i], yi = p_.y[i], ri = p_.radius[i], wi = p_.omega[i];
+    const Vec2 vi{p_.vx[i], p_.vy[i]};
+    const std::size_t si = static_cast<std::size_t>(p_.species[i]);
+    Vec2 f{};
+    double torque = 0.0;
+    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+      const std::size_t j = nbr_.partner[k];
+      const double dx = p_.x[j] - xi;
+      const double dy = p_.y[j] - yi;
+      const double d2 = dx * dx + dy * dy;
+      const double rsum = ri + p_.radius[j];
+      if (d2 >= rsum * rsum) {
+        nbr_.history[k] = Vec2{};  // contact ended: the spring is released
+        continue;
+      }
+      const double d = std::sqrt(d2);
+      const Vec2 nrm{dx / d, dy / d};
+      const double overlap = rsum - d;
+      // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
+      const Vec2 v_rel = (vi - p_.vel(j)) + cross(wi * ri + p_.omega[j] * p_.radius[j], nrm);
+      const ContactForce cf = linear_spring_dashpot(pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])],
+                                                    ContactKinematics{nrm, overlap, v_rel}, dt, nbr_.history[k]);
+      f += cf.f;
+      torque += ri * cross(nrm, cf.f_t);  // Eq. 9: torque of the tangential force at the contact point
+      max_ov = std::max(max_ov, overlap);
+    }
+    // Plane walls: the same law against a fixed body of infinite mass.
+    const ContactParams& wp = wall_params_[si];
+    auto wall = [&](Wall w, bool enabled, double overlap, Vec2 nrm) {
+      Vec2& xi_w = wall_xi_[i][static_cast<int>(w)];
+      if (!enabled || overlap <= 0.0) {
+        xi_w = Vec2{};
+        return;
+      }
+      const Vec2 v_rel = vi + cross(wi * ri, nrm);
+      const ContactForce cf = linear_spring_dashpot(wp, ContactKinematics{nrm, overlap, v_rel}, dt, xi_w);
+      f += cf.f;
+      torque += ri * cross(nrm, cf.f_t);
+      max_ov = std::max(max_ov, overlap);
+    };
+    wall(Wall::Left, walls.left, ri - xi, {-1.0, 0.0});
+    wall(Wall::Right, walls.right, ri - (W - xi), {1.0, 0.0});
+    wall(Wall::Bottom, walls.bottom, ri - yi, {0.0, -1.0});
+    wall(Wall::Top, walls.top, ri - (H - yi), {0.0, 1.0});
+    p_.fx[i] = f.x;
+    p_.fy[i] = f.y;
+    p_.torque[i] = torque;
+  }
+  max_overlap_ = max_ov;
+  return max_ov;
+}
+
+DemStepInfo DemSolver::step() {
+  DemStepInfo info;
+  if (need_rebuild_) {
+    rebuild();
+    info.rebuilt = true;
+  }
+  info.max_overlap = compute_forces();
+
+  // Eq. 10: explicit update, new velocity first, then position with the new velocity.
+  const std::size_t n = p_.size();
+  const double dt = config_.dt;
+  const Vec2 g = config_.gravity;
+  const double half_skin2 = 0.25 * config_.skin * config_.skin;
+  int moved_far = 0;
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static) reduction(max : moved_far)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    p_.vx[i] += ((p_.fx[i] + p_.fx_ext[i]) * p_.inv_mass[i] + g.x) * dt;
+    p_.vy[i] += ((p_.fy[i] + p_.fy_ext[i]) * p_.inv_mass[i] + g.y) * dt;
+    p_.x[i] += p_.vx[i] * dt;
+    p_.y[i] += p_.vy[i] * dt;
+    p_.omega[i] += p_.torque[i] * p_.inv_inertia[i] * dt;  // Eq. 9
+    const double ddx = p_.x[i] - x_build_[i];
+    const double ddy = p_.y[i] - y_build_[i];
+    if (ddx * ddx + ddy * ddy >= half_skin2) moved_far = 1;
+  }
+  need_rebuild_ = moved_far != 0;
+  ++steps_;
+  time_ += dt;  // accumulated the same way in every run, so restarts reproduce it exactly
+  check_particles();
+  return info;
+}
+
+void DemSolver::check_particles() const {
+  const std::size_t n = p_.size();
+  const double W = config_.width;
+  const double H = config_.height;
+  int bad = 0;
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static) reduction(max : bad)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && p_.y[i] <= H &&
+                        std::isfinite(p_.vx[i]) && std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
+    if (!inside) bad = 1;
+  }
+  if (bad == 0) return;
+  // Report the offending particle with the smallest id, so the message does not depend on threads.
+  std::size_t worst = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && p_.y[i] <= H &&
+                        std::isfinite(p_.vx[i]) && std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
+    if (!inside && (worst == n || p_.id[i] < p_.id[worst])) worst = i;
+  }
+  throw_simulation_error(fmt::format(
+      "t = {:.6g} s: particle {} left the domain [0, {}] x [0, {}] m or its state is not finite: position "
+      "({:.6g}, {:.6g}) m, velocity ({:.6g}, {:.6g}) m/s. Likely cause: the time step is too large for the "
+      "stiffness (check `fluidbed check`), or the gas drives particles out of an open top; remedy: reduce "
+      "dem.time_step, or make the domain taller.",
+      time_, p_.id[worst], W, H, p_.x[worst], p_.y[worst], p_.vx[worst], p_.vy[worst]));
+}
+
+double DemSolver::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    e += 0.5 * p_.mass[i] * (p_.vx[i] * p_.vx[i] + p_.vy[i] * p_.vy[i]) +
+         0.5 * p_.omega[i] * p_.omega[i] / p_.inv_inertia[i];
+  }
+  return e;
+}
+
+DemSolver::State DemSolver::state() const {
+  return State{p_, nbr_, wall_xi_, x_build_, y_build_, time_, steps_, rebuilds_, need_rebuild_};
+}
+
+void DemSolver::restore(State s) {
+  p_ = std::move(s.particles);
+  nbr_ = std::move(s.neighbors);
+  wall_xi_ = std::move(s.wall_xi);
+  x_build_ = std::move(s.x_build);
+  y_build_ = std::move(s.y_build);
+  time_ = s.time;
+  steps_ = s.steps;
+  rebuilds_ = s.rebuilds;
+  need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
+  if (wall_xi_.size() != p_.size()) wall_xi_.assign(p_.size(), {});
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,122 @@
+#include "dem/neighbor_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fluidbed {
+
+namespace {
+
+/// Cells covering the particles' bounding box, with a CSR of the slots in each cell (ascending slot order).
+struct CellBins {
+  double x_min = 0.0, y_min = 0.0, size = 1.0;
+  int nx = 1, ny = 1;
+  std::vector<std::uint32_t> cell_of;  // per particle
+  std::vector<std::size_t> start;      // per cell + 1
+  std::vector<std::uint32_t> slots;    // particle slots grouped by cell
+
+  int ci(double x) const { return std::clamp(static_cast<int>((x - x_min) / size), 0, nx - 1); }
+  int cj(double y) const { return std::clamp(static_cast<int>((y - y_min) / size), 0, ny - 1); }
+};
+
+CellBins bin_particles(const ParticleStore& p, double cell_size) {
+  CellBins b;
+  const std::size_t n = p.size();
+  b.size = cell_size;
+  if (n == 0) {
+    b.start.assign(2, 0);
+    return b;
+  }
+  const auto [xmin, xmax] = std::minmax_element(p.x.begin(), p.x.end());
+  const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
+  b.x_min = *xmin;
+  b.y_min = *ymin;
+  // Cap the grid so a stray far-away particle cannot make it huge; clamping keeps the search correct
+  // because a clamped edge cell is at least as large as the others.
+  const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
+  b.nx = std::max(1, static_cast<int>(std::min((*xmax - b.x_min) / cell_size + 1.0, max_cells)));
+  b.ny = std::max(1, static_cast<int>(std::min((*ymax - b.y_min) / cell_size + 1.0, max_cells / b.nx + 1.0)));
+  const std::size_t ncell = static_cast<std::size_t>(b.nx) * static_cast<std::size_t>(b.ny);
+  b.cell_of.resize(n);
+  b.start.assign(ncell + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<std::uint32_t>(static_cast<std::size_t>(b.cj(p.y[i])) * b.nx + b.ci(p.x[i]));
+    b.cell_of[i] = c;
+    ++b.start[c + 1];
+  }
+  for (std::size_t c = 0; c < ncell; ++c) b.start[c + 1] += b.start[c];
+  b.slots.resize(n);
+  std::vector<std::size_t> fill(b.start.begin(), b.start.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) b.slots[fill[b.cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  return b;
+}
+
+/// Calls f(j) for every particle j != i within r_i + r_j + skin of particle i, in a fixed order.
+template <class F>
+void for_each_near(const ParticleStore& p, const CellBins& b, std::size_t i, double skin, F&& f) {
+  const int ci = b.ci(p.x[i]);
+  const int cj = b.cj(p.y[i]);
+  // A clamped edge cell may hold particles farther than one cell size away: widen the search there.
+  const int di_lo = (ci == 0) ? 0 : -1, di_hi = (ci == b.nx - 1) ? 0 : 1;
+  const int dj_lo = (cj == 0) ? 0 : -1, dj_hi = (cj == b.ny - 1) ? 0 : 1;
+  for (int dj = dj_lo; dj <= dj_hi; ++dj) {
+    for (int di = di_lo; di <= di_hi; ++di) {
+      const std::size_t c = static_cast<std::size_t>(cj + dj) * b.nx + static_cast<std::size_t>(ci + di);
+      for (std::size_t k = b.start[c]; k < b.start[c + 1]; ++k) {
+        const std::size_t j = b.slots[k];
+        if (j == i) continue;
+        const double dx = p.x[j] - p.x[i];
+        const double dy = p.y[j] - p.y[i];
+        const double reach = p.radius[i] + p.radius[j] + skin;
+        if (dx * dx + dy * dy < reach * reach) f(j);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::size_t> sort_by_cell(const ParticleStore& p, double cell_size) {
+  const CellBins b = bin_particles(p, cell_size);
+  return {b.slots.begin(), b.slots.end()};
+}
+
+void build_neighbor_list(const ParticleStore& p, double cell_size, double skin, NeighborList& out) {
+  const std::size_t n = p.size();
+  const CellBins b = bin_particles(p, cell_size);
+  out.offset.assign(n + 1, 0);
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t count = 0;
+    for_each_near(p, b, i, skin, [&](std::size_t) { ++count; });
+    out.offset[i + 1] = count;
+  }
+  for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
+  out.partner.resize(out.offset[n]);
+  out.history.assign(out.offset[n], Vec2{});
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t k = out.offset[i];
+    for_each_near(p, b, i, skin, [&](std::size_t j) { out.partner[k++] = static_cast<std::uint32_t>(j); });
+  }
+}
+
+std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts(const ParticleStore& p, double skin) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double dx = p.x[j] - p.x[i];
+      const double dy = p.y[j] - p.y[i];
+      const double reach = p.radius[i] + p.radius[j] + skin;
+      if (dx * dx + dy * dy < reach * reach) pairs.emplace_back(std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace fluidbed
