@@ -1,1 +1,0 @@
-// Module fluid: filled in by its issue.
