@@ -1,0 +1,127 @@
+#include "io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+#include "core/error.hpp"
+
+namespace fluidbed {
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& reason) {
+  throw Error(ErrorKind::BadInput, "cannot write " + path.string() + ": " + reason);
+}
+
+std::string errno_text(int err) { return std::strerror(err); }
+
+// Best effort: the rename is already atomic; syncing the folder makes it survive a power loss.
+void sync_directory(const std::filesystem::path& dir) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+}
+
+void write_all(int fd, std::string_view content, const std::filesystem::path& target,
+               const std::filesystem::path& temp) {
+  const char* p = content.data();
+  std::size_t left = content.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      ::unlink(temp.c_str());
+      fail(target, errno_text(err));
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+}
+
+}  // namespace
+
+std::filesystem::path temp_path_for(const std::filesystem::path& path) {
+  std::filesystem::path temp = path;
+  temp += ".tmp." + std::to_string(static_cast<long long>(::getpid()));
+  return temp;
+}
+
+void commit_temp_file(const std::filesystem::path& temp, const std::filesystem::path& target) {
+  const int fd = ::open(temp.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    const int err = errno;
+    ::unlink(temp.c_str());
+    fail(target, errno_text(err));
+  }
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    ::unlink(temp.c_str());
+    fail(target, errno_text(err));
+  }
+  ::close(fd);
+  if (::rename(temp.c_str(), target.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(temp.c_str());
+    fail(target, errno_text(err));
+  }
+  sync_directory(target.parent_path());
+}
+
+void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
+  if (path.empty()) fail(path, "empty file name");
+  const std::filesystem::path temp = temp_path_for(path);
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail(path, errno_text(errno));
+  write_all(fd, content, path, temp);
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    ::unlink(temp.c_str());
+    fail(path, errno_text(err));
+  }
+  // close() reports deferred write errors on some file systems (NFS).
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(temp.c_str());
+    fail(path, errno_text(err));
+  }
+  if (::rename(temp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(temp.c_str());
+    fail(path, errno_text(err));
+  }
+  sync_directory(path.parent_path());
+}
+
+void write_file_atomic(const std::filesystem::path& path, const std::function<void(std::ostream&)>& writer) {
+  // Buffer in memory so that a throwing writer leaves no trace on disk; output files are a few MB at most.
+  std::ostringstream buffer;
+  writer(buffer);
+  if (!buffer) fail(path, "the content could not be formatted");
+  write_file_atomic(path, buffer.view());
+}
+
+void ensure_directory(const std::filesystem::path& dir) {
+  if (dir.empty()) return;
+  std::error_code ec;
+  const auto status = std::filesystem::status(dir, ec);
+  if (std::filesystem::exists(status)) {
+    if (!std::filesystem::is_directory(status)) fail(dir, "exists and is not a folder");
+  } else {
+    std::filesystem::create_directories(dir, ec);
+    if (ec) fail(dir, "cannot create the folder: " + ec.message());
+  }
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) fail(dir, "the folder is not writable: " + errno_text(errno));
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,305 @@
+#include "io/csv.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+#include <unordered_map>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace fluidbed {
+namespace {
+
+[[noreturn]] void cannot_write(const std::filesystem::path& path, const std::string& reason) {
+  throw Error(ErrorKind::BadInput, "cannot write " + path.string() + ": " + reason);
+}
+
+std::string join(const std::vector<std::string>& cells) {
+  std::string out;
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (c > 0) out += ',';
+    out += cells[c];
+  }
+  return out;
+}
+
+std::string read_whole_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(ErrorKind::BadInput, path.string() + ": cannot read: " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Lines without their '\n' (and a Windows '\r'); `complete` says whether the text ended with a newline.
+std::vector<std::string_view> split_lines(std::string_view text, bool& complete) {
+  std::vector<std::string_view> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) {
+      lines.push_back(text.substr(start));
+      complete = false;
+      return lines;
+    }
+    std::string_view line = text.substr(start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    lines.push_back(line);
+    start = end + 1;
+  }
+  complete = true;
+  return lines;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> split_cells(std::string_view line) {
+  std::vector<std::string_view> cells;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = line.find(',', start);
+    if (end == std::string_view::npos) {
+      cells.push_back(trim(line.substr(start)));
+      return cells;
+    }
+    cells.push_back(trim(line.substr(start, end - start)));
+    start = end + 1;
+  }
+}
+
+bool parse_double(std::string_view s, double& value, std::errc& error) {
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  error = ec;
+  return ec == std::errc() && ptr == s.data() + s.size();
+}
+
+std::string format_row(std::span<const std::optional<double>> values) {
+  std::string line;
+  for (std::size_t c = 0; c < values.size(); ++c) {
+    if (c > 0) line += ',';
+    if (values[c]) line += fmt::format("{:.17g}", *values[c]);
+  }
+  line += '\n';
+  return line;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------------
+// CsvWriter
+
+CsvWriter::CsvWriter(std::filesystem::path path, std::vector<std::string> columns)
+    : CsvWriter(path, columns, join(columns) + "\n") {}
+
+CsvWriter::CsvWriter(std::filesystem::path path, std::vector<std::string> columns, const std::string& initial_content)
+    : path_(std::move(path)), columns_(std::move(columns)) {
+  if (columns_.empty()) throw std::invalid_argument("CsvWriter: no columns");
+  write_file_atomic(path_, initial_content);
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd_ < 0) cannot_write(path_, std::strerror(errno));
+}
+
+CsvWriter CsvWriter::resume(std::filesystem::path path, std::vector<std::string> columns, double restart_time) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return CsvWriter(std::move(path), std::move(columns));
+
+  const std::string text = read_whole_file(path);
+  bool complete = true;
+  std::vector<std::string_view> lines = split_lines(text, complete);
+  // A run killed during a write can only leave a partial last line; it is not data.
+  if (!complete) lines.pop_back();
+  const std::string header = join(columns);
+  if (lines.empty() || lines.front() != header) {
+    throw Error(ErrorKind::BadInput,
+                fmt::format("{}: row 1: header '{}' does not match the expected '{}'", path.string(),
+                            lines.empty() ? std::string_view() : lines.front(), header));
+  }
+  std::string kept = header + "\n";
+  for (std::size_t r = 1; r < lines.size(); ++r) {
+    if (trim(lines[r]).empty()) continue;
+    const std::string_view first = trim(lines[r].substr(0, lines[r].find(',')));
+    double t = 0.0;
+    std::errc err{};
+    if (!parse_double(first, t, err) || std::isnan(t)) {
+      throw Error(ErrorKind::BadInput, fmt::format("{}: row {}, column 1: time '{}' is not a number",
+                                                   path.string(), r + 1, first));
+    }
+    if (t <= restart_time) {
+      kept += lines[r];
+      kept += '\n';
+    }
+  }
+  return CsvWriter(std::move(path), std::move(columns), kept);
+}
+
+CsvWriter::CsvWriter(CsvWriter&& other) noexcept
+    : path_(std::move(other.path_)), columns_(std::move(other.columns_)), fd_(other.fd_) {
+  other.fd_ = -1;
+}
+
+CsvWriter& CsvWriter::operator=(CsvWriter&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    path_ = std::move(other.path_);
+    columns_ = std::move(other.columns_);
+    fd_ = other.fd_;
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+CsvWriter::~CsvWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void CsvWriter::row(std::span<const std::optional<double>> values) {
+  if (values.size() != columns_.size()) {
+    throw std::invalid_argument(fmt::format("CsvWriter::row: {} values for {} columns of {}", values.size(),
+                                            columns_.size(), path_.string()));
+  }
+  if (fd_ < 0) cannot_write(path_, "the file is not open");
+  const std::string line = format_row(values);
+  // One write() per line on an O_APPEND descriptor: the kernel's buffer receives whole lines, which is what a
+  // killed process leaves on disk.
+  std::size_t done = 0;
+  while (done < line.size()) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      cannot_write(path_, std::strerror(errno));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Particle CSV
+
+std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
+  std::vector<std::size_t> order(particles.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return particles.id[a] < particles.id[b]; });
+  return order;
+}
+
+void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles) {
+  std::string out = std::string(particle_csv_header) + "\n";
+  out.reserve(out.size() + particles.size() * 140);
+  for (const std::size_t p : order_by_id(particles)) {
+    out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", particles.id[p], particles.x[p],
+                       particles.y[p], particles.vx[p], particles.vy[p], particles.omega[p], particles.species[p]);
+  }
+  write_file_atomic(path, out);
+}
+
+std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path) {
+  static constexpr const char* names[] = {"id", "x", "y", "vx", "vy", "omega", "species"};
+  constexpr std::size_t ncol = std::size(names);
+  const std::string file = path.string();
+  auto fail = [&](std::size_t row, std::size_t column, const std::string& what) -> void {
+    throw Error(ErrorKind::BadInput, fmt::format("{}: row {}, column {}: {}", file, row, column, what));
+  };
+
+  const std::string text = read_whole_file(path);
+  std::string_view body = text;
+  if (body.starts_with("\xEF\xBB\xBF")) body.remove_prefix(3);  // UTF-8 byte order mark from spreadsheets
+  bool complete = true;
+  std::vector<std::string_view> lines = split_lines(body, complete);
+  while (!lines.empty() && trim(lines.back()).empty()) lines.pop_back();
+  if (lines.empty()) fail(1, 1, fmt::format("empty file, expected the header '{}'", particle_csv_header));
+
+  const std::vector<std::string_view> header = split_cells(lines.front());
+  for (std::size_t c = 0; c < std::max(header.size(), ncol); ++c) {
+    if (c >= header.size()) {
+      fail(1, c + 1, fmt::format("missing header column '{}' (expected '{}')", names[c], particle_csv_header));
+    }
+    if (c >= ncol) {
+      fail(1, c + 1, fmt::format("extra header column '{}' (expected '{}')", header[c], particle_csv_header));
+    }
+    if (header[c] != names[c]) {
+      fail(1, c + 1, fmt::format("header '{}' where '{}' is expected (the header must be '{}')", header[c],
+                                 names[c], particle_csv_header));
+    }
+  }
+  if (lines.size() == 1) fail(2, 1, "no particle rows after the header");
+
+  std::vector<ParticleCsvRow> rows;
+  rows.reserve(lines.size() - 1);
+  std::unordered_map<std::int64_t, std::size_t> first_row_of_id;
+  first_row_of_id.reserve(lines.size());
+  for (std::size_t l = 1; l < lines.size(); ++l) {
+    const std::size_t r = l + 1;
+    if (trim(lines[l]).empty()) fail(r, 1, "empty row");
+    const std::vector<std::string_view> cells = split_cells(lines[l]);
+    if (cells.size() < ncol) {
+      fail(r, cells.size() + 1,
+           fmt::format("missing value for '{}' (the row has {} columns, {} expected)", names[cells.size()],
+                       cells.size(), ncol));
+    }
+    if (cells.size() > ncol) {
+      fail(r, ncol + 1, fmt::format("extra value '{}' (the row has {} columns, {} expected)", cells[ncol],
+                                    cells.size(), ncol));
+    }
+    for (std::size_t c = 0; c < ncol; ++c) {
+      if (cells[c].empty()) fail(r, c + 1, fmt::format("empty value for '{}'", names[c]));
+    }
+
+    auto parse_integer = [&](std::size_t c, std::int64_t lo, std::int64_t hi) {
+      std::int64_t v = 0;
+      const std::string_view s = cells[c];
+      const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+      if (ec != std::errc() || ptr != s.data() + s.size()) {
+        fail(r, c + 1, fmt::format("{} '{}' is not an integer", names[c], s));
+      }
+      if (v < lo || v > hi) fail(r, c + 1, fmt::format("{} {} is outside [{}, {}]", names[c], v, lo, hi));
+      return v;
+    };
+    auto parse_real = [&](std::size_t c) {
+      double v = 0.0;
+      std::errc ec{};
+      if (!parse_double(cells[c], v, ec)) {
+        if (ec == std::errc::result_out_of_range) {
+          fail(r, c + 1, fmt::format("{} '{}' is out of the range of a double", names[c], cells[c]));
+        }
+        fail(r, c + 1, fmt::format("{} '{}' is not a number", names[c], cells[c]));
+      }
+      if (!std::isfinite(v)) fail(r, c + 1, fmt::format("{} '{}' is not finite", names[c], cells[c]));
+      return v;
+    };
+
+    ParticleCsvRow row;
+    row.id = parse_integer(0, 0, std::numeric_limits<std::int64_t>::max());
+    row.x = parse_real(1);
+    row.y = parse_real(2);
+    row.vx = parse_real(3);
+    row.vy = parse_real(4);
+    row.omega = parse_real(5);
+    row.species = static_cast<std::int32_t>(parse_integer(6, 0, std::numeric_limits<std::int32_t>::max()));
+    const auto [it, inserted] = first_row_of_id.emplace(row.id, r);
+    if (!inserted) fail(r, 1, fmt::format("duplicate id {} (first in row {})", row.id, it->second));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,77 @@
+#pragma once
+// CSV time series (monitor.csv, bubble.csv, tracers) that survive a kill and continue after a restart,
+// and the particle CSV format (id,x,y,vx,vy,omega,species) written by runs and read by case files.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <initializer_list>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dem/particle_store.hpp"
+
+namespace fluidbed {
+
+/// Append-only CSV of numbers, the first column being the time in s. Each row is one write() of a whole line,
+/// so a killed run leaves only whole lines behind.
+class CsvWriter {
+ public:
+  /// Create (or replace) `path` with the header `columns`. Throws Error(BadInput, "cannot write <path>: ...").
+  CsvWriter(std::filesystem::path path, std::vector<std::string> columns);
+
+  /// Continue `path` after a restart at `restart_time`: keep the rows with time <= restart_time (rewritten
+  /// atomically, a trailing partial line dropped) and append after them. A missing file starts a new one.
+  /// Throws Error(BadInput, "<file>: ...") when the header differs from `columns` or a kept row's time is
+  /// not a number.
+  static CsvWriter resume(std::filesystem::path path, std::vector<std::string> columns, double restart_time);
+
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+  CsvWriter(CsvWriter&& other) noexcept;
+  CsvWriter& operator=(CsvWriter&& other) noexcept;
+  ~CsvWriter();
+
+  /// Append one row: values at full precision ({:.17g}), an empty cell for std::nullopt. The count must match
+  /// the header (std::invalid_argument otherwise). Throws Error(BadInput) when the write fails.
+  void row(std::span<const std::optional<double>> values);
+  void row(std::initializer_list<std::optional<double>> values) { row(std::span(values.begin(), values.size())); }
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  std::vector<std::string> columns_;
+  int fd_ = -1;
+
+  CsvWriter(std::filesystem::path path, std::vector<std::string> columns, const std::string& initial_content);
+};
+
+/// One line of a particle CSV file.
+struct ParticleCsvRow {
+  std::int64_t id = 0;
+  double x = 0.0, y = 0.0;    ///< m
+  double vx = 0.0, vy = 0.0;  ///< m/s
+  double omega = 0.0;         ///< rad/s, spin about z, anticlockwise positive
+  std::int32_t species = 0;
+};
+
+/// The exact header of a particle CSV file.
+inline constexpr const char* particle_csv_header = "id,x,y,vx,vy,omega,species";
+
+/// Storage slots of `particles` in increasing id order (ties in storage order), for output that does not
+/// depend on how the store happens to be sorted.
+std::vector<std::size_t> order_by_id(const ParticleStore& particles);
+
+/// Write `particles` sorted by id at full precision, atomically. Throws Error(BadInput) when it cannot write.
+void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles);
+
+/// Read and validate a particle CSV file (rows in file order). Throws Error(BadInput,
+/// "<file>: row R, column C: ...") on the first problem, R being the line number (the header is row 1):
+/// wrong header, missing or extra values, a value that is not a finite number, a non-integer or negative id,
+/// a non-integer or negative species, a duplicate id, no particle rows.
+std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path);
+
+}  // namespace fluidbed

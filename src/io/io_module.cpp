@@ -1,1 +1,0 @@
-// Module io: filled in by its issue.

@@ -1,0 +1,152 @@
+#include "io/vtk_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string_view>
+
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+
+namespace fluidbed {
+namespace {
+
+// The files declare byte_order="LittleEndian" and we copy memory as is.
+static_assert(std::endian::native == std::endian::little, "VTK writer assumes a little-endian host");
+
+// Collects the XML header and the raw appended blocks; each block is a UInt64 byte count followed by the data,
+// and a DataArray's offset counts from the first byte after the '_' marker (VTK XML file format).
+class VtkFile {
+ public:
+  std::string xml;
+
+  template <class T>
+  void data_array(std::string_view type, std::string_view name, int components, const std::vector<T>& values) {
+    xml += fmt::format(R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
+                       "\n",
+                       type, name, components, appended_.size());
+    const std::uint64_t bytes = values.size() * sizeof(T);
+    append_bytes(&bytes, sizeof bytes);
+    if (bytes > 0) append_bytes(values.data(), bytes);
+  }
+
+  void time_value(double time) {
+    xml += "    <FieldData>\n";
+    xml += fmt::format(
+        R"(      <DataArray type="Float64" Name="TimeValue" NumberOfTuples="1" format="ascii">{:.17g}</DataArray>)"
+        "\n",
+        time);
+    xml += "    </FieldData>\n";
+  }
+
+  std::string finish(std::string_view type) const {
+    std::string out;
+    out.reserve(xml.size() + appended_.size() + 256);
+    out += "<?xml version=\"1.0\"?>\n";
+    out += fmt::format(
+        R"(<VTKFile type="{}" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
+        "\n",
+        type);
+    out += xml;
+    out += "  <AppendedData encoding=\"raw\">\n   _";
+    out += appended_;
+    out += "\n  </AppendedData>\n</VTKFile>\n";
+    return out;
+  }
+
+ private:
+  std::string appended_;
+
+  void append_bytes(const void* p, std::size_t n) { appended_.append(static_cast<const char*>(p), n); }
+};
+
+void check_shape(const Grid2& grid, const Field2* f, const std::string& name) {
+  if (f == nullptr) throw std::invalid_argument("write_vti: array '" + name + "' has no field");
+  if (f->nx != grid.nx || f->ny != grid.ny || f->size() != grid.cells()) {
+    throw std::invalid_argument(fmt::format("write_vti: array '{}' is {} x {}, the grid {} x {}", name, f->nx,
+                                            f->ny, grid.nx, grid.ny));
+  }
+}
+
+}  // namespace
+
+void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
+               const std::vector<VtiArray>& cell_data) {
+  VtkFile file;
+  file.xml += fmt::format(R"(  <ImageData WholeExtent="0 {} 0 {} 0 0" Origin="{:.17g} {:.17g} 0" Spacing="{:.17g} {:.17g} 1">)"
+                          "\n",
+                          grid.nx, grid.ny, grid.x0, grid.y0, grid.dx, grid.dy);
+  file.time_value(time);
+  file.xml += fmt::format(R"(    <Piece Extent="0 {} 0 {} 0 0">)"
+                          "\n",
+                          grid.nx, grid.ny);
+  file.xml += "      <CellData>\n";
+  for (const VtiArray& a : cell_data) {
+    check_shape(grid, a.x, a.name);
+    if (a.y == nullptr) {
+      file.data_array("Float64", a.name, 1, a.x->v);
+    } else {
+      check_shape(grid, a.y, a.name);
+      std::vector<double> xyz(3 * grid.cells(), 0.0);
+      for (std::size_t k = 0; k < grid.cells(); ++k) {
+        xyz[3 * k] = a.x->v[k];
+        xyz[3 * k + 1] = a.y->v[k];
+      }
+      file.data_array("Float64", a.name, 3, xyz);
+    }
+  }
+  file.xml += "      </CellData>\n";
+  file.xml += "    </Piece>\n  </ImageData>\n";
+  write_file_atomic(path, file.finish("ImageData"));
+}
+
+void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles) {
+  const std::vector<std::size_t> order = order_by_id(particles);
+  const std::size_t n = order.size();
+
+  std::vector<double> points(3 * n, 0.0), velocity(3 * n, 0.0), diameter(n), spin(n);
+  std::vector<std::int64_t> id(n), connectivity(n), offsets(n);
+  std::vector<std::int32_t> species(n), layer(n);
+  std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t p = order[k];
+    points[3 * k] = particles.x[p];
+    points[3 * k + 1] = particles.y[p];
+    velocity[3 * k] = particles.vx[p];
+    velocity[3 * k + 1] = particles.vy[p];
+    diameter[k] = 2.0 * particles.radius[p];
+    spin[k] = particles.omega[p];
+    id[k] = particles.id[p];
+    species[k] = particles.species[p];
+    layer[k] = particles.layer[p];
+    connectivity[k] = static_cast<std::int64_t>(k);
+    offsets[k] = static_cast<std::int64_t>(k + 1);
+  }
+
+  VtkFile file;
+  file.xml += "  <UnstructuredGrid>\n";
+  file.time_value(time);
+  file.xml += fmt::format(R"(    <Piece NumberOfPoints="{}" NumberOfCells="{}">)"
+                          "\n",
+                          n, n);
+  file.xml += "      <Points>\n";
+  file.data_array("Float64", "Points", 3, points);
+  file.xml += "      </Points>\n      <Cells>\n";
+  file.data_array("Int64", "connectivity", 1, connectivity);
+  file.data_array("Int64", "offsets", 1, offsets);
+  file.data_array("UInt8", "types", 1, types);
+  file.xml += "      </Cells>\n      <PointData>\n";
+  file.data_array("Int64", "id", 1, id);
+  file.data_array("Int32", "species", 1, species);
+  file.data_array("Float64", "diameter", 1, diameter);
+  file.data_array("Float64", "velocity", 3, velocity);
+  file.data_array("Float64", "angular_velocity", 1, spin);
+  file.data_array("Int32", "layer", 1, layer);
+  file.xml += "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n";
+  write_file_atomic(path, file.finish("UnstructuredGrid"));
+}
+
+}  // namespace fluidbed

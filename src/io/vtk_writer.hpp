@@ -1,0 +1,38 @@
+#pragma once
+// VTK XML writers for ParaView: ImageData (.vti) for cell fields, UnstructuredGrid (.vtu) of vertices for
+// particles. Written without the VTK library: raw appended binary, little-endian, UInt64 block headers.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/field2.hpp"
+#include "core/grid2.hpp"
+#include "dem/particle_store.hpp"
+
+namespace fluidbed {
+
+/// One CellData array of a .vti file: a scalar field, or a 2D vector field (written as 3 components, z = 0).
+/// Holds pointers: the fields must outlive the write_vti call.
+struct VtiArray {
+  std::string name;
+  const Field2* x = nullptr;
+  const Field2* y = nullptr;  ///< nullptr for a scalar
+
+  static VtiArray scalar(std::string name, const Field2& f) { return {std::move(name), &f, nullptr}; }
+  static VtiArray vector(std::string name, const Field2& fx, const Field2& fy) {
+    return {std::move(name), &fx, &fy};
+  }
+};
+
+/// Write an ImageData file of cell-centred arrays on `grid` (every field nx x ny, else std::invalid_argument),
+/// with FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
+void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
+               const std::vector<VtiArray>& cell_data);
+
+/// Write an UnstructuredGrid of one VTK_VERTEX per particle, sorted by particle id (the store is not modified).
+/// Point arrays: id (Int64), species (Int32), diameter (Float64, m), velocity (Float64 x3, z = 0, m/s),
+/// angular_velocity (Float64 scalar: spin about z, rad/s, anticlockwise positive), layer (Int32);
+/// FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
+void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles);
+
+}  // namespace fluidbed
