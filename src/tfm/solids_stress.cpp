@@ -1,0 +1,95 @@
+#include "tfm/solids_stress.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fluidbed::tfm {
+
+namespace {
+constexpr double sqrt_pi = 1.7724538509055160273;
+}
+
+double trace(const StrainRate2& d) { return d.xx + d.yy; }
+
+double double_dot(const StrainRate2& d) { return d.xx * d.xx + d.yy * d.yy + 2.0 * d.xy * d.xy; }
+
+double second_invariant(const StrainRate2& d) {
+  return ((d.xx - d.yy) * (d.xx - d.yy) + d.yy * d.yy + d.xx * d.xx) / 6.0 + d.xy * d.xy;
+}
+
+double radial_distribution(double eps) { return (1.0 / eps) * (1.0 + 1.5 * (1.0 - eps) / eps); }
+
+double kt_k2(const GranularMaterial& m, double eps_s, double g0) {
+  const double e = m.e;
+  return 0.5 * m.d_p * m.rho_s *
+         (sqrt_pi / (3.0 * (3.0 - e)) * (1.0 + 0.4 * (1.0 + e) * (3.0 * e - 1.0) * eps_s * g0) +
+          8.0 * eps_s * g0 * (1.0 + e) / (5.0 * sqrt_pi));
+}
+
+double kt_k1(const GranularMaterial& m, double eps_s, double g0) {
+  return 4.0 * m.d_p * m.rho_s * (1.0 + m.e) * eps_s * g0 / (3.0 * sqrt_pi) - 2.0 / 3.0 * kt_k2(m, eps_s, g0);
+}
+
+double kt_k4(const GranularMaterial& m, double g0) {
+  return 12.0 * (1.0 - m.e * m.e) * m.rho_s * g0 / (m.d_p * sqrt_pi);
+}
+
+double kt_pressure(const GranularMaterial& m, double eps, double theta) {
+  const double eps_s = 1.0 - eps;
+  return 2.0 * (1.0 + m.e) * m.rho_s * radial_distribution(eps) * eps_s * eps_s * theta;
+}
+
+double kt_shear_viscosity(const GranularMaterial& m, double eps, double theta) {
+  const double eps_s = 1.0 - eps;
+  return kt_k2(m, eps_s, radial_distribution(eps)) * eps_s * std::sqrt(theta);
+}
+
+double kt_bulk_viscosity(const GranularMaterial& m, double eps, double theta) {
+  const double eps_s = 1.0 - eps;
+  return kt_k1(m, eps_s, radial_distribution(eps)) * eps_s * std::sqrt(theta);
+}
+
+double algebraic_granular_temperature(const GranularMaterial& m, double eps, const StrainRate2& d) {
+  const double eps_s = 1.0 - eps;
+  if (eps_s <= 0.0) return 0.0;
+  const double g0 = radial_distribution(eps);
+  // Balance for x = sqrt(Theta), after dividing by eps_s x:
+  // K4 eps_s x^2 + c_p eps_s tr(D) x - [K1 tr(D)^2 + 2 K2 D:D] = 0, with c_p = 2 (1 + e) rho_s g0 (Eq. 23).
+  const double c_p = 2.0 * (1.0 + m.e) * m.rho_s * g0;
+  const double k4 = kt_k4(m, g0);
+  const double tr = trace(d);
+  const double source = kt_k1(m, eps_s, g0) * tr * tr + 2.0 * kt_k2(m, eps_s, g0) * double_dot(d);
+  const double b = c_p * eps_s * tr;
+  const double disc = b * b + 4.0 * k4 * eps_s * std::max(source, 0.0);
+  const double x = (-b + std::sqrt(disc)) / (2.0 * k4 * eps_s);
+  return x > 0.0 ? x * x : 0.0;
+}
+
+double frictional_p_star(double eps, double eps_star) {
+  if (eps >= eps_star) return 0.0;
+  return 1e24 * std::pow(eps_star - eps, 10);
+}
+
+double frictional_pressure(double eps, double eps_star) { return (1.0 - eps) * frictional_p_star(eps, eps_star); }
+
+double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate2& d, double mu_max) {
+  const double p_star = frictional_p_star(eps, eps_star);
+  if (p_star <= 0.0) return 0.0;
+  const double root = std::sqrt(second_invariant(d));
+  const double numerator = 0.5 * p_star * std::sin(phi_rad);
+  // Written as a comparison so that a strain rate of exactly zero gives the cap, not a division by zero.
+  if (numerator >= mu_max * root) return mu_max;
+  return numerator / root;
+}
+
+double modulus_g(const ModulusParams& p, double eps, double eps_star) { return p.a * std::exp(p.b * (eps_star - eps)); }
+
+double modulus_pressure(const ModulusParams& p, double eps, double eps_star) {
+  return p.a / p.b * std::exp(p.b * (eps_star - eps));
+}
+
+double modulus_voidage_for_pressure(const ModulusParams& p, double p_s, double eps_star) {
+  return eps_star - std::log(p_s * p.b / p.a) / p.b;
+}
+
+}  // namespace fluidbed::tfm

@@ -1,0 +1,72 @@
+#pragma once
+// Solids-phase stress closures of the two-fluid model (paper Eqs. 20-26), as small pure functions.
+// Voidage eps is the gas volume fraction; eps_s = 1 - eps.
+
+namespace fluidbed::tfm {
+
+/// Particle properties the kinetic theory needs.
+struct GranularMaterial {
+  double d_p = 0.004;       ///< particle diameter [m]
+  double rho_s = 2700.0;    ///< particle density [kg/m^3]
+  double e = 0.9;           ///< coefficient of restitution [-]
+};
+
+/// Symmetric 2D strain-rate tensor D = (grad v + grad v^T) / 2 [1/s]; the out-of-plane components are zero.
+struct StrainRate2 {
+  double xx = 0.0;
+  double yy = 0.0;
+  double xy = 0.0;
+};
+
+/// tr(D).
+double trace(const StrainRate2& d);
+/// tr(D . D) = D:D.
+double double_dot(const StrainRate2& d);
+/// Second invariant used by Schaeffer's frictional viscosity:
+/// I_2D = [(Dxx - Dyy)^2 + Dyy^2 + Dxx^2] / 6 + Dxy^2 (plane strain, Dzz = 0).
+double second_invariant(const StrainRate2& d);
+
+/// Eq. 26 exactly as printed: g0 = (1/eps) (1 + 1.5 eps_s / eps), eps the voidage.
+double radial_distribution(double eps);
+
+/// Eq. 25, K1: bulk-viscosity coefficient [kg/m^2].
+double kt_k1(const GranularMaterial& m, double eps_s, double g0);
+/// Eq. 25, K2: shear-viscosity coefficient [kg/m^2].
+double kt_k2(const GranularMaterial& m, double eps_s, double g0);
+/// Collisional dissipation coefficient K4 of the algebraic energy balance: gamma = K4 eps_s^2 Theta^1.5
+/// (Syamlal, Rogers & O'Brien 1993, MFIX Theory Guide, DOE/METC-94/1004) [kg/m^4].
+double kt_k4(const GranularMaterial& m, double g0);
+
+/// Eq. 23: kinetic/collisional solids pressure P_s^c = 2 (1 + e) rho_s g0 eps_s^2 Theta [Pa].
+double kt_pressure(const GranularMaterial& m, double eps, double theta);
+/// Eq. 24: mu_s^c = K2 eps_s sqrt(Theta) [Pa s].
+double kt_shear_viscosity(const GranularMaterial& m, double eps, double theta);
+/// Eq. 24: lambda_s^c = K1 eps_s sqrt(Theta) [Pa s].
+double kt_bulk_viscosity(const GranularMaterial& m, double eps, double theta);
+
+/// Granular temperature [m^2/s^2] from the algebraic granular energy balance (production by the
+/// kinetic-theory stresses of Eqs. 23-25 equals collisional dissipation; convection and conduction dropped),
+/// the form of Syamlal, Rogers & O'Brien (1993, MFIX Theory Guide). Zero for eps_s <= 0.
+double algebraic_granular_temperature(const GranularMaterial& m, double eps, const StrainRate2& d);
+
+/// Eq. 22: P* = 1e24 (eps* - eps)^10 Pa for eps < eps*, else 0.
+double frictional_p_star(double eps, double eps_star);
+/// Eq. 21: P_s^f = (1 - eps) P*.
+double frictional_pressure(double eps, double eps_star);
+/// Eq. 21: mu_s^f = P* sin(phi) / (2 sqrt(I_2D)), capped at mu_max because sqrt(I_2D) -> 0 in a bed at rest.
+double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate2& d, double mu_max);
+
+/// Parameters of the solids-pressure modulus of Eq. 20 in the exponential form the paper cites,
+/// G = A exp(B (eps* - eps)).
+struct ModulusParams {
+  double a = 1.0;     ///< normalising factor A [Pa]
+  double b = 600.0;   ///< compaction modulus B [-]
+};
+/// Eq. 20: G(eps) = A exp(B (eps* - eps)) [Pa], so that grad P_s = -G grad eps = G grad eps_s.
+double modulus_g(const ModulusParams& p, double eps, double eps_star);
+/// Solids pressure whose gradient is Eq. 20: P_s = (A / B) exp(B (eps* - eps)) [Pa].
+double modulus_pressure(const ModulusParams& p, double eps, double eps_star);
+/// Voidage at which modulus_pressure equals p_s: the compaction this model needs to carry a load p_s.
+double modulus_voidage_for_pressure(const ModulusParams& p, double p_s, double eps_star);
+
+}  // namespace fluidbed::tfm

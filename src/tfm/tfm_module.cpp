@@ -1,1 +1,0 @@
-// Module tfm: filled in by its issue.

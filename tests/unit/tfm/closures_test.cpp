@@ -1,0 +1,133 @@
+// Unit tests of the TFM closures (paper Eqs. 20-26) and limiter functions against hand-computed values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tfm/flux_limiter.hpp"
+#include "tfm/solids_stress.hpp"
+
+namespace fluidbed::tfm {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(Limiters, TextbookValues) {
+  // Sweby-diagram corners: superbee is the upper TVD bound, minmod the lower.
+  EXPECT_DOUBLE_EQ(superbee(-1.0), 0.0);
+  EXPECT_DOUBLE_EQ(superbee(0.25), 0.5);
+  EXPECT_DOUBLE_EQ(superbee(0.75), 1.0);
+  EXPECT_DOUBLE_EQ(superbee(1.5), 1.5);
+  EXPECT_DOUBLE_EQ(superbee(3.0), 2.0);
+  EXPECT_DOUBLE_EQ(minmod(0.5), 0.5);
+  EXPECT_DOUBLE_EQ(minmod(4.0), 1.0);
+  EXPECT_DOUBLE_EQ(van_leer(1.0), 1.0);
+  EXPECT_DOUBLE_EQ(van_leer(3.0), 1.5);
+  EXPECT_DOUBLE_EQ(van_leer(-2.0), 0.0);
+  for (double r = -2.0; r <= 10.0; r += 0.125) {
+    for (Limiter l : {Limiter::Superbee, Limiter::Minmod, Limiter::VanLeer}) {
+      const double psi = limiter_value(l, r);
+      // TVD region of Sweby (1984): 0 <= psi <= min(2r, 2) for r > 0, psi = 0 for r <= 0.
+      EXPECT_GE(psi, 0.0);
+      EXPECT_LE(psi, std::max(0.0, std::min(2.0 * r, 2.0)) + 1e-15);
+    }
+  }
+}
+
+TEST(Limiters, FaceValuePicksUpwindSide) {
+  // Linear data phi = 1, 2, 3, 4: r = 1 so every limiter gives the central value 2.5 on the middle face.
+  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, 1.0, 1, 2, 3, 4), 2.5);
+  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, -1.0, 1, 2, 3, 4), 2.5);
+  // Upwind returns the upwind cell for each direction.
+  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Upwind, 1.0, 1, 2, 3, 4), 2.0);
+  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Upwind, -1.0, 1, 2, 3, 4), 3.0);
+  // At an extremum (2 is a peak) the correction vanishes.
+  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, 1.0, 1, 2, 0, 4), 2.0);
+}
+
+TEST(KineticTheory, RadialDistributionAsPrinted) {
+  // Eq. 26 by hand: eps = 0.5 -> (1/0.5)(1 + 1.5 * 0.5/0.5) = 5; eps -> 1 -> 1.
+  EXPECT_DOUBLE_EQ(radial_distribution(0.5), 5.0);
+  EXPECT_DOUBLE_EQ(radial_distribution(1.0), 1.0);
+  EXPECT_NEAR(radial_distribution(0.43), (1.0 / 0.43) * (1.0 + 1.5 * 0.57 / 0.43), 1e-14);
+  // g0 grows monotonically as the bed compacts.
+  for (double eps = 0.98; eps > 0.35; eps -= 0.01) EXPECT_GT(radial_distribution(eps), radial_distribution(eps + 0.01));
+}
+
+TEST(KineticTheory, HandComputedCoefficients) {
+  const GranularMaterial m{0.004, 2700.0, 0.9};
+  const double eps = 0.5, theta = 0.01, eps_s = 0.5, g0 = 5.0;
+  // Eq. 25 by hand for e = 0.9: sqrt(pi)/(3 * 2.1) = 0.281339..., 0.4 * 1.9 * 1.7 = 1.292.
+  const double k2 = 0.5 * 0.004 * 2700.0 *
+                    (std::sqrt(kPi) / 6.3 * (1.0 + 1.292 * eps_s * g0) + 8.0 * eps_s * g0 * 1.9 / (5.0 * std::sqrt(kPi)));
+  EXPECT_NEAR(kt_k2(m, eps_s, g0), k2, 1e-12 * k2);
+  // Pencil-and-paper value: 5.4 * (0.2813394 * 4.23 + 38 / 8.862269) = 29.5807 (7 digits kept).
+  EXPECT_NEAR(kt_k2(m, eps_s, g0), 29.5807, 1e-4);
+  const double k1 = 4.0 * 0.004 * 2700.0 * 1.9 * 2.5 / (3.0 * std::sqrt(kPi)) - 2.0 / 3.0 * k2;
+  EXPECT_NEAR(kt_k1(m, eps_s, g0), k1, 1e-12 * std::abs(k1));
+  // Eq. 23: 2 * 1.9 * 2700 * 5 * 0.25 * 0.01 = 128.25 Pa.
+  EXPECT_NEAR(kt_pressure(m, eps, theta), 128.25, 1e-10);
+  // Eq. 24: mu = K2 eps_s sqrt(Theta) = K2 * 0.5 * 0.1.
+  EXPECT_NEAR(kt_shear_viscosity(m, eps, theta), 0.05 * k2, 1e-12);
+  EXPECT_NEAR(kt_bulk_viscosity(m, eps, theta), 0.05 * k1, 1e-12);
+}
+
+TEST(KineticTheory, DiluteLimitOfViscosity) {
+  // eps_s -> 0 in Eq. 25: K2 -> d_p rho_s sqrt(pi) / (6 (3 - e)), so mu_s / eps_s -> that times sqrt(Theta).
+  const GranularMaterial m{0.004, 2700.0, 0.9};
+  const double theta = 0.04;
+  const double limit = 0.004 * 2700.0 * std::sqrt(kPi) / (6.0 * 2.1) * std::sqrt(theta);
+  for (double eps_s : {1e-4, 1e-6, 1e-8}) {
+    // The O(eps_s g0) corrections decay linearly; 20 eps_s bounds them for these properties.
+    EXPECT_NEAR(kt_shear_viscosity(m, 1.0 - eps_s, theta) / eps_s, limit, 20.0 * eps_s * limit);
+  }
+  EXPECT_DOUBLE_EQ(kt_pressure(m, 1.0, theta), 0.0);
+}
+
+TEST(KineticTheory, AlgebraicTemperatureBalancesProductionAndDissipation) {
+  const GranularMaterial m{0.004, 2700.0, 0.9};
+  for (double eps : {0.45, 0.6, 0.9}) {
+    for (StrainRate2 d : {StrainRate2{0.0, 0.0, 5.0}, StrainRate2{2.0, -1.0, 3.0}, StrainRate2{-4.0, 1.0, 0.5}}) {
+      const double theta = algebraic_granular_temperature(m, eps, d);
+      ASSERT_GT(theta, 0.0);
+      const double eps_s = 1.0 - eps;
+      const double g0 = radial_distribution(eps);
+      const double p = kt_pressure(m, eps, theta), mu = kt_shear_viscosity(m, eps, theta),
+                   lambda = kt_bulk_viscosity(m, eps, theta);
+      // Production sigma:D with sigma = -P I + 2 mu D + lambda tr(D) I; dissipation K4 eps_s^2 Theta^1.5.
+      const double production = -p * trace(d) + 2.0 * mu * double_dot(d) + lambda * trace(d) * trace(d);
+      const double dissipation = kt_k4(m, g0) * eps_s * eps_s * std::pow(theta, 1.5);
+      EXPECT_NEAR(production, dissipation, 1e-10 * dissipation) << eps;
+    }
+  }
+  // Pure shear in the dense limit: Theta scales with the square of the shear rate (no intrinsic rate scale).
+  const double t1 = algebraic_granular_temperature(m, 0.45, {0.0, 0.0, 1.0});
+  const double t2 = algebraic_granular_temperature(m, 0.45, {0.0, 0.0, 2.0});
+  EXPECT_NEAR(t2 / t1, 4.0, 1e-12);
+  EXPECT_DOUBLE_EQ(algebraic_granular_temperature(m, 0.45, {}), 0.0);
+}
+
+TEST(Frictional, HandComputedValues) {
+  // Eq. 22: eps* - eps = 0.01 -> 1e24 * 1e-20 = 1e4 Pa; Eq. 21: (1 - 0.42) * 1e4.
+  EXPECT_NEAR(frictional_p_star(0.42, 0.43), 1e4, 1e-6);
+  EXPECT_NEAR(frictional_pressure(0.42, 0.43), 5800.0, 1e-6);
+  EXPECT_DOUBLE_EQ(frictional_p_star(0.44, 0.43), 0.0);
+  // Simple shear D_xy = 1: I_2D = 1, mu = 1e4 sin(40 deg) / 2.
+  const double phi = 40.0 * kPi / 180.0;
+  EXPECT_NEAR(frictional_viscosity(0.42, 0.43, phi, {0.0, 0.0, 1.0}, 1e9), 0.5e4 * std::sin(phi), 1e-8);
+  EXPECT_DOUBLE_EQ(frictional_viscosity(0.42, 0.43, phi, {}, 100.0), 100.0);
+  EXPECT_NEAR(second_invariant({1.0, -1.0, 0.0}), (4.0 + 1.0 + 1.0) / 6.0, 1e-15);
+}
+
+TEST(Modulus, Eq20ExponentialForm) {
+  const ModulusParams p{1.0, 600.0};
+  EXPECT_DOUBLE_EQ(modulus_g(p, 0.43, 0.43), 1.0);
+  EXPECT_NEAR(modulus_g(p, 0.42, 0.43), std::exp(6.0), 1e-9);
+  // dP_s/d eps = -G: central difference of the pressure reproduces the modulus.
+  const double h = 1e-6;
+  const double dp = (modulus_pressure(p, 0.42 + h, 0.43) - modulus_pressure(p, 0.42 - h, 0.43)) / (2.0 * h);
+  EXPECT_NEAR(-dp, modulus_g(p, 0.42, 0.43), 1e-6 * modulus_g(p, 0.42, 0.43));
+  EXPECT_NEAR(modulus_pressure(p, modulus_voidage_for_pressure(p, 8000.0, 0.43), 0.43), 8000.0, 1e-8);
+}
+
+}  // namespace
+}  // namespace fluidbed::tfm
