@@ -1,1 +1,0 @@
-// Module analysis: filled in by its issue.

@@ -1,0 +1,40 @@
+#pragma once
+// Lacey mixing index of coloured particles or tracer balls, on a grid of sample cells of a chosen size.
+#include <cstdint>
+#include <span>
+
+#include "core/grid2.hpp"
+#include "dem/particle_store.hpp"
+
+namespace fluidbed {
+
+class CellTracers;
+
+/// Sample cells: the domain of `domain` cut into cells of about sample_dx x sample_dy (0: the grid's dx, dy).
+struct MixingConfig {
+  double sample_dx = 0.0;  ///< m
+  double sample_dy = 0.0;  ///< m
+};
+
+struct LaceyResult {
+  double index = 0.0;            ///< M = (S0^2 - S^2) / (S0^2 - SR^2); 0 segregated, 1 random
+  double s2 = 0.0;               ///< S^2, particle-weighted variance of the sample concentration
+  double s0_2 = 0.0;             ///< p (1 - p)
+  double sr_2 = 0.0;             ///< p (1 - p) / n
+  double p = 0.0;                ///< overall fraction in the group
+  double mean_per_sample = 0.0;  ///< n, particles per occupied sample
+  int samples = 0;               ///< occupied sample cells
+  bool valid = false;            ///< false when the index is undefined (one colour only, n <= 1, no particles)
+};
+
+/// Lacey index of the two-colour mixture in_group != 0 vs == 0 at positions (x, y).
+LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, std::span<const std::uint8_t> in_group,
+                        const Grid2& domain, const MixingConfig& config);
+
+/// Lower part (layer < split_layer) vs upper part of the initial bed, for DEM particles.
+LaceyResult lacey_index(const ParticleStore& particles, int split_layer, const Grid2& domain,
+                        const MixingConfig& config);
+/// Same for the cell tracer balls.
+LaceyResult lacey_index(const CellTracers& tracers, int split_layer, const Grid2& domain, const MixingConfig& config);
+
+}  // namespace fluidbed

@@ -1,0 +1,91 @@
+// Layer colouring and the cell tracer balls of the paper's Fig. 4.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "analysis/layer_tracers.hpp"
+
+namespace fluidbed {
+namespace {
+
+TEST(CellTracers, OneBallPerInitialBedCellWithLayers) {
+  const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
+  const double bed_height = 0.54;  // 27 rows of 2 cm
+  const CellTracers tr(g, bed_height, 9);
+  ASSERT_EQ(tr.size(), static_cast<std::size_t>(30 * 27));
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    EXPECT_LT(tr.y[k], bed_height);
+    EXPECT_EQ(tr.layer[k], static_cast<int>(std::floor(tr.y[k] / 0.06)));  // 9 layers of 6 cm
+    EXPECT_EQ(tr.id[k], static_cast<std::int64_t>(k));
+  }
+}
+
+TEST(CellTracers, UniformVelocityMovesEveryBallByVt) {
+  // Every cell has the same velocity, so after n steps each ball has moved (u n dt, v n dt); the only error is the
+  // round-off of n additions, below n ulp(1 m) ~ 1e-13 m for n = 2000. Balls of the last column would cross the
+  // right wall and are held on it.
+  const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
+  CellTracers tr(g, 0.54, 9);
+  const CellTracers start = tr;
+  const double u = 0.013, v = 0.021, dt = 1e-3;
+  const int steps = 2000;  // moves 2.6 cm and 4.2 cm
+  const Field2 us(g.nx, g.ny, u), vs(g.nx, g.ny, v);
+  for (int n = 0; n < steps; ++n) tr.advance(us, vs, dt);
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    EXPECT_NEAR(tr.x[k], std::min(start.x[k] + u * steps * dt, g.width()), 1e-12);
+    EXPECT_LE(tr.x[k], g.width());
+    EXPECT_NEAR(tr.y[k], start.y[k] + v * steps * dt, 1e-12);
+    EXPECT_EQ(tr.layer[k], start.layer[k]);
+  }
+}
+
+TEST(CellTracers, PiecewiseConstantVelocityAndClampedToDomain) {
+  const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
+  CellTracers tr(g, 0.1, 1);
+  Field2 us(g.nx, g.ny, 0.0), vs(g.nx, g.ny, 0.0);
+  // Only column 3 moves; a ball leaving the domain is held at its edge.
+  for (int j = 0; j < g.ny; ++j) {
+    us(3, j) = -1.5;
+    vs(3, j) = 0.5;
+  }
+  const CellTracers start = tr;
+  for (int n = 0; n < 100; ++n) tr.advance(us, vs, 0.01);
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    EXPECT_GE(tr.x[k], 0.0);
+    EXPECT_LE(tr.x[k], g.width());
+    EXPECT_GE(tr.y[k], 0.0);
+    EXPECT_LE(tr.y[k], g.height());
+    if (g.cell_i(start.x[k]) != 3) {
+      EXPECT_EQ(tr.x[k], start.x[k]);
+      EXPECT_EQ(tr.y[k], start.y[k]);
+    } else {
+      // After the first step (x = 0.07 - 0.015 = 0.055) the ball sits in column 2, which does not move.
+      EXPECT_NEAR(tr.x[k], start.x[k] - 0.015, 1e-15);
+      EXPECT_NEAR(tr.y[k], start.y[k] + 0.005, 1e-15);
+    }
+  }
+  // A strong leftward field drives every ball onto the wall x = 0 and no further.
+  const Field2 left(g.nx, g.ny, -10.0), none(g.nx, g.ny, 0.0);
+  for (int n = 0; n < 10; ++n) tr.advance(left, none, 0.01);
+  for (std::size_t k = 0; k < tr.size(); ++k) EXPECT_EQ(tr.x[k], 0.0);
+}
+
+TEST(AssignLayers, ByInitialHeight) {
+  ParticleStore p;
+  const Species s;
+  const double ys[] = {0.001, 0.059, 0.061, 0.31, 0.539, 0.6};
+  for (int k = 0; k < 6; ++k) p.add(k, 0, s, {0.1, ys[k]});
+  assign_layers(p, 9, 0.54);
+  const int expected[] = {0, 0, 1, 5, 8, 8};  // heights above the bed go to the top layer
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(p.layer[static_cast<std::size_t>(k)], expected[k]) << ys[k];
+}
+
+TEST(TracerCsv, HeaderAndRows) {
+  const Grid2 g = Grid2::uniform(0.04, 0.04, 2, 2);
+  const CellTracers tr(g, 0.02, 1);
+  EXPECT_EQ(tracer_csv(tr), "ball_id,x,y,layer\n0,0.01,0.01,0\n1,0.03,0.01,0\n");
+}
+
+}  // namespace
+}  // namespace fluidbed
