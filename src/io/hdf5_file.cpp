@@ -123,6 +123,12 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
 
 Hdf5File Hdf5File::create(const std::filesystem::path& path) {
   silence_hdf5();
+  // HDF5's own message for a missing folder is long; say it plainly.
+  const std::filesystem::path parent = path.parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+    throw Error(ErrorKind::BadInput, "cannot write " + path.string() + ": no folder " + parent.string());
+  }
   Hdf5File f;
   f.path_ = path;
   f.temp_ = temp_path_for(path);
