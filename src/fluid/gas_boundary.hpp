@@ -1,0 +1,57 @@
+#pragma once
+// Boundary-condition helpers of the gas phase, shared by the CFD-DEM gas solver and the two-fluid model.
+#include "core/field2.hpp"
+#include "core/grid2.hpp"
+#include "fluid/gas_config.hpp"
+
+namespace fluidbed {
+
+/// Superficial inlet velocity averaged over the bottom face [x_lo, x_hi] at time t: the background velocity,
+/// replaced by each active jet over the fraction of the face it covers (so the jet's volume flux is exact).
+double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t);
+
+/// Superficial inlet velocity of every bottom face of the grid (size nx) at time t.
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out);
+
+/// Throws an input error naming the offending setting.
+void validate(const GasConfig& config);
+
+/// Staggered (MAC) storage of the gas unknowns: P at cell centres (nx x ny), u on vertical faces ((nx+1) x ny),
+/// v on horizontal faces (nx x (ny+1)); u(i, j) sits at x0 + i dx, v(i, j) at y0 + j dy.
+struct StaggeredFields {
+  Field2 p;
+  Field2 u;
+  Field2 v;
+  static StaggeredFields zeros(const Grid2& grid) {
+    return {Field2(grid.nx, grid.ny), Field2(grid.nx + 1, grid.ny), Field2(grid.nx, grid.ny + 1)};
+  }
+};
+
+/// Cell-centred value interpolated to vertical faces ((nx+1) x ny): mean of the two neighbours, copy at the walls.
+void cell_to_u_faces(const Field2& cell, Field2& face);
+/// Cell-centred value interpolated to horizontal faces (nx x (ny+1)).
+void cell_to_v_faces(const Field2& cell, Field2& face);
+
+/// u (on vertical faces) bilinearly interpolated to the point; clamped to the outermost nodes.
+double interpolate_u(const Grid2& grid, const Field2& u, Vec2 x);
+/// v (on horizontal faces) bilinearly interpolated to the point; clamped to the outermost nodes.
+double interpolate_v(const Grid2& grid, const Field2& v, Vec2 x);
+/// A cell-centred field bilinearly interpolated to the point; clamped to the outermost cell centres.
+double interpolate_cell(const Grid2& grid, const Field2& f, Vec2 x);
+
+/// Cell-centred velocity: mean of the two faces of each cell.
+void cell_centre_velocity(const Field2& u, const Field2& v, Field2& ug, Field2& vg);
+
+/// Cell-centred pressure gradient: central differences inside, one-sided in the outer rows/columns
+/// (exact for a pressure linear in x and y).
+void cell_pressure_gradient(const Grid2& grid, const Field2& p, Field2& dpdx, Field2& dpdy);
+
+}  // namespace fluidbed
+
+namespace fluidbed {
+
+/// The cell-centred pressure gradient of cell_pressure_gradient, bilinearly interpolated to the point
+/// (computed from the four surrounding cells only, so it is cheap per particle).
+Vec2 interpolate_pressure_gradient(const Grid2& grid, const Field2& p, Vec2 x);
+
+}  // namespace fluidbed

@@ -1,0 +1,71 @@
+#pragma once
+// Configuration of the gas phase (Eqs. 11-12) and its boundaries; defaults are the paper's case (Table 1).
+#include <vector>
+
+#include "core/vec2.hpp"
+
+namespace fluidbed {
+
+/// Tangential condition on a wall.
+enum class WallKind { Slip, NoSlip };
+
+/// Top boundary of the domain.
+enum class TopBoundary {
+  PressureOutlet,  ///< P = top_pressure on the top face, zero-gradient velocity
+  Wall,            ///< impermeable; may slide tangentially at lid_velocity (lid-driven cavity)
+};
+
+/// Face-value scheme for the convection terms (higher orders by deferred correction on an upwind matrix).
+enum class ConvectionScheme { Upwind, VanLeer, Minmod };
+
+/// Viscous stress in the gas momentum equation.
+enum class ViscousStress {
+  Off,        ///< the paper's inviscid gas (default)
+  Laplacian,  ///< div(eps mu_g grad u): the transpose part of the stress is dropped
+};
+
+/// Pressure-velocity coupling of the outer iterations.
+enum class PressureCoupling { Simple, Simplec };
+
+/// A jet through the bottom distributor, active for t_start <= t < t_end.
+struct InletJet {
+  double x_centre = 0.3;  ///< [m]
+  double width = 0.02;    ///< [m]
+  double velocity = 30.0; ///< superficial velocity through the jet [m/s]
+  double t_start = 0.0;   ///< [s]
+  double t_end = 0.4;     ///< [s]
+};
+
+struct GasBoundaryConfig {
+  /// Superficial (volume flux per area) velocity through the whole bottom [m/s]; paper: U_mf = 1.8.
+  double inlet_velocity = 1.8;
+  /// Jets replacing the background inflow over their width; paper: one 0.02 m jet at the centre, 30 m/s, 0-0.4 s.
+  std::vector<InletJet> jets{InletJet{}};
+  TopBoundary top = TopBoundary::PressureOutlet;
+  double top_pressure = 0.0;  ///< [Pa], PressureOutlet only
+  double lid_velocity = 0.0;  ///< tangential speed of a top Wall [m/s]
+  WallKind side_walls = WallKind::NoSlip;
+  WallKind bottom_wall = WallKind::NoSlip;  ///< tangential condition along the distributor
+  WallKind top_wall = WallKind::NoSlip;     ///< top Wall only
+};
+
+/// Gas phase: physical properties, discretisation and the SIMPLE loop.
+struct GasConfig {
+  double rho_g = 1.205;          ///< [kg/m^3]
+  double mu_g = 1.8e-5;          ///< [Pa s]
+  Vec2 gravity{0.0, -9.81};      ///< [m/s^2]
+  ViscousStress viscous = ViscousStress::Off;
+  ConvectionScheme convection = ConvectionScheme::VanLeer;
+  PressureCoupling coupling = PressureCoupling::Simplec;
+  double relax_velocity = 0.8;   ///< momentum under-relaxation (0, 1]
+  double relax_pressure = 1.0;   ///< pressure under-relaxation (0, 1]; about 0.3 with Simple
+  int max_simple_iterations = 200;
+  /// Converged when sum over cells |mass imbalance of the predicted velocities| / reference mass flow is below this;
+  /// reference = max(inlet mass flow, rho_g * largest face speed * domain width).
+  double mass_tolerance = 1e-8;
+  double momentum_solver_tolerance = 1e-10;  ///< relative residual of the linear momentum solves
+  int momentum_solver_max_iterations = 500;
+  GasBoundaryConfig boundary;
+};
+
+}  // namespace fluidbed

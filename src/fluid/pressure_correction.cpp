@@ -1,0 +1,105 @@
+#include "fluid/pressure_correction.hpp"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <string>
+
+#include "core/error.hpp"
+#include "fluid/stencil_matrix.hpp"
+
+namespace fluidbed {
+
+struct PressureCorrectionSolver::Impl {
+  Grid2 grid;
+  PressureSolverKind kind;
+  StencilMatrix a;
+  Eigen::SimplicialLDLT<StencilMatrix::Matrix> ldlt;
+  Eigen::ConjugateGradient<StencilMatrix::Matrix, Eigen::Lower | Eigen::Upper,
+                           Eigen::IncompleteCholesky<double>>
+      cg;
+  bool analysed = false;
+  Eigen::VectorXd b;
+  Eigen::VectorXd x;
+};
+
+PressureCorrectionSolver::PressureCorrectionSolver(const Grid2& grid, PressureSolverKind kind, double cg_tolerance)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->grid = grid;
+  impl_->kind = kind;
+  const int nx = grid.nx;
+  const int ny = grid.ny;
+  std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int r = j * nx + i;
+      nb[static_cast<std::size_t>(r)] = {i > 0 ? r - 1 : -1, i < nx - 1 ? r + 1 : -1, j > 0 ? r - nx : -1,
+                                         j < ny - 1 ? r + nx : -1};
+    }
+  impl_->a.build(nx * ny, nb);
+  impl_->cg.setTolerance(cg_tolerance);
+  impl_->b.resize(nx * ny);
+  impl_->x.resize(nx * ny);
+}
+
+PressureCorrectionSolver::~PressureCorrectionSolver() = default;
+PressureCorrectionSolver::PressureCorrectionSolver(PressureCorrectionSolver&&) noexcept = default;
+PressureCorrectionSolver& PressureCorrectionSolver::operator=(PressureCorrectionSolver&&) noexcept = default;
+
+void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x) {
+  Impl& s = *impl_;
+  const int nx = s.grid.nx;
+  const int ny = s.grid.ny;
+  bool has_boundary = false;
+  for (int j = 0; j < ny; ++j) has_boundary = has_boundary || ax(0, j) > 0.0 || ax(nx, j) > 0.0;
+  for (int i = 0; i < nx; ++i) has_boundary = has_boundary || ay(i, 0) > 0.0 || ay(i, ny) > 0.0;
+  // Pinning the first cell of an all-Neumann problem: drop its couplings from both its row and its neighbours'
+  // rows, which keeps the matrix symmetric (the pinned value is zero, so the dropped terms vanish).
+  const bool pin = !has_boundary;
+#pragma omp parallel for schedule(static) if (nx * ny >= kParallelCells)
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int r = j * nx + i;
+      const double aw = ax(i, j);
+      const double ae = ax(i + 1, j);
+      const double as = ay(i, j);
+      const double an = ay(i, j + 1);
+      std::array<double, 4> off{-aw, -ae, -as, -an};
+      double diag = aw + ae + as + an;
+      double b = rhs(i, j);
+      if (pin) {
+        if (r == 0) {
+          off = {0.0, 0.0, 0.0, 0.0};
+          diag = 1.0;
+          b = 0.0;
+        } else {
+          if (r == 1) off[0] = 0.0;
+          if (r == nx) off[2] = 0.0;
+        }
+      }
+      if (!(diag > 0.0)) diag = 1.0;  // a cell with no open face: p' is free, keep it at zero
+      s.a.set_row(r, diag, off);
+      s.b[r] = b;
+      s.x[r] = x(i, j);
+    }
+  if (s.kind == PressureSolverKind::Direct) {
+    if (!s.analysed) {
+      s.ldlt.analyzePattern(s.a.matrix());
+      s.analysed = true;
+    }
+    s.ldlt.factorize(s.a.matrix());
+    if (s.ldlt.info() != Eigen::Success) throw_simulation_error("gas pressure correction: LDLT factorisation failed");
+    s.x = s.ldlt.solve(s.b);
+  } else {
+    s.cg.compute(s.a.matrix());
+    s.x = s.cg.solveWithGuess(s.b, s.x);
+    if (s.cg.info() != Eigen::Success) {
+      throw_simulation_error("gas pressure correction: conjugate gradient did not converge (error " +
+                             std::to_string(s.cg.error()) + " after " + std::to_string(s.cg.iterations()) +
+                             " iterations)");
+    }
+  }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) x(i, j) = s.x[j * nx + i];
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,33 @@
+#include "fluid/stencil_matrix.hpp"
+
+namespace fluidbed {
+
+void StencilMatrix::build(int n, const std::vector<std::array<int, 4>>& neighbours) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(n) * kSlots);
+  for (int r = 0; r < n; ++r) {
+    triplets.emplace_back(r, r, 1.0);
+    for (int c : neighbours[static_cast<std::size_t>(r)])
+      if (c >= 0) triplets.emplace_back(r, c, 0.0);
+  }
+  matrix_ = Matrix(n, n);
+  matrix_.setFromTriplets(triplets.begin(), triplets.end());
+  matrix_.makeCompressed();
+  offset_.assign(static_cast<std::size_t>(n) * kSlots, -1);
+  const int* outer = matrix_.outerIndexPtr();
+  const int* inner = matrix_.innerIndexPtr();
+  const auto find = [&](int r, int c) {
+    for (int k = outer[r]; k < outer[r + 1]; ++k)
+      if (inner[k] == c) return k;
+    return -1;
+  };
+  for (int r = 0; r < n; ++r) {
+    offset_[static_cast<std::size_t>(r) * kSlots] = find(r, r);
+    for (int k = 0; k < 4; ++k) {
+      const int c = neighbours[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)];
+      offset_[static_cast<std::size_t>(r) * kSlots + 1 + k] = c >= 0 ? find(r, c) : -1;
+    }
+  }
+}
+
+}  // namespace fluidbed

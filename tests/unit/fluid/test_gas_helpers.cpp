@@ -1,0 +1,121 @@
+// Boundary-condition and interpolation helpers of the staggered gas grid.
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+#include "core/error.hpp"
+#include "fluid/gas_boundary.hpp"
+#include "fluid/gas_solver.hpp"
+
+namespace fluidbed {
+namespace {
+
+TEST(GasInlet, JetOverlapConservesVolumeFlux) {
+  GasBoundaryConfig bc;  // paper: 1.8 m/s background, one 0.02 m jet of 30 m/s at x = 0.3 for 0 <= t < 0.4
+  const Grid2 grid = Grid2::uniform(0.6, 1.0, 30, 50);
+  std::vector<double> u;
+  inlet_superficial_profile(bc, grid, 0.1, u);
+  // The jet [0.29, 0.31] covers half of the faces [0.28, 0.30] and [0.30, 0.32]: each gets (30 + 1.8) / 2.
+  EXPECT_NEAR(u[14], 15.9, 1e-12);
+  EXPECT_NEAR(u[15], 15.9, 1e-12);
+  EXPECT_DOUBLE_EQ(u[0], 1.8);
+  EXPECT_DOUBLE_EQ(u[29], 1.8);
+  // Total volume flux: 1.8 * 0.58 + 30 * 0.02 = 1.644 m^2/s.
+  const double q = std::accumulate(u.begin(), u.end(), 0.0) * grid.dx;
+  EXPECT_NEAR(q, 1.8 * 0.58 + 30.0 * 0.02, 1e-12);
+  // Switched off at t_end, and not yet on before t_start.
+  inlet_superficial_profile(bc, grid, 0.4, u);
+  EXPECT_DOUBLE_EQ(u[14], 1.8);
+  bc.jets[0].t_start = 0.2;
+  EXPECT_DOUBLE_EQ(inlet_superficial_velocity(bc, 0.28, 0.30, 0.1), 1.8);
+  // A jet aligned with one face fills it completely.
+  bc.jets[0].x_centre = 0.31;
+  EXPECT_DOUBLE_EQ(inlet_superficial_velocity(bc, 0.30, 0.32, 0.3), 30.0);
+}
+
+TEST(GasConfigValidation, RejectsBadValues) {
+  GasConfig c;
+  EXPECT_NO_THROW(validate(c));
+  c.rho_g = -1.0;
+  EXPECT_THROW(validate(c), Error);
+  c = GasConfig{};
+  c.relax_velocity = 1.5;
+  EXPECT_THROW(validate(c), Error);
+  c = GasConfig{};
+  c.boundary.jets[0].width = 0.0;
+  EXPECT_THROW(validate(c), Error);
+  c = GasConfig{};
+  c.mu_g = 0.0;
+  c.viscous = ViscousStress::Laplacian;
+  EXPECT_THROW(validate(c), Error);
+}
+
+TEST(GasInterpolation, LinearFieldsAreExact) {
+  const Grid2 g{6, 5, 0.1, 0.2, -0.3, 0.5};
+  const auto lin = [](double x, double y) { return 2.0 + 3.0 * x - 1.5 * y; };
+  StaggeredFields f = StaggeredFields::zeros(g);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i <= g.nx; ++i) f.u(i, j) = lin(g.x0 + i * g.dx, g.yc(j));
+  for (int j = 0; j <= g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) f.v(i, j) = 2.0 * lin(g.xc(i), g.y0 + j * g.dy);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) f.p(i, j) = lin(g.xc(i), g.yc(j));
+  // Points inside the node boxes of every field (the outermost half cells are clamped by design).
+  for (Vec2 x : {Vec2{-0.2, 0.65}, Vec2{0.0, 1.0}, Vec2{0.17, 1.23}, Vec2{0.24, 1.39}}) {
+    EXPECT_NEAR(interpolate_u(g, f.u, x), lin(x.x, x.y), 1e-12);
+    EXPECT_NEAR(interpolate_v(g, f.v, x), 2.0 * lin(x.x, x.y), 1e-12);
+    EXPECT_NEAR(interpolate_cell(g, f.p, x), lin(x.x, x.y), 1e-12);
+    const Vec2 gp = interpolate_pressure_gradient(g, f.p, x);
+    EXPECT_NEAR(gp.x, 3.0, 1e-12);
+    EXPECT_NEAR(gp.y, -1.5, 1e-12);
+  }
+  Field2 ug, vg, dpdx, dpdy;
+  cell_centre_velocity(f.u, f.v, ug, vg);
+  cell_pressure_gradient(g, f.p, dpdx, dpdy);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      EXPECT_NEAR(ug(i, j), lin(g.xc(i), g.yc(j)), 1e-12);
+      EXPECT_NEAR(vg(i, j), 2.0 * lin(g.xc(i), g.yc(j)), 1e-12);
+      EXPECT_NEAR(dpdx(i, j), 3.0, 1e-12);
+      EXPECT_NEAR(dpdy(i, j), -1.5, 1e-12);
+    }
+}
+
+TEST(GasInterpolation, FaceAveragesOfCells) {
+  Field2 c(3, 2);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) c(i, j) = 10.0 * j + i;
+  Field2 fu, fv;
+  cell_to_u_faces(c, fu);
+  cell_to_v_faces(c, fv);
+  EXPECT_DOUBLE_EQ(fu(0, 1), 10.0);
+  EXPECT_DOUBLE_EQ(fu(1, 1), 10.5);
+  EXPECT_DOUBLE_EQ(fu(3, 1), 12.0);
+  EXPECT_DOUBLE_EQ(fv(2, 0), 2.0);
+  EXPECT_DOUBLE_EQ(fv(2, 1), 7.0);
+  EXPECT_DOUBLE_EQ(fv(2, 2), 12.0);
+}
+
+TEST(GasSolverSmoke, UniformFlowThroughEmptyColumnIsExact) {
+  // No particles, inviscid: plug flow at the inlet speed; pressure hydrostatic rho g (y_top - y).
+  GasConfig cfg;
+  cfg.boundary.jets.clear();
+  cfg.boundary.inlet_velocity = 1.0;
+  const Grid2 g = Grid2::uniform(0.1, 0.2, 4, 8);
+  GasSolver gas(g, cfg);
+  Field2 eps(4, 8, 1.0), zero(4, 8, 0.0);
+  GasStepReport rep;
+  for (int n = 1; n <= 3; ++n) rep = gas.advance(n * 1e-3, 1e-3, eps, eps, zero, zero, zero);
+  EXPECT_LT(rep.mass_residual, cfg.mass_tolerance);
+  for (double v : gas.fields().v.v) EXPECT_NEAR(v, 1.0, 1e-9);
+  for (double u : gas.fields().u.v) EXPECT_NEAR(u, 0.0, 1e-9);
+  // Hydrostatic head over the 7 cell pitches between bottom and top rows (the outlet face holds P = 0).
+  EXPECT_NEAR(gas.pressure_drop(), cfg.rho_g * 9.81 * 7 * g.dy, 1e-8);
+  EXPECT_NEAR(gas.fields().p(0, 7), cfg.rho_g * 9.81 * 0.5 * g.dy, 1e-8);
+  const Vec2 vel = gas.velocity_at({0.05, 0.1});
+  EXPECT_NEAR(vel.y, 1.0, 1e-9);
+  EXPECT_NEAR(gas.pressure_gradient_at({0.05, 0.1}).y, -cfg.rho_g * 9.81, 1e-7);
+}
+
+}  // namespace
+}  // namespace fluidbed
