@@ -10,12 +10,12 @@
 namespace fluidbed {
 namespace {
 
-using test::fresh_dir;
 using test::slurp;
 using test::temp_files_in;
 
 TEST(AtomicFile, WritesStringAndLeavesNoTemporary) {
-  const auto dir = fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "a.txt";
   write_file_atomic(path, std::string("first\n"));
   EXPECT_EQ(slurp(path), "first\n");
@@ -25,7 +25,8 @@ TEST(AtomicFile, WritesStringAndLeavesNoTemporary) {
 }
 
 TEST(AtomicFile, WritesThroughStreamCallback) {
-  const auto dir = fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "b.txt";
   write_file_atomic(path, [](std::ostream& out) { out << "x=" << 42 << '\n'; });
   EXPECT_EQ(slurp(path), "x=42\n");
@@ -33,7 +34,8 @@ TEST(AtomicFile, WritesThroughStreamCallback) {
 }
 
 TEST(AtomicFile, ThrowingWriterLeavesOldFileIntact) {
-  const auto dir = fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "c.txt";
   write_file_atomic(path, std::string("old content\n"));
   EXPECT_THROW(write_file_atomic(path,
@@ -47,7 +49,8 @@ TEST(AtomicFile, ThrowingWriterLeavesOldFileIntact) {
 }
 
 TEST(AtomicFile, UnwritableTargetIsBadInputNamingThePath) {
-  const auto dir = fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "missing-folder" / "d.txt";
   try {
     write_file_atomic(path, std::string("x"));
@@ -67,14 +70,16 @@ TEST(AtomicFile, TempPathIsBesideTargetWithPid) {
 }
 
 TEST(EnsureDirectory, CreatesNestedFolders) {
-  const auto dir = fresh_dir() / "a" / "b" / "c";
+  const test::ScratchDir scratch;
+  const auto dir = scratch.path / "a" / "b" / "c";
   ensure_directory(dir);
   EXPECT_TRUE(std::filesystem::is_directory(dir));
   ensure_directory(dir);  // existing folder: no error
 }
 
 TEST(EnsureDirectory, FileInTheWayIsBadInput) {
-  const auto dir = fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto file = dir / "plain";
   test::spit(file, "x");
   try {

@@ -17,7 +17,8 @@ namespace {
 const std::vector<std::string> monitor_columns = {"time_s", "kinetic_energy_J", "attached"};
 
 TEST(CsvWriter, HeaderRowsFullPrecisionAndEmptyOptionals) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   CsvWriter w(dir / "m.csv", monitor_columns);
   EXPECT_EQ(test::slurp(dir / "m.csv"), "time_s,kinetic_energy_J,attached\n");
   const double third = 0.1 / 3.0;
@@ -37,7 +38,8 @@ TEST(CsvWriter, HeaderRowsFullPrecisionAndEmptyOptionals) {
 }
 
 TEST(CsvWriter, WrongValueCountIsAProgrammingError) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   CsvWriter w(dir / "m.csv", monitor_columns);
   EXPECT_THROW(w.row({1.0, 2.0}), std::invalid_argument);
   EXPECT_THROW(w.row({1.0, 2.0, 3.0, 4.0}), std::invalid_argument);
@@ -45,7 +47,8 @@ TEST(CsvWriter, WrongValueCountIsAProgrammingError) {
 }
 
 TEST(CsvWriter, ResumeDropsRowsAfterRestartTimeAndPartialLine) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   // As a killed run leaves it: the last line cut short.
   test::spit(dir / "m.csv",
              "time_s,kinetic_energy_J,attached\n0,1,1\n0.25,2,\n0.5,3,0\n0.75,4,0\n1,5,0\n1.25,6");
@@ -59,14 +62,16 @@ TEST(CsvWriter, ResumeDropsRowsAfterRestartTimeAndPartialLine) {
 }
 
 TEST(CsvWriter, ResumeWithoutFileStartsNew) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   CsvWriter w = CsvWriter::resume(dir / "b.csv", monitor_columns, 2.0);
   w.row({2.5, 1.0, 0.0});
   EXPECT_EQ(test::slurp(dir / "b.csv"), "time_s,kinetic_energy_J,attached\n2.5,1,0\n");
 }
 
 TEST(CsvWriter, ResumeWithOtherHeaderIsBadInput) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   test::spit(dir / "m.csv", "time_s,other\n0,1\n");
   try {
     (void)CsvWriter::resume(dir / "m.csv", monitor_columns, 1.0);
@@ -79,7 +84,8 @@ TEST(CsvWriter, ResumeWithOtherHeaderIsBadInput) {
 }
 
 TEST(CsvWriter, MovedWriterKeepsAppending) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   CsvWriter a(dir / "m.csv", {"time_s"});
   CsvWriter b = std::move(a);
   b.row({1.0});
@@ -87,7 +93,8 @@ TEST(CsvWriter, MovedWriterKeepsAppending) {
 }
 
 TEST(ParticlesCsv, WritesSortedByIdAndReadsBackBitExact) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   ParticleStore p = test::sample_particles(0.1 / 3.0);
   p.vx[2] = -0.0;
   p.omega[0] = 1e-300;
@@ -109,7 +116,8 @@ TEST(ParticlesCsv, WritesSortedByIdAndReadsBackBitExact) {
 }
 
 TEST(ParticlesCsv, AcceptsWindowsLineEndsByteOrderMarkAndSpaces) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   test::spit(dir / "p.csv", "\xEF\xBB\xBFid,x,y,vx,vy,omega,species\r\n 7 , 0.1,0.2,0,0,0,1\r\n\r\n");
   const auto rows = read_particles_csv(dir / "p.csv");
   ASSERT_EQ(rows.size(), 1u);
@@ -119,7 +127,8 @@ TEST(ParticlesCsv, AcceptsWindowsLineEndsByteOrderMarkAndSpaces) {
 }
 
 TEST(ParticlesCsv, MissingFileIsBadInput) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   try {
     read_particles_csv(dir / "none.csv");
     FAIL() << "expected an Error";
@@ -138,7 +147,8 @@ struct BadCsv {
 class ParticlesCsvRejects : public ::testing::TestWithParam<BadCsv> {};
 
 TEST_P(ParticlesCsvRejects, NamesRowAndColumn) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "p.csv";
   test::spit(path, GetParam().content);
   try {

@@ -47,7 +47,8 @@ std::string expect_bad_input(const std::function<void()>& f) {
 }
 
 TEST(Hdf5File, DatasetsRoundTripBitExact) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "c.h5";
   const std::vector<std::int64_t> i64 = {0, -1, 1, std::numeric_limits<std::int64_t>::min(),
                                          std::numeric_limits<std::int64_t>::max()};
@@ -76,7 +77,8 @@ TEST(Hdf5File, DatasetsRoundTripBitExact) {
 }
 
 TEST(Hdf5File, AttributesRoundTripOnRootAndGroups) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "c.h5";
   {
     Hdf5File f = Hdf5File::create(path);
@@ -107,7 +109,8 @@ TEST(Hdf5File, AttributesRoundTripOnRootAndGroups) {
 }
 
 TEST(Hdf5File, FileAppearsOnlyOnCommit) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "c.h5";
   {
     Hdf5File f = Hdf5File::create(path);
@@ -133,7 +136,8 @@ TEST(Hdf5File, FileAppearsOnlyOnCommit) {
 }
 
 TEST(Hdf5File, ReadingErrorsNameTheFileAndPrintNothing) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const auto path = dir / "c.h5";
   {
     Hdf5File f = Hdf5File::create(path);
@@ -164,7 +168,8 @@ TEST(Hdf5File, ReadingErrorsNameTheFileAndPrintNothing) {
 }
 
 TEST(Hdf5File, WritingErrorsAreBadInput) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   ::testing::internal::CaptureStderr();
   const std::string msg = expect_bad_input([&] { Hdf5File::create(dir / "no" / "c.h5"); });
   EXPECT_EQ(msg.rfind("cannot write " + (dir / "no" / "c.h5").string() + ": ", 0), 0u) << msg;

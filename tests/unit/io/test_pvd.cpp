@@ -16,7 +16,8 @@ TEST(Pvd, FrameFileNameHasSixDigits) {
 }
 
 TEST(Pvd, EveryAddRewritesTheIndexWithExactTimes) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   PvdCollection c(dir / "fields.pvd");
   EXPECT_FALSE(std::filesystem::exists(dir / "fields.pvd"));  // nothing before the first frame
   const double t1 = 0.1 / 3.0;
@@ -36,7 +37,8 @@ TEST(Pvd, EveryAddRewritesTheIndexWithExactTimes) {
 }
 
 TEST(Pvd, SameTimeReplacesEarlierTimeIsRejected) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   PvdCollection c(dir / "p.pvd");
   c.add(0.5, "particles/000000.vtu");
   c.add(0.5, "particles/000001.vtu");
@@ -47,7 +49,8 @@ TEST(Pvd, SameTimeReplacesEarlierTimeIsRejected) {
 }
 
 TEST(Pvd, ResumeDropsLaterEntriesAndAppends) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   {
     PvdCollection c(dir / "fields.pvd");
     for (int k = 0; k < 5; ++k) c.add(0.025 * k, frame_file_name("fields", static_cast<std::size_t>(k), "vti"));
@@ -66,7 +69,8 @@ TEST(Pvd, ResumeDropsLaterEntriesAndAppends) {
 }
 
 TEST(Pvd, ResumeWithoutFileStartsEmpty) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   PvdCollection c = PvdCollection::resume(dir / "fields.pvd", 1.0);
   EXPECT_TRUE(c.entries().empty());
   EXPECT_EQ(c.next_index(), 0u);
@@ -74,7 +78,8 @@ TEST(Pvd, ResumeWithoutFileStartsEmpty) {
 }
 
 TEST(Pvd, ResumeOfForeignOrBrokenFileIsBadInput) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   test::spit(dir / "a.pvd", "time,value\n0,1\n");
   test::spit(dir / "b.pvd",
              "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"abc\" file=\"x.vti\"/></Collection>"
@@ -92,7 +97,8 @@ TEST(Pvd, ResumeOfForeignOrBrokenFileIsBadInput) {
 }
 
 TEST(Pvd, FileNamesAreEscaped) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   PvdCollection c(dir / "x.pvd");
   c.add(1.0, "a&b/\"q\"<1>.vti");
   EXPECT_EQ(read_pvd(dir / "x.pvd").at(0).file, "a&b/\"q\"<1>.vti");

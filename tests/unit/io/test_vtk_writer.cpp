@@ -28,7 +28,8 @@ void expect_same_bits(const std::vector<double>& a, const std::vector<double>& b
 }
 
 TEST(VtkWriter, ImageDataHeaderAndCellArrays) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const Grid2 grid{3, 2, 0.01, 0.02, 0.1, -0.05};
   Field2 eps(3, 2), u(3, 2), v(3, 2);
   for (int j = 0; j < 2; ++j) {
@@ -68,7 +69,8 @@ TEST(VtkWriter, ImageDataHeaderAndCellArrays) {
 }
 
 TEST(VtkWriter, FieldOfWrongShapeIsRejectedAndNothingWritten) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const Grid2 grid{3, 2, 0.01, 0.02, 0.0, 0.0};
   const Field2 good(3, 2), bad(2, 3);
   EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::scalar("a", good), VtiArray::scalar("b", bad)}),
@@ -79,7 +81,8 @@ TEST(VtkWriter, FieldOfWrongShapeIsRejectedAndNothingWritten) {
 }
 
 TEST(VtkWriter, UnstructuredGridSortedByIdWithoutTouchingStore) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   const ParticleStore store = test::sample_particles(0.25);
   const ParticleStore before = store;
   write_vtu(dir / "p.vtu", 0.25, store);
@@ -127,7 +130,8 @@ TEST(VtkWriter, UnstructuredGridSortedByIdWithoutTouchingStore) {
 }
 
 TEST(VtkWriter, EmptyParticleStoreGivesEmptyPiece) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   write_vtu(dir / "p.vtu", 1.0, ParticleStore{});
   const auto parsed = parse_vtk(test::slurp(dir / "p.vtu"));
   EXPECT_NE(parsed.header.find(R"(<Piece NumberOfPoints="0" NumberOfCells="0">)"), std::string::npos);
@@ -135,7 +139,8 @@ TEST(VtkWriter, EmptyParticleStoreGivesEmptyPiece) {
 }
 
 TEST(VtkWriter, UnwritableFolderIsBadInput) {
-  const auto dir = test::fresh_dir();
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
   EXPECT_THROW(write_vtu(dir / "nope" / "p.vtu", 0.0, test::sample_particles(0.0)), Error);
 }
 
@@ -143,7 +148,8 @@ TEST(VtkWriter, UnwritableFolderIsBadInput) {
 // when set, else into a scratch folder (then it only checks that the series is complete).
 TEST(VtkWriter, WritesSampleSeriesForReadback) {
   const char* env = std::getenv("FLUIDBED_VTK_SAMPLE_DIR");
-  const std::filesystem::path dir = env != nullptr && *env != '\0' ? std::filesystem::path(env) : test::fresh_dir();
+  const test::ScratchDir scratch;
+  const std::filesystem::path dir = env != nullptr && *env != '\0' ? std::filesystem::path(env) : scratch.path;
   ensure_directory(dir / "fields");
   ensure_directory(dir / "particles");
   PvdCollection fields(dir / "fields.pvd");
