@@ -149,4 +149,38 @@ void write_vtu(const std::filesystem::path& path, double time, const ParticleSto
   write_file_atomic(path, file.finish("UnstructuredGrid"));
 }
 
+namespace {
+
+PvdCollection open_series(const std::filesystem::path& out_dir, const std::string& name,
+                          std::optional<double> restart_time) {
+  ensure_directory(out_dir / name);
+  const std::filesystem::path pvd = out_dir / (name + ".pvd");
+  return restart_time ? PvdCollection::resume(pvd, *restart_time) : PvdCollection(pvd);
+}
+
+}  // namespace
+
+FieldSeries::FieldSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time)
+    : out_dir_(out_dir), pvd_(open_series(out_dir, "fields", restart_time)) {}
+
+std::size_t FieldSeries::write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data) {
+  const std::size_t index = pvd_.next_index();
+  const std::string file = frame_file_name("fields", index, "vti");
+  write_vti(out_dir_ / file, grid, time, cell_data);
+  pvd_.add(time, file);
+  return index;
+}
+
+ParticleSeries::ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time)
+    : out_dir_(out_dir), pvd_(open_series(out_dir, "particles", restart_time)) {}
+
+std::size_t ParticleSeries::write(double time, const ParticleStore& particles, bool with_csv) {
+  const std::size_t index = pvd_.next_index();
+  const std::string file = frame_file_name("particles", index, "vtu");
+  write_vtu(out_dir_ / file, time, particles);
+  if (with_csv) write_particles_csv(out_dir_ / frame_file_name("particles", index, "csv"), particles);
+  pvd_.add(time, file);
+  return index;
+}
+
 }  // namespace fluidbed

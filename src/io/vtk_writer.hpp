@@ -1,13 +1,16 @@
 #pragma once
 // VTK XML writers for ParaView: ImageData (.vti) for cell fields, UnstructuredGrid (.vtu) of vertices for
 // particles. Written without the VTK library: raw appended binary, little-endian, UInt64 block headers.
+#include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
+#include "io/pvd.hpp"
 
 namespace fluidbed {
 
@@ -34,5 +37,34 @@ void write_vti(const std::filesystem::path& path, const Grid2& grid, double time
 /// angular_velocity (Float64 scalar: spin about z, rad/s, anticlockwise positive), layer (Int32);
 /// FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
 void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles);
+
+/// The field frames of a run: `<out_dir>/fields/NNNNNN.vti` listed in `<out_dir>/fields.pvd`.
+/// With `restart_time`, the existing collection is kept up to that time and numbering continues after it.
+class FieldSeries {
+ public:
+  explicit FieldSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
+  /// Write one frame and list it in the .pvd; returns its frame number (for files of the same instant, such as
+  /// tracers/NNNNNN.csv).
+  std::size_t write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data);
+  const PvdCollection& collection() const { return pvd_; }
+
+ private:
+  std::filesystem::path out_dir_;
+  PvdCollection pvd_;
+};
+
+/// The particle frames of a run: `<out_dir>/particles/NNNNNN.vtu` listed in `<out_dir>/particles.pvd`, and
+/// optionally `particles/NNNNNN.csv` with the same number. Restart as FieldSeries.
+class ParticleSeries {
+ public:
+  explicit ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
+  /// Write one frame (and its CSV when `with_csv`); returns its frame number.
+  std::size_t write(double time, const ParticleStore& particles, bool with_csv = false);
+  const PvdCollection& collection() const { return pvd_; }
+
+ private:
+  std::filesystem::path out_dir_;
+  PvdCollection pvd_;
+};
 
 }  // namespace fluidbed

@@ -175,3 +175,43 @@ TEST(VtkWriter, WritesSampleSeriesForReadback) {
 
 }  // namespace
 }  // namespace fluidbed
+
+namespace fluidbed {
+namespace {
+
+TEST(VtkSeries, NumbersFramesAndContinuesAfterRestart) {
+  const test::ScratchDir scratch;
+  const auto& out = scratch.path / "run";
+  const Grid2 grid = test::sample_grid();
+  {
+    FieldSeries fields(out);
+    ParticleSeries particles(out);
+    for (int k = 0; k < 4; ++k) {
+      const double t = 0.1 * k;
+      const auto f = test::sample_fields(t);
+      EXPECT_EQ(fields.write(t, grid, {VtiArray::scalar("voidage", f.voidage)}), static_cast<std::size_t>(k));
+      EXPECT_EQ(particles.write(t, test::sample_particles(t), k % 2 == 0), static_cast<std::size_t>(k));
+    }
+  }
+  EXPECT_TRUE(std::filesystem::exists(out / "fields" / "000003.vti"));
+  EXPECT_TRUE(std::filesystem::exists(out / "particles" / "000002.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out / "particles" / "000001.csv"));
+
+  // Restart from a checkpoint at t = 0.1 (frame 1): frames 2 and 3 are dropped and then rewritten.
+  FieldSeries fields(out, 0.1);
+  ParticleSeries particles(out, 0.1);
+  EXPECT_EQ(fields.collection().entries().size(), 2u);
+  EXPECT_EQ(particles.collection().entries().size(), 2u);
+  const auto f = test::sample_fields(0.15);
+  EXPECT_EQ(fields.write(0.15, grid, {VtiArray::scalar("voidage", f.voidage)}), 2u);
+  EXPECT_EQ(particles.write(0.15, test::sample_particles(0.15)), 2u);
+  const auto e = read_pvd(out / "fields.pvd");
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_EQ(e[2].time, 0.15);
+  EXPECT_EQ(e[2].file, "fields/000002.vti");
+  EXPECT_NE(test::slurp(out / "fields" / "000002.vti").find(">0.14999999999999999<"), std::string::npos);
+  EXPECT_EQ(read_pvd(out / "particles.pvd").size(), 3u);
+}
+
+}  // namespace
+}  // namespace fluidbed
