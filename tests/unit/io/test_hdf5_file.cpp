@@ -167,6 +167,32 @@ TEST(Hdf5File, ReadingErrorsNameTheFileAndPrintNothing) {
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
+TEST(Hdf5File, TruncatedFileIsBadInputNotACrash) {
+  const test::ScratchDir scratch;
+  const auto path = scratch.path / "c.h5";
+  {
+    Hdf5File f = Hdf5File::create(path);
+    f.write("x", std::vector<double>(4096, 1.5));
+    f.set_attribute("/", "time", 2.0);
+    f.commit();
+  }
+  const auto full = std::filesystem::file_size(path);
+  for (const auto keep : {full / 2, std::uintmax_t{600}, std::uintmax_t{8}}) {
+    std::filesystem::resize_file(path, keep);
+    ::testing::internal::CaptureStderr();
+    try {
+      Hdf5File f = Hdf5File::open(path);
+      (void)f.attribute_double("/", "time");
+      (void)f.read_double("x");
+      ADD_FAILURE() << "read a file truncated to " << keep << " of " << full << " bytes";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+      EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": ", 0), 0u) << e.what();
+    }
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  }
+}
+
 TEST(Hdf5File, WritingErrorsAreBadInput) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
