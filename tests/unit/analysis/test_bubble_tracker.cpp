@@ -127,6 +127,33 @@ TEST(BubbleTracker, DetachmentAtTheExactSample) {
   EXPECT_DOUBLE_EQ(*tracker.detachment_time(), expected * dt);
 }
 
+TEST(BubbleTracker, FollowsTheDetachedBubbleNotTheJetVoid) {
+  // A void that stays on the jet (2 x 2 cells) while the bubble that grew from it rises: after they split, the
+  // tracker keeps the rising bubble (most cells shared with the previous sample), now detached.
+  const Grid2 g = Grid2::uniform(0.6, 1.0, 60, 100);
+  BubbleTracker tracker(fine_config(g, 0.3));
+  const Field2 zero(g.nx, g.ny, 0.0);
+  const double dt = 0.01, u_b = 1.0;
+  bool split_seen = false;
+  for (int n = 0; n < 30; ++n) {
+    const RampDisc d{g.xc(30), 0.04 + u_b * n * dt, 0.03, 0.05};
+    Field2 eps = disc_field(g, d);
+    for (int j = 0; j < 2; ++j)
+      for (int i = 29; i < 31; ++i) eps(i, j) = 1.0;
+    const BubbleSample s = tracker.observe(n * dt, g, eps, zero, zero);
+    ASSERT_TRUE(s.nose_height.has_value());
+    EXPECT_EQ(s.bubble_id, 0) << "sample " << n;
+    // The nose on the line x = 0.3 lies between columns 29 and 30, half a cell off the disc centre: within a cell.
+    EXPECT_NEAR(*s.nose_height, d.nose(), g.dy) << "sample " << n;
+    if (!*s.attached) split_seen = true;
+    if (split_seen) {
+      EXPECT_FALSE(*s.attached) << "sample " << n;
+    }
+  }
+  EXPECT_TRUE(split_seen);
+  ASSERT_TRUE(tracker.detachment_time().has_value());
+}
+
 TEST(BubbleTracker, NoBubbleNoError) {
   const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
   BubbleConfig c;
