@@ -330,19 +330,24 @@ def figure_layers(runs, kind, path):
 
 
 def figure_curves(runs, source, column, ylabel, title, path):
+    """One curve per run of `column` against time; a column ending in '*' is a prefix (one curve per match)."""
     fig, ax = plt.subplots(figsize=(6, 4))
     drawn = 0
     for run in runs:
         cols = run.bubble if source == "bubble" else run.monitor
-        if cols is None or column not in cols:
+        if cols is None:
             continue
+        names = ([c for c in cols if c.startswith(column[:-1])] if column.endswith("*")
+                 else [column] if column in cols else [])
         t = numeric(cols, "time_s")
-        v = numeric(cols, column)
-        ok = np.isfinite(t) & np.isfinite(v)
-        if not ok.any():
-            continue
-        ax.plot(t[ok], v[ok], marker=".", markersize=3, label=run.label())
-        drawn += 1
+        for name in names:
+            v = numeric(cols, name)
+            ok = np.isfinite(t) & np.isfinite(v)
+            if not ok.any():
+                continue
+            label = run.label() if len(names) == 1 else f"{run.label()} {name}"
+            ax.plot(t[ok], v[ok], marker=".", markersize=3, label=label)
+            drawn += 1
     if drawn == 0:
         plt.close(fig)
         return f"no {column} values in any {source}.csv"
@@ -486,7 +491,7 @@ def write_report(folders, out):
         ("pressure_drop.png", "Bed pressure drop",
          lambda p: figure_curves(runs, "monitor", "pressure_drop_Pa", "pressure drop (Pa)", "Bed pressure drop", p)),
         ("mixing_index.png", "Lacey mixing index",
-         lambda p: figure_curves(runs, "monitor", mixing_column(runs), "Lacey index M", "Mixing index", p)),
+         lambda p: figure_curves(runs, "monitor", "lacey*", "Lacey index M", "Mixing index", p)),
     ]
     md = ["# fluidbed report", ""]
     md.append("## Runs")
@@ -526,15 +531,6 @@ def write_report(folders, out):
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(md))
     return runs
-
-
-def mixing_column(runs):
-    for r in runs:
-        if r.monitor:
-            for c in r.monitor:
-                if c.startswith("lacey"):
-                    return c
-    return "lacey_index"
 
 
 def main(argv=None):

@@ -54,6 +54,19 @@ LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, st
   return r;
 }
 
+std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::span<const double> y,
+                                               std::span<const std::int32_t> group, int n_groups, const Grid2& domain,
+                                               const MixingConfig& config) {
+  if (group.size() != x.size()) throw_input_error("lacey index: positions and colours differ in length");
+  std::vector<LaceyResult> out;
+  std::vector<std::uint8_t> in(group.size());
+  for (int g = 0; g < n_groups; ++g) {
+    for (std::size_t k = 0; k < group.size(); ++k) in[k] = group[k] == g ? 1 : 0;
+    out.push_back(lacey_index(x, y, in, domain, config));
+  }
+  return out;
+}
+
 LaceyResult lacey_index(const ParticleStore& particles, int split_layer, const Grid2& domain,
                         const MixingConfig& config) {
   std::vector<std::uint8_t> lower(particles.size());

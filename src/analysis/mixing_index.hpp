@@ -2,6 +2,7 @@
 // Lacey mixing index of coloured particles or tracer balls, on a grid of sample cells of a chosen size.
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
@@ -30,6 +31,11 @@ struct LaceyResult {
 /// Lacey index of the two-colour mixture in_group != 0 vs == 0 at positions (x, y).
 LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, std::span<const std::uint8_t> in_group,
                         const Grid2& domain, const MixingConfig& config);
+
+/// More than two colours: the index of each group g in [0, n_groups) against all the others, in group order.
+std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::span<const double> y,
+                                               std::span<const std::int32_t> group, int n_groups, const Grid2& domain,
+                                               const MixingConfig& config);
 
 /// Lower part (layer < split_layer) vs upper part of the initial bed, for DEM particles.
 LaceyResult lacey_index(const ParticleStore& particles, int split_layer, const Grid2& domain,

@@ -68,6 +68,28 @@ TEST(LaceyIndex, SampleSizeIsAParameter) {
   EXPECT_NEAR(lacey_index(l.x, l.y, lower, g, MixingConfig{}).index, 0.0, 1e-12);
 }
 
+TEST(LaceyIndex, PerGroupForThreeColours) {
+  // Three horizontal bands aligned with the sample rows: every group is segregated from the rest (M = 0 exactly);
+  // three colours dealt at random: each group's index is 1 within 5 sd (sd as in RandomMixtureIsOne).
+  const Grid2 g = Grid2::uniform(0.4, 0.4, 20, 20);
+  const Lattice l = lattice(g, 3);
+  std::vector<std::int32_t> band(l.x.size()), dealt(l.x.size());
+  std::mt19937_64 rng(99);
+  std::uniform_int_distribution<int> die(0, 2);
+  for (std::size_t k = 0; k < l.x.size(); ++k) {
+    band[k] = l.y[k] < 0.12 ? 0 : (l.y[k] < 0.26 ? 1 : 2);
+    dealt[k] = die(rng);
+  }
+  const auto seg = lacey_index_per_group(l.x, l.y, band, 3, g, MixingConfig{});
+  const auto mix = lacey_index_per_group(l.x, l.y, dealt, 3, g, MixingConfig{});
+  ASSERT_EQ(seg.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(seg[static_cast<std::size_t>(k)].index, 0.0, 1e-12);
+    const LaceyResult& r = mix[static_cast<std::size_t>(k)];
+    EXPECT_NEAR(r.index, 1.0, 5.0 * std::sqrt(2.0 / r.samples) / (r.mean_per_sample - 1.0));
+  }
+}
+
 TEST(LaceyIndex, TracersOfInitialBedAreSegregated) {
   const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
   const CellTracers tr(g, 0.54, 2);
