@@ -1,1 +1,110 @@
-int main() { return 0; }
+// fluidbed command line: run, check, report. Maps errors to the exit codes of shared/interface.md.
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "core/error.hpp"
+#include "io/case_check.hpp"
+#include "io/case_loader.hpp"
+#include "io/runner.hpp"
+
+#ifndef FLUIDBED_POST_DIR
+#define FLUIDBED_POST_DIR "post"
+#endif
+
+namespace {
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+int report(const std::vector<std::string>& dirs, const std::string& out) {
+  const char* env = std::getenv("FLUIDBED_POST_DIR");
+  const std::filesystem::path post = env ? env : FLUIDBED_POST_DIR;
+  const std::filesystem::path script = post / "report.py";
+  if (!std::filesystem::exists(script)) {
+    throw fluidbed::Error(fluidbed::ErrorKind::BadInput,
+                          fmt::format("{} not found (set FLUIDBED_POST_DIR to the post/ folder)", script.string()));
+  }
+  for (const auto& d : dirs) {
+    if (!std::filesystem::is_directory(d)) {
+      throw fluidbed::Error(fluidbed::ErrorKind::BadInput, fmt::format("{}: not a run output folder", d));
+    }
+  }
+  std::string cmd = "/usr/bin/python3 " + shell_quote(script.string());
+  for (const auto& d : dirs) cmd += " " + shell_quote(d);
+  cmd += " --out " + shell_quote(out);
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) {
+    std::cerr << "fluidbed report: the report script failed\n";
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fluidbed: gas-fluidized beds by CFD-DEM and the two-fluid model"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "fluidbed 0.1.0");
+
+  std::string case_file;
+  std::vector<std::string> sets;
+  fluidbed::RunOptions ro;
+  double end_time = -1.0, max_wall = -1.0;
+  auto* run = app.add_subcommand("run", "run a case");
+  run->add_option("case", case_file, "case file (TOML)")->required();
+  run->add_option("--out", ro.out_dir, "output folder (default out/<case name>)");
+  run->add_option("--end-time", end_time, "simulated end time, s (overrides case.end_time)")->check(CLI::PositiveNumber);
+  run->add_option("--threads", ro.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  run->add_option("--set", sets, "override a case key: SECTION.KEY=VALUE (repeatable)");
+  run->add_option("--restart", ro.restart, "continue from this HDF5 checkpoint");
+  run->add_option("--max-wall-time", max_wall, "stop with a checkpoint after this wall time, s")->check(CLI::PositiveNumber);
+  run->add_flag("--quiet", ro.quiet, "no progress or log on the terminal (log.txt is still written)");
+
+  std::string check_file;
+  std::vector<std::string> check_sets;
+  auto* check = app.add_subcommand("check", "validate a case and print its derived quantities");
+  check->add_option("case", check_file, "case file (TOML)")->required();
+  check->add_option("--set", check_sets, "override a case key: SECTION.KEY=VALUE (repeatable)");
+
+  std::vector<std::string> report_dirs;
+  std::string report_out = "report";
+  auto* rep = app.add_subcommand("report", "figures and summary.md from one or more run folders");
+  rep->add_option("dirs", report_dirs, "run output folders")->required();
+  rep->add_option("--out", report_out, "report folder (default ./report)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+
+  try {
+    if (*run) {
+      if (end_time > 0) sets.push_back(fmt::format("case.end_time={}", end_time));
+      if (max_wall > 0) ro.max_wall_time = max_wall;
+      const fluidbed::LoadedCase lc = fluidbed::load_case(case_file, sets);
+      return fluidbed::run_case(lc, ro);
+    }
+    if (*check) {
+      const fluidbed::LoadedCase lc = fluidbed::load_case(check_file, check_sets);
+      fmt::print("{}: OK\n{}", check_file, fluidbed::describe_case(lc.config));
+      return 0;
+    }
+    if (*rep) return report(report_dirs, report_out);
+  } catch (const fluidbed::Error& e) {
+    std::cerr << "fluidbed: " << e.what() << "\n";
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    std::cerr << "fluidbed: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  return 0;
+}

@@ -58,13 +58,6 @@ ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
   return p;
 }
 
-void assign_layers_by_height(ParticleStore& p, int n_layers, double bed_height_m) {
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const int layer = static_cast<int>(std::floor(p.y[i] / bed_height_m * n_layers));
-    p.layer[i] = std::clamp(layer, 0, n_layers - 1);
-  }
-}
-
 double bed_height(const ParticleStore& p, double width, int columns) {
   std::vector<double> top(static_cast<std::size_t>(columns), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {

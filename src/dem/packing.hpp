@@ -24,10 +24,6 @@ struct PackingConfig {
 /// for a given seed; throws a bad-input error when the particles do not fit in the region.
 ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg);
 
-/// Colour particles by horizontal layer (paper, Fig. 4a): `n_layers` layers of equal height from y = 0 to
-/// `bed_height`.
-void assign_layers_by_height(ParticleStore& p, int n_layers, double bed_height);
-
 /// Height of the settled bed: the mean top of the highest particles in each of `columns` vertical strips.
 double bed_height(const ParticleStore& p, double width, int columns);
 

@@ -19,7 +19,7 @@ void ParticleStore::permute(const std::vector<std::size_t>& order) {
   apply_order(species, order, i32);
   apply_order(layer, order, i32);
   for (auto* a : {&x, &y, &vx, &vy, &omega, &radius, &mass, &inv_mass, &inv_inertia, &fx, &fy, &torque, &fx_ext,
-                  &fy_ext}) {
+                  &fy_ext, &drag_k, &ugx, &ugy}) {
     apply_order(*a, order, d);
   }
 }
@@ -29,7 +29,7 @@ void ParticleStore::clear() {
   species.clear();
   layer.clear();
   for (auto* a : {&x, &y, &vx, &vy, &omega, &radius, &mass, &inv_mass, &inv_inertia, &fx, &fy, &torque, &fx_ext,
-                  &fy_ext}) {
+                  &fy_ext, &drag_k, &ugx, &ugy}) {
     a->clear();
   }
 }

@@ -36,7 +36,9 @@ struct ParticleStore {
   std::vector<double> inv_inertia;  ///< 1/(kg m^2)
   std::vector<double> fx, fy;       ///< contact force of the current step, N
   std::vector<double> torque;       ///< contact torque of the current step, N m
-  std::vector<double> fx_ext, fy_ext;  ///< fluid force (drag + pressure gradient), N; held between gas steps
+  std::vector<double> fx_ext, fy_ext;  ///< fluid force other than drag (pressure gradient), N; held between gas steps
+  std::vector<double> drag_k;          ///< drag coefficient V_p beta / (1 - eps) of the particle, kg/s
+  std::vector<double> ugx, ugy;        ///< gas velocity at the particle, m/s; drag = drag_k (ug - v)
 
   std::size_t size() const { return id.size(); }
 
@@ -59,6 +61,9 @@ struct ParticleStore {
     torque.push_back(0.0);
     fx_ext.push_back(0.0);
     fy_ext.push_back(0.0);
+    drag_k.push_back(0.0);
+    ugx.push_back(0.0);
+    ugy.push_back(0.0);
   }
 
   Vec2 pos(std::size_t i) const { return {x[i], y[i]}; }

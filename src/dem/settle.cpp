@@ -1,0 +1,38 @@
+#include "dem/settle.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fluidbed {
+
+SettleResult settle_bed(DemSolver& dem, double energy_per_particle, double max_time) {
+  SettleResult r;
+  ParticleStore& p = dem.particles();
+  const double n = std::max<double>(1.0, static_cast<double>(p.size()));
+  const double dt = dem.config().dt;
+  const auto check_every = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(0.01 / dt)));
+  const auto max_steps = static_cast<std::uint64_t>(std::ceil(max_time / dt));
+  std::uint64_t k = 0;
+  // Do not stop in the first 0.1 s: particles placed at rest have no kinetic energy before they fall.
+  const auto min_steps = static_cast<std::uint64_t>(std::ceil(0.1 / dt));
+  while (k < max_steps) {
+    dem.step();
+    ++k;
+    if (k % check_every == 0 && k >= min_steps) {
+      r.kinetic_energy_per_particle = dem.kinetic_energy() / n;
+      if (r.kinetic_energy_per_particle < energy_per_particle) {
+        r.converged = true;
+        break;
+      }
+    }
+  }
+  r.time = static_cast<double>(k) * dt;
+  r.kinetic_energy_per_particle = dem.kinetic_energy() / n;
+  std::fill(p.vx.begin(), p.vx.end(), 0.0);
+  std::fill(p.vy.begin(), p.vy.end(), 0.0);
+  std::fill(p.omega.begin(), p.omega.end(), 0.0);
+  dem.set_time(0.0, 0);
+  return r;
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,54 @@
+#include "io/case_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "dem/contact_law.hpp"
+#include "fluid/drag.hpp"
+#include "io/case_loader.hpp"
+
+namespace fluidbed {
+
+std::string describe_case(const CaseConfig& c) {
+  std::string s;
+  auto line = [&s](const std::string& what, const std::string& value) { s += fmt::format("  {:<44} {}\n", what, value); };
+  s += fmt::format("case '{}' ({}): {}\n", c.name, c.model == Model::Tfm ? "two-fluid model" : "discrete particles",
+                   c.description);
+  line("domain", fmt::format("{} x {} m", c.dem.width, c.dem.height));
+  line("end time", fmt::format("{} s", c.run.end_time));
+  if (c.model == Model::Dem) {
+    const Species& sp = c.dem.species[0];
+    const double m = sp.mass();
+    const double k = c.dem.stiffness;
+    const double t_cr = critical_time(m, k);
+    const double m_eff = reduced_mass(m, m);
+    const double e = c.dem.pair_params(0, 0).restitution;
+    const double eta = damping_from_restitution(m_eff, k, e);
+    const double t_c = contact_duration(m_eff, k, eta);
+    line("particle mass (species 0)", fmt::format("{:.4g} kg (d = {} m, rho = {} kg/m^3)", m, sp.diameter, sp.density));
+    line("t_cr = 2 pi sqrt(m/k) (Table 3 item 5)", fmt::format("{:.4g} s; dt / t_cr = {:.3f}", t_cr, c.dem.dt / t_cr));
+    line("contact duration (pair, e)", fmt::format("{:.4g} s = {:.1f} time steps", t_c, t_c / c.dem.dt));
+    line("damping eta (Eq. 8, pair reduced mass)", fmt::format("{:.4g} kg/s", eta));
+    line("largest stable time step", fmt::format("{:.4g} s (dt = {:g} s)", dem_stable_time_step(c.dem), c.dem.dt));
+    const double g = std::abs(c.dem.gravity.y);
+    line("static overlap under its own weight", fmt::format("{:.3g} m = {:.2f}% of d", m * g / k, 100.0 * m * g / k / sp.diameter));
+    const std::int64_t n = c.particles.packing.count;
+    if (c.particles.source != ParticleSource::File) {
+      // A random 2D packing of discs fills about 82% of the area (Berryman 1983).
+      const double area = static_cast<double>(n) * std::numbers::pi * sp.diameter * sp.diameter / 4.0;
+      line("particles", fmt::format("{} placed at random", n));
+      line("estimated settled bed height", fmt::format("{:.3f} m (random disc packing, area fraction 0.82)",
+                                                        area / 0.82 / c.dem.width));
+    }
+    const double rho_g = 1.205, mu_g = 1.8e-5;
+    line("terminal velocity in air (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(sp.diameter, sp.density, rho_g, mu_g, g)));
+    line("Ergun U_mf at eps_mf = 0.43", fmt::format("{:.3f} m/s", ergun_minimum_fluidisation_velocity(0.43, sp.diameter, sp.density, rho_g, mu_g, g)));
+    const double bytes_per_particle = 21 * 8 + 8 + 4 * 2 + 8 * (4 + 16) + 64;
+    line("memory estimate", fmt::format("{:.1f} MB", static_cast<double>(n) * bytes_per_particle / 1e6));
+  }
+  return s;
+}
+
+}  // namespace fluidbed

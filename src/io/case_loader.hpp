@@ -1,0 +1,28 @@
+#pragma once
+// Case file -> CaseConfig, with every key checked (type, range, cross-checks) and registered.
+#include <string>
+#include <vector>
+
+#include "io/case_config.hpp"
+#include "io/case_reader.hpp"
+
+namespace fluidbed {
+
+struct LoadedCase {
+  CaseConfig config;
+  std::string resolved_toml;   ///< every key read, defaults filled in
+  std::vector<KeyInfo> keys;   ///< what was read, for docs and --help
+};
+
+/// Load and validate a case; `overrides` are `--set SECTION.KEY=VALUE` assignments. Throws Error(BadInput)
+/// naming file, line and key for any problem.
+LoadedCase load_case(const std::string& path, const std::vector<std::string>& overrides = {});
+/// The same from TOML text (tests and the fuzzer).
+LoadedCase load_case_text(const std::string& text, const std::string& name,
+                          const std::vector<std::string>& overrides = {});
+
+/// Largest stable DEM time step for the symplectic Euler update of the stiffest contact (lightest pair,
+/// strongest damping): omega dt < 2 (sqrt(1 + zeta^2) - zeta).
+double dem_stable_time_step(const DemConfig& dem);
+
+}  // namespace fluidbed
