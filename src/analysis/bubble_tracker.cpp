@@ -108,6 +108,9 @@ double lsq_slope(const std::vector<double>& t, const std::vector<double>& h) {
 
 BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& eps, const Field2& ug_cc,
                                     const Field2& vg_cc) {
+  if (config_.grid.nx > 0 && (config_.grid.nx != grid.nx || config_.grid.ny != grid.ny))
+    throw_input_error(fmt::format("bubble tracker: configured for a {}x{} grid, given {}x{}", config_.grid.nx,
+                                  config_.grid.ny, grid.nx, grid.ny));
   check_field(grid, eps, "eps");
   check_field(grid, ug_cc, "ug");
   check_field(grid, vg_cc, "vg");
