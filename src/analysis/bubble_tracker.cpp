@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "analysis/bed_surface.hpp"
 #include "core/error.hpp"
 
 namespace fluidbed {
@@ -122,12 +123,7 @@ BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& e
   s.time = t;
 
   // Bed surface: highest row whose mean voidage is still that of a bed; rows above it are freeboard.
-  int j_surf = -1;
-  for (int j = ny - 1; j >= 0 && j_surf < 0; --j) {
-    double sum = 0.0;
-    for (int i = 0; i < nx; ++i) sum += eps(i, j);
-    if (sum / nx < config_.surface_eps) j_surf = j;
-  }
+  const int j_surf = bed_surface_row(grid, eps, config_.surface_eps);
   if (j_surf >= 0) s.bed_height = grid.y0 + (j_surf + 1) * grid.dy;
 
   std::vector<std::uint8_t> mask(grid.cells());

@@ -21,6 +21,7 @@ void assign_layers(ParticleStore& particles, int n_layers, double bed_height);
 /// Balls of the paper's Fig. 4b/c: one per grid cell whose centre lies below the initial bed height.
 class CellTracers {
  public:
+  /// bed_height: initial bed height above grid.y0, m (e.g. bed_surface_height() of the initial voidage).
   CellTracers(const Grid2& grid, double bed_height, int n_layers);
 
   /// x += us dt, y += vs dt with the velocity of the cell holding the ball (piecewise constant, no collisions, as

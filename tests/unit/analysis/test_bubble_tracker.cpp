@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "analysis/bed_surface.hpp"
 #include "analysis/bubble_tracker.hpp"
 #include "analysis/rise_velocity.hpp"
 
@@ -169,6 +170,8 @@ TEST(BubbleTracker, NoBubbleNoError) {
   ASSERT_TRUE(s.bed_height.has_value());
   EXPECT_NEAR(*s.bed_height, 27 * g.dy, 1e-12);
   EXPECT_EQ(bubble_csv_row(s), "0.1,,,,,,,,0.54,0,,");
+  EXPECT_EQ(bed_surface_row(g, bed), 26);
+  EXPECT_NEAR(*bed_surface_height(g, bed), 27 * g.dy, 1e-12);
   // All gas (no bed at all) and all bed (no freeboard).
   const BubbleSample empty = tracker.observe(0.2, g, Field2(g.nx, g.ny, 1.0), zero, zero);
   EXPECT_FALSE(empty.nose_height || empty.bed_height || empty.attached);
