@@ -1,0 +1,654 @@
+#include "tfm/tfm_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "fluid/drag.hpp"
+#include "tfm/tvd_convection.hpp"
+
+namespace fluidbed::tfm {
+namespace {
+
+// Solids fraction kept in the face mass and drag of an empty face, so that the 2x2 drag system stays regular;
+// both scale together, so trace solids still move at their terminal slip.
+constexpr double kEpsSFloor = 1e-8;
+// Faces with less solids than this carry no solids-momentum convection and do not limit dt (trace solids).
+constexpr double kEpsSTrace = 1e-4;
+// Below this solids fraction the constant solids viscosity is ramped to zero ("constant in the bed").
+constexpr double kEpsSBed = 0.05;
+
+int clampi(int k, int lo, int hi) { return std::min(std::max(k, lo), hi); }
+
+// Advective term (U . grad) u of the x-velocity at u-face (i, j), TVD face values, advective form
+// div(U u) - u div(U) so that it vanishes for a uniform field.
+double advect_u(Limiter lim, const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
+  const int nx = u.nx - 1, ny = u.ny;
+  auto U = [&](int a, int b) { return u(clampi(a, 0, nx), clampi(b, 0, ny - 1)); };
+  const double ue_vel = 0.5 * (U(i, j) + U(i + 1, j));
+  const double uw_vel = 0.5 * (U(i - 1, j) + U(i, j));
+  const double vn_vel = 0.5 * (v(i - 1, j + 1) + v(i, j + 1));
+  const double vs_vel = 0.5 * (v(i - 1, j) + v(i, j));
+  const double fe = ue_vel * tvd_face_value(lim, ue_vel, U(i - 1, j), U(i, j), U(i + 1, j), U(i + 2, j));
+  const double fw = uw_vel * tvd_face_value(lim, uw_vel, U(i - 2, j), U(i - 1, j), U(i, j), U(i + 1, j));
+  const double fn = vn_vel * tvd_face_value(lim, vn_vel, U(i, j - 1), U(i, j), U(i, j + 1), U(i, j + 2));
+  const double fs = vs_vel * tvd_face_value(lim, vs_vel, U(i, j - 2), U(i, j - 1), U(i, j), U(i, j + 1));
+  return (fe - fw) / dx + (fn - fs) / dy - U(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
+}
+
+// Same for the y-velocity at v-face (i, j).
+double advect_v(Limiter lim, const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
+  const int nx = v.nx, ny = v.ny - 1;
+  auto V = [&](int a, int b) { return v(clampi(a, 0, nx - 1), clampi(b, 0, ny)); };
+  const int jl = clampi(j - 1, 0, ny - 1), jh = clampi(j, 0, ny - 1);
+  const double vn_vel = 0.5 * (V(i, j) + V(i, j + 1));
+  const double vs_vel = 0.5 * (V(i, j - 1) + V(i, j));
+  const double ue_vel = 0.5 * (u(i + 1, jl) + u(i + 1, jh));
+  const double uw_vel = 0.5 * (u(i, jl) + u(i, jh));
+  const double fn = vn_vel * tvd_face_value(lim, vn_vel, V(i, j - 1), V(i, j), V(i, j + 1), V(i, j + 2));
+  const double fs = vs_vel * tvd_face_value(lim, vs_vel, V(i, j - 2), V(i, j - 1), V(i, j), V(i, j + 1));
+  const double fe = ue_vel * tvd_face_value(lim, ue_vel, V(i - 1, j), V(i, j), V(i + 1, j), V(i + 2, j));
+  const double fw = uw_vel * tvd_face_value(lim, uw_vel, V(i - 2, j), V(i - 1, j), V(i, j), V(i + 1, j));
+  return (fe - fw) / dx + (fn - fs) / dy - V(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
+}
+
+// Partial elimination of the interphase drag (Syamlal 1998, MFIX): the gas and solids momentum equations of
+// one face are solved together as a 2x2 system, so the drag is fully implicit and never limits dt.
+struct FaceSolve {
+  double ug, us;  // predicted velocities
+  double dg, ds;  // velocity response to a unit pressure-correction gradient
+};
+
+FaceSolve solve_face(double a_g, double a_s, double beta, double rhs_g, double rhs_s, double eps_g, double eps_s) {
+  const double m11 = a_g + beta, m22 = a_s + beta, m12 = -beta;
+  const double det = m11 * m22 - m12 * m12;
+  FaceSolve f{};
+  f.ug = (m22 * rhs_g - m12 * rhs_s) / det;
+  f.us = (m11 * rhs_s - m12 * rhs_g) / det;
+  f.dg = (m22 * eps_g - m12 * eps_s) / det;
+  f.ds = (m11 * eps_s - m12 * eps_g) / det;
+  return f;
+}
+
+double solids_pressure_law(const TfmConfig& c, const GranularMaterial& m, double eps, double theta) {
+  if (c.rheology == SolidsRheology::KineticTheory) {
+    // Eq. 19: frictional regime at or below eps*, kinetic theory above.
+    if (eps <= c.eps_star) return frictional_pressure(eps, c.eps_star);
+    return kt_pressure(m, eps, theta);
+  }
+  return modulus_pressure(c.modulus, eps, c.eps_star);
+}
+
+}  // namespace
+
+void validate(const TfmConfig& c) {
+  auto need = [](bool ok, const char* what) {
+    if (!ok) throw_input_error(std::string("tfm: ") + what);
+  };
+  need(c.width > 0.0 && c.height > 0.0, "width and height must be positive");
+  need(c.cell_size > 0.0 && c.cell_size <= std::min(c.width, c.height), "cell_size must be positive and fit the domain");
+  const double nx = c.width / c.cell_size, ny = c.height / c.cell_size;
+  need(std::abs(nx - std::round(nx)) < 1e-6 && std::abs(ny - std::round(ny)) < 1e-6,
+       "width and height must be whole multiples of cell_size");
+  need(c.d_p > 0.0, "d_p must be positive");
+  need(c.rho_s > c.rho_g && c.rho_g > 0.0, "need rho_s > rho_g > 0");
+  need(c.mu_g > 0.0, "mu_g must be positive");
+  need(c.e > 0.0 && c.e <= 1.0, "e must lie in (0, 1]");
+  need(c.phi_deg > 0.0 && c.phi_deg < 90.0, "phi_deg must lie in (0, 90)");
+  need(c.eps_star > 0.0 && c.eps_star < 1.0, "eps_star must lie in (0, 1)");
+  need(c.eps_initial >= c.eps_star && c.eps_initial <= 1.0, "eps_initial must lie in [eps_star, 1]");
+  need(c.packed_height >= 0.0 && c.packed_height <= c.height, "packed_height must lie in [0, height]");
+  need(c.mu_s_constant >= 0.0 && c.mu_s_max > 0.0, "solids viscosities must be non-negative (mu_s_max positive)");
+  need(c.modulus.a > 0.0 && c.modulus.b > 0.0, "modulus a and b must be positive");
+  need(c.cfl > 0.0 && c.cfl <= 1.0, "cfl must lie in (0, 1]");
+  need(c.dt_max > 0.0 && c.dt_min > 0.0 && c.dt_min < c.dt_max, "need 0 < dt_min < dt_max");
+  need(c.mass_corrections >= 0 && c.mass_corrections <= 10, "mass_corrections must lie in [0, 10]");
+  for (const TfmJet& j : c.boundary.jets) {
+    need(j.width > 0.0 && j.t_end >= j.t_start, "each jet needs width > 0 and t_end >= t_start");
+  }
+}
+
+TfmSolver::TfmSolver(const TfmConfig& config) : config_(config) {
+  validate(config_);
+  const int nx = static_cast<int>(std::lround(config_.width / config_.cell_size));
+  const int ny = static_cast<int>(std::lround(config_.height / config_.cell_size));
+  grid_ = Grid2::uniform(config_.width, config_.height, nx, ny);
+  s_.eps = Field2(nx, ny, 1.0);
+  for (int j = 0; j < ny; ++j) {
+    // Partly filled cells get the volume-weighted voidage, so the initial mass matches packed_height exactly.
+    const double filled = std::clamp((config_.packed_height - j * grid_.dy) / grid_.dy, 0.0, 1.0);
+    for (int i = 0; i < nx; ++i) s_.eps(i, j) = 1.0 - filled * (1.0 - config_.eps_initial);
+  }
+  s_.ug = Field2(nx + 1, ny);
+  s_.us = Field2(nx + 1, ny);
+  s_.vg = Field2(nx, ny + 1);
+  s_.vs = Field2(nx, ny + 1);
+  s_.theta = Field2(nx, ny);
+  s_.p = Field2(nx, ny);
+  // Gas carries the background inflow: superficial velocity over the face voidage the continuity equation uses,
+  // so the initial volume flux is divergence-free.
+  const double u_in = config_.boundary.inlet_velocity;
+  {
+    Field2 up(nx + 1, ny, 0.0), vp(nx, ny + 1, 1.0), eg_x, eg_y;
+    tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity{up, vp, false}, eg_x, eg_y);
+    for (int j = 0; j <= ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        const bool closed = j == ny && !config_.boundary.top_open;
+        s_.vg(i, j) = closed ? 0.0 : u_in / (j == 0 ? 1.0 : eg_y(i, j));
+      }
+    }
+  }
+  // Pressure from the steady gas momentum balance of every face (Eq. 17 without inertia), integrated down
+  // from the top: in a bed at rest the drag then carries exactly what the gas flow can carry.
+  const double g = std::abs(config_.gravity.y);
+  auto drop_across = [&](int i, int j) {  // P(below) - P(above) across horizontal face j
+    const double eg = j == ny ? s_.eps(i, ny - 1) : 0.5 * (s_.eps(i, j - 1) + s_.eps(i, j));
+    auto beta_at = [&](int jc) {
+      DragInput in{std::min(s_.eps(i, jc), 1.0 - kEpsSFloor), config_.d_p, config_.rho_g, config_.mu_g,
+                   0.5 * (vg_interstitial(i, jc) + s_.vg(i, jc + 1))};
+      return beta_ergun_wen_yu(in, config_.drag_switch);
+    };
+    const double beta = j == ny ? beta_at(ny - 1) : 0.5 * (beta_at(j - 1) + beta_at(j));
+    return config_.rho_g * g * grid_.dy + beta * s_.vg(i, j) * grid_.dy / eg;
+  };
+  for (int i = 0; i < nx; ++i) {
+    s_.p(i, ny - 1) = config_.boundary.top_pressure + (config_.boundary.top_open ? 0.5 * drop_across(i, ny) : 0.0);
+    for (int j = ny - 1; j > 0; --j) s_.p(i, j - 1) = s_.p(i, j) + drop_across(i, j);
+  }
+  p_s_ = Field2(nx, ny);
+  mu_s_ = Field2(nx, ny);
+  lambda_s_ = Field2(nx, ny);
+  beta_c_ = Field2(nx, ny);
+  dps_deps_ = Field2(nx, ny);
+}
+
+void TfmSolver::inlet_profile(double t, std::vector<double>& out) const {
+  const TfmBoundary& bc = config_.boundary;
+  out.assign(static_cast<std::size_t>(grid_.nx), bc.inlet_velocity);
+  for (int i = 0; i < grid_.nx; ++i) {
+    const double x_lo = grid_.x0 + i * grid_.dx, x_hi = x_lo + grid_.dx;
+    double u = bc.inlet_velocity;
+    for (const TfmJet& jet : bc.jets) {
+      if (t < jet.t_start || t >= jet.t_end) continue;
+      // The jet replaces the background over the part of the face it covers, so its volume flux is exact.
+      const double lo = std::max(x_lo, jet.x_centre - 0.5 * jet.width);
+      const double hi = std::min(x_hi, jet.x_centre + 0.5 * jet.width);
+      if (hi > lo) u += (jet.velocity - bc.inlet_velocity) * (hi - lo) / grid_.dx;
+    }
+    out[static_cast<std::size_t>(i)] = u;
+  }
+}
+
+double TfmSolver::vg_interstitial(int i, int j) const {
+  // The distributor face stores the superficial inflow; inside the bottom cell the gas moves at U / eps.
+  return j == 0 ? s_.vg(i, 0) / s_.eps(i, 0) : s_.vg(i, j);
+}
+
+void TfmSolver::mask_trace_solids_velocity() {
+  const int nx = grid_.nx, ny = grid_.ny;
+  auto has = [&](int i, int j) { return 1.0 - s_.eps(i, j) > kEpsSTrace; };
+  const Field2 u0 = s_.us, v0 = s_.vs;
+  // A face with (almost) no solids on one side has no meaningful solids velocity; it takes the velocity of the
+  // next face into the solids (zero gradient), so stresses and convection at a bed surface see the bed only.
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) {
+      const bool l = has(i - 1, j), r = has(i, j);
+      if (l && r) continue;
+      double val = 0.0;
+      if (l && i - 1 > 0 && has(i - 2, j)) val = u0(i - 1, j);
+      if (r && i + 1 < nx && has(i + 1, j)) val = u0(i + 1, j);
+      s_.us(i, j) = val;
+    }
+  }
+  for (int j = 1; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const bool b = has(i, j - 1), t = has(i, j);
+      if (b && t) continue;
+      double val = 0.0;
+      if (b && j - 1 > 0 && has(i, j - 2)) val = v0(i, j - 1);
+      if (t && j + 1 < ny && has(i, j + 1)) val = v0(i, j + 1);
+      s_.vs(i, j) = val;
+    }
+  }
+}
+
+void TfmSolver::compute_cell_closures() {
+  const TfmConfig& c = config_;
+  const GranularMaterial mat{c.d_p, c.rho_s, c.e};
+  const double phi = c.phi_deg * 3.14159265358979323846 / 180.0;
+  const int nx = grid_.nx, ny = grid_.ny;
+  const double dx = grid_.dx, dy = grid_.dy;
+  Field2 usc(nx, ny), vsc(nx, ny);
+  solids_velocity_cells(usc, vsc);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double eps = s_.eps(i, j);
+      const double eps_s = 1.0 - eps;
+      const double ugc = 0.5 * (s_.ug(i, j) + s_.ug(i + 1, j)), vgc = 0.5 * (vg_interstitial(i, j) + s_.vg(i, j + 1));
+      const double slip = std::hypot(usc(i, j) - ugc, vsc(i, j) - vgc);
+      // Eq. 13 with the shared drag law; the floor keeps beta / (eps_s rho_s) finite in empty cells.
+      DragInput in{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip};
+      beta_c_(i, j) = beta_ergun_wen_yu(in, c.drag_switch);
+
+      double mu = 0.0, lambda = 0.0, theta = 0.0;
+      switch (c.rheology) {
+        case SolidsRheology::Inviscid: break;
+        case SolidsRheology::ConstantViscosity:
+          mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
+          break;
+        case SolidsRheology::KineticTheory: {
+          StrainRate2 d;
+          d.xx = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
+          d.yy = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
+          const int il = std::max(i - 1, 0), ih = std::min(i + 1, nx - 1);
+          const int jl = std::max(j - 1, 0), jh = std::min(j + 1, ny - 1);
+          const double dudy = jh > jl ? (usc(i, jh) - usc(i, jl)) / ((jh - jl) * dy) : 0.0;
+          const double dvdx = ih > il ? (vsc(ih, j) - vsc(il, j)) / ((ih - il) * dx) : 0.0;
+          d.xy = 0.5 * (dudy + dvdx);
+          if (eps <= c.eps_star) {
+            mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
+          } else if (eps_s > 0.0) {
+            theta = algebraic_granular_temperature(mat, eps, d);
+            mu = std::min(kt_shear_viscosity(mat, eps, theta), c.mu_s_max);
+            lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
+          }
+          break;
+        }
+      }
+      mu_s_(i, j) = mu;
+      lambda_s_(i, j) = lambda;
+      s_.theta(i, j) = theta;
+      p_s_(i, j) = solids_pressure_law(c, mat, eps, theta);
+      // dP_s/d eps_s sets the speed of compaction waves that the explicit solids pressure must resolve.
+      const double h = 1e-7;
+      dps_deps_(i, j) =
+          std::max(0.0, (solids_pressure_law(c, mat, eps - h, theta) - solids_pressure_law(c, mat, eps + h, theta)) / (2 * h));
+    }
+  }
+}
+
+double TfmSolver::choose_dt(double t_stop) const {
+  double vmax = 0.0;
+  const Field2& e = s_.eps;
+  const int nx = grid_.nx, ny = grid_.ny;
+  for (double x : s_.ug.v) vmax = std::max(vmax, std::abs(x));
+  for (double x : s_.vg.v) vmax = std::max(vmax, std::abs(x));
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const double es = 1.0 - e(clampi(i - 1, 0, nx - 1), j), es2 = 1.0 - e(clampi(i, 0, nx - 1), j);
+      if (std::min(es, es2) > kEpsSTrace) vmax = std::max(vmax, std::abs(s_.us(i, j)));
+    }
+  }
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double es = 1.0 - e(i, clampi(j - 1, 0, ny - 1)), es2 = 1.0 - e(i, clampi(j, 0, ny - 1));
+      if (std::min(es, es2) > kEpsSTrace) vmax = std::max(vmax, std::abs(s_.vs(i, j)));
+    }
+  }
+  double c2 = 0.0;
+  for (double x : dps_deps_.v) c2 = std::max(c2, x);
+  // Paper Table 3 item 5: dt < dy / V_max, here with the solids-pressure wave speed added to V_max.
+  const double speed = vmax + std::sqrt(c2 / config_.rho_s);
+  double dt = config_.dt_max;
+  if (speed > 0.0) dt = std::min(dt, config_.cfl * std::min(grid_.dx, grid_.dy) / speed);
+  return std::min(dt, t_stop - s_.time);
+}
+
+double TfmSolver::step(double t_stop) {
+  const TfmConfig& c = config_;
+  const int nx = grid_.nx, ny = grid_.ny;
+  const double dx = grid_.dx, dy = grid_.dy;
+  const double rho_g = c.rho_g, rho_s = c.rho_s;
+  const double gx = c.gravity.x, gy = c.gravity.y;
+  const bool top_open = c.boundary.top_open;
+
+  mask_trace_solids_velocity();
+  compute_cell_closures();
+  const double dt = choose_dt(t_stop);
+  if (!(dt >= c.dt_min) && t_stop - s_.time > c.dt_min) {
+    throw_simulation_error("tfm: time step " + std::to_string(dt) + " s fell below dt_min at t = " +
+                           std::to_string(s_.time) + " s");
+  }
+  std::vector<double> inlet;
+  inlet_profile(s_.time + dt, inlet);
+
+  const Field2& eps = s_.eps;
+  const Field2& p = s_.p;
+  const Field2 ug0 = s_.ug, us0 = s_.us, vs0 = s_.vs;
+  // Gas enters the bed through the distributor at its interstitial speed: the convection sees U / eps there.
+  Field2 vg0 = s_.vg;
+  for (int i = 0; i < nx; ++i) vg0(i, 0) = s_.vg(i, 0) / eps(i, 0);
+  Field2 dgu(nx + 1, ny), dsu(nx + 1, ny), dgv(nx, ny + 1), dsv(nx, ny + 1);
+  const double mu_wall = c.boundary.solids_no_slip_walls ? 1.0 : 0.0;
+  auto mu_corner = [&](int i, int j) {  // corner at (x_i, y_j), interior only
+    return 0.25 * (mu_s_(i - 1, j - 1) + mu_s_(i, j - 1) + mu_s_(i - 1, j) + mu_s_(i, j));
+  };
+  auto bearing = [&](int i0, int j0, int i1, int j1) {
+    return std::min(1.0 - eps(i0, j0), 1.0 - eps(i1, j1)) > kEpsSTrace;
+  };
+  auto div_s = [&](int i, int j) { return (us0(i + 1, j) - us0(i, j)) / dx + (vs0(i, j + 1) - vs0(i, j)) / dy; };
+
+  // x-momentum on interior vertical faces (Eqs. 17-18).
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) {
+      const double eg = 0.5 * (eps(i - 1, j) + eps(i, j));
+      const double es = std::max(1.0 - eg, kEpsSFloor);
+      const double beta = 0.5 * (beta_c_(i - 1, j) + beta_c_(i, j));
+      const double dpdx = (p(i, j) - p(i - 1, j)) / dx;
+      const double adv_g = advect_u(c.limiter, ug0, vg0, i, j, dx, dy);
+      const double a_g = eg * rho_g / dt;
+      const double rhs_g = a_g * ug0(i, j) - eg * rho_g * adv_g + eg * rho_g * gx - eg * dpdx;
+      if (!bearing(i - 1, j, i, j)) {
+        // No solids on one side: the solids velocity stays as extrapolated from the bed, the gas feels its drag.
+        s_.ug(i, j) = (rhs_g + beta * us0(i, j)) / (a_g + beta);
+        dgu(i, j) = eg / (a_g + beta);
+        dsu(i, j) = 0.0;
+        continue;
+      }
+      const double dpsdx = (p_s_(i, j) - p_s_(i - 1, j)) / dx;
+      // Eq. 19 stress divergence; the Laplacian diagonal is taken implicitly (point-implicit) for stability.
+      auto sxx = [&](int ci) {
+        return 2.0 * mu_s_(ci, j) * (us0(ci + 1, j) - us0(ci, j)) / dx + lambda_s_(ci, j) * div_s(ci, j);
+      };
+      auto sxy = [&](int jc) {  // corner (i, jc); bottom and top are free-slip for the solids
+        if (jc == 0 || jc == ny) return 0.0;
+        return mu_corner(i, jc) * ((us0(i, jc) - us0(i, jc - 1)) / dy + (vs0(i, jc) - vs0(i - 1, jc)) / dx);
+      };
+      double diag = 2.0 * (mu_s_(i, j) + mu_s_(i - 1, j)) / (dx * dx);
+      if (j > 0) diag += mu_corner(i, j) / (dy * dy);
+      if (j < ny - 1) diag += mu_corner(i, j + 1) / (dy * dy);
+      const double visc = (sxx(i) - sxx(i - 1)) / dx + (sxy(j + 1) - sxy(j)) / dy + diag * us0(i, j);
+      const double adv_s = advect_u(c.limiter, us0, vs0, i, j, dx, dy);
+      const double a_s = es * rho_s / dt;
+      const double rhs_s = a_s * us0(i, j) - es * rho_s * adv_s + es * rho_s * gx - es * dpdx - dpsdx + visc;
+      const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
+      s_.ug(i, j) = f.ug;
+      s_.us(i, j) = f.us;
+      dgu(i, j) = f.dg;
+      dsu(i, j) = f.ds;
+    }
+  }
+  // y-momentum on interior horizontal faces and, when open, the top face (ghost pressure keeps P = P_top there).
+  for (int j = 1; j <= ny; ++j) {
+    const bool top = j == ny;
+    if (top && !top_open) break;
+    for (int i = 0; i < nx; ++i) {
+      const double eg = top ? eps(i, ny - 1) : 0.5 * (eps(i, j - 1) + eps(i, j));
+      const double es = std::max(1.0 - eg, kEpsSFloor);
+      const double beta = top ? beta_c_(i, ny - 1) : 0.5 * (beta_c_(i, j - 1) + beta_c_(i, j));
+      const double p_above = top ? 2.0 * c.boundary.top_pressure - p(i, ny - 1) : p(i, j);
+      const double dpdy = (p_above - p(i, j - 1)) / dy;
+      const double adv_g = advect_v(c.limiter, ug0, vg0, i, j, dx, dy);
+      const double a_g = eg * rho_g / dt;
+      const double rhs_g = a_g * vg0(i, j) - eg * rho_g * adv_g + eg * rho_g * gy - eg * dpdy;
+      if (top || !bearing(i, j - 1, i, j)) {
+        // Solids cannot leave through the top; on a face with no solids on one side the solids velocity stays
+        // as extrapolated from the bed. Only the gas row remains, with the drag of those solids.
+        const double v_s = top ? 0.0 : vs0(i, j);
+        s_.vg(i, j) = (rhs_g + beta * v_s) / (a_g + beta);
+        dgv(i, j) = eg / (a_g + beta);
+        s_.vs(i, j) = v_s;
+        dsv(i, j) = 0.0;
+        continue;
+      }
+      const double dpsdy = (p_s_(i, j) - p_s_(i, j - 1)) / dy;
+      auto syy = [&](int cj) {
+        return 2.0 * mu_s_(i, cj) * (vs0(i, cj + 1) - vs0(i, cj)) / dy + lambda_s_(i, cj) * div_s(i, cj);
+      };
+      double diag = 2.0 * (mu_s_(i, j) + mu_s_(i, j - 1)) / (dy * dy);
+      auto sxy = [&](int ic) {  // corner (ic, j); side walls slip, or no-slip with the wall at dx/2
+        if (ic == 0 || ic == nx) {
+          const double mu_w = mu_wall * 0.5 * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j));
+          const double v_in = vs0(ic == 0 ? 0 : nx - 1, j);
+          return (ic == 0 ? 2.0 : -2.0) * mu_w * v_in / dx;
+        }
+        return mu_corner(ic, j) * ((us0(ic, j) - us0(ic, j - 1)) / dy + (vs0(ic, j) - vs0(ic - 1, j)) / dx);
+      };
+      for (int ic : {i, i + 1}) {
+        if (ic == 0 || ic == nx) {
+          diag += mu_wall * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j)) / (dx * dx);
+        } else {
+          diag += mu_corner(ic, j) / (dx * dx);
+        }
+      }
+      const double visc = (syy(j) - syy(j - 1)) / dy + (sxy(i + 1) - sxy(i)) / dx + diag * vs0(i, j);
+      const double adv_s = advect_v(c.limiter, us0, vs0, i, j, dx, dy);
+      const double a_s = es * rho_s / dt;
+      const double rhs_s = a_s * vs0(i, j) - es * rho_s * adv_s + es * rho_s * gy - es * dpdy - dpsdy + visc;
+      const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
+      s_.vg(i, j) = f.ug;
+      s_.vs(i, j) = f.us;
+      dgv(i, j) = f.dg;
+      dsv(i, j) = f.ds;
+    }
+  }
+  // Boundary faces: walls, inflow through the distributor, closed lid.
+  for (int j = 0; j < ny; ++j) {
+    s_.ug(0, j) = s_.ug(nx, j) = s_.us(0, j) = s_.us(nx, j) = 0.0;
+  }
+  for (int i = 0; i < nx; ++i) {
+    s_.vg(i, 0) = inlet[static_cast<std::size_t>(i)];
+    s_.vs(i, 0) = 0.0;
+    s_.vs(i, ny) = 0.0;
+    if (!top_open) s_.vg(i, ny) = 0.0;
+  }
+
+  // Pressure correction: the mixture volume flux sum_phases eps_f v_f must be divergence-free, because both
+  // phases are incompressible (Eqs. 15 + 16). Face volume fractions are the same TVD values the continuity uses.
+  Field2 eps_s(nx, ny), eg_x, eg_y, es_x, es_y;
+  for (std::size_t k = 0; k < eps_s.size(); ++k) eps_s.v[k] = 1.0 - eps.v[k];
+  tvd_face_values(grid_, c.limiter, eps, FaceVelocity{s_.ug, s_.vg, false}, eg_x, eg_y);
+  tvd_face_values(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, es_x, es_y);
+  for (int i = 0; i < nx; ++i) eg_y(i, 0) = 1.0;  // gas enters through the distributor undiluted
+  const int n = nx * ny;
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(n) * 5);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
+  auto id = [&](int i, int j) { return static_cast<int>(grid_.index(i, j)); };
+  double coeff_scale = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int pc = id(i, j);
+      const double out = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) + es_x(i + 1, j) * s_.us(i + 1, j) -
+                               eg_x(i, j) * s_.ug(i, j) - es_x(i, j) * s_.us(i, j)) +
+                         dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) + es_y(i, j + 1) * s_.vs(i, j + 1) -
+                               eg_y(i, j) * s_.vg(i, j) - es_y(i, j) * s_.vs(i, j));
+      rhs[pc] = -out;
+      // Neighbour couplings: east and north faces (each added symmetrically once).
+      if (i + 1 < nx) {
+        const double a = dy * (eg_x(i + 1, j) * dgu(i + 1, j) + es_x(i + 1, j) * dsu(i + 1, j)) / dx;
+        diag[pc] += a;
+        diag[id(i + 1, j)] += a;
+        trip.emplace_back(pc, id(i + 1, j), -a);
+        trip.emplace_back(id(i + 1, j), pc, -a);
+        coeff_scale = std::max(coeff_scale, a);
+      }
+      if (j + 1 < ny) {
+        const double a = dx * (eg_y(i, j + 1) * dgv(i, j + 1) + es_y(i, j + 1) * dsv(i, j + 1)) / dy;
+        diag[pc] += a;
+        diag[id(i, j + 1)] += a;
+        trip.emplace_back(pc, id(i, j + 1), -a);
+        trip.emplace_back(id(i, j + 1), pc, -a);
+        coeff_scale = std::max(coeff_scale, a);
+      } else if (top_open) {
+        // P' = 0 on the outlet face, half a cell above the centre.
+        diag[pc] += 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy;
+      }
+    }
+  }
+  // A closed box fixes the pressure only up to a constant: pin the top-left cell (its row sums to zero anyway).
+  if (!top_open) diag[id(0, ny - 1)] += coeff_scale;
+  for (int k = 0; k < n; ++k) trip.emplace_back(k, k, diag[k]);
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(trip.begin(), trip.end());
+  if (!pattern_ready_) {
+    pressure_solver_.analyzePattern(a);
+    pattern_ready_ = true;
+  }
+  pressure_solver_.factorize(a);
+  if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction factorisation failed");
+  const Eigen::VectorXd pc = pressure_solver_.solve(rhs);
+  if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction solve failed");
+
+  auto pcorr = [&](int i, int j) { return pc[id(i, j)]; };
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) {
+      const double g = (pcorr(i, j) - pcorr(i - 1, j)) / dx;
+      s_.ug(i, j) -= dgu(i, j) * g;
+      s_.us(i, j) -= dsu(i, j) * g;
+    }
+  }
+  for (int j = 1; j <= ny; ++j) {
+    if (j == ny && !top_open) break;
+    for (int i = 0; i < nx; ++i) {
+      const double above = j == ny ? -pcorr(i, ny - 1) : pcorr(i, j);
+      const double g = (above - pcorr(i, j - 1)) / dy;
+      s_.vg(i, j) -= dgv(i, j) * g;
+      s_.vs(i, j) -= dsv(i, j) * g;
+    }
+  }
+  for (int k = 0; k < n; ++k) s_.p.v[static_cast<std::size_t>(k)] += pc[k];
+
+  // Eq. 16, fully implicit with the limiter by deferred correction; eps = 1 - eps_s closes Eq. 15.
+  const Field2 eps_s_new =
+      advance_scalar_implicit(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, dt, c.mass_corrections);
+  for (std::size_t k = 0; k < eps_s_new.size(); ++k) s_.eps.v[k] = 1.0 - eps_s_new.v[k];
+
+  for (double x : s_.eps.v) {
+    if (!std::isfinite(x)) throw_simulation_error("tfm: voidage became NaN at t = " + std::to_string(s_.time));
+  }
+  for (double x : s_.p.v) {
+    if (!std::isfinite(x)) throw_simulation_error("tfm: pressure became NaN at t = " + std::to_string(s_.time));
+  }
+  s_.time += dt;
+  s_.dt = dt;
+  ++s_.steps;
+  return dt;
+}
+
+void TfmSolver::advance_to(double t) {
+  // Stop within a rounding distance of t instead of taking a vanishing last step.
+  while (t - s_.time > 1e-12 * std::max(1.0, std::abs(t))) step(t);
+}
+
+double TfmSolver::solids_mass() const {
+  double sum = 0.0;
+  for (double e : s_.eps.v) sum += 1.0 - e;
+  return sum * config_.rho_s * grid_.dx * grid_.dy;
+}
+
+double TfmSolver::pressure_drop() const {
+  double sum = 0.0;
+  const int ny = grid_.ny;
+  for (int i = 0; i < grid_.nx; ++i) {
+    sum += ny > 1 ? 1.5 * s_.p(i, 0) - 0.5 * s_.p(i, 1) : s_.p(i, 0);
+  }
+  const double top = config_.boundary.top_open ? config_.boundary.top_pressure : 0.0;
+  return sum / grid_.nx - top;
+}
+
+double TfmSolver::contents_weight_per_area() const {
+  double sum = 0.0;
+  for (double e : s_.eps.v) sum += e * config_.rho_g + (1.0 - e) * config_.rho_s;
+  return sum * grid_.dx * grid_.dy * std::abs(config_.gravity.y) / grid_.width();
+}
+
+double TfmSolver::max_solids_speed() const {
+  const int nx = grid_.nx, ny = grid_.ny;
+  double vmax = 0.0;
+  const Field2& e = s_.eps;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) {
+      if (std::min(1.0 - e(i - 1, j), 1.0 - e(i, j)) > 1e-6) vmax = std::max(vmax, std::abs(s_.us(i, j)));
+    }
+  }
+  for (int j = 1; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      if (std::min(1.0 - e(i, j - 1), 1.0 - e(i, j)) > 1e-6) vmax = std::max(vmax, std::abs(s_.vs(i, j)));
+    }
+  }
+  return vmax;
+}
+
+double TfmSolver::min_voidage() const { return *std::min_element(s_.eps.v.begin(), s_.eps.v.end()); }
+
+double TfmSolver::gas_volume_residual() const {
+  const int nx = grid_.nx, ny = grid_.ny;
+  Field2 eg_x, eg_y;
+  tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity{s_.ug, s_.vg, false}, eg_x, eg_y);
+  for (int i = 0; i < nx; ++i) eg_y(i, 0) = 1.0;
+  double sum = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      sum += std::abs(grid_.dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
+                      grid_.dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j)));
+    }
+  }
+  return sum;
+}
+
+void TfmSolver::gas_velocity_cells(Field2& u, Field2& v) const {
+  u = Field2(grid_.nx, grid_.ny);
+  v = Field2(grid_.nx, grid_.ny);
+  for (int j = 0; j < grid_.ny; ++j) {
+    for (int i = 0; i < grid_.nx; ++i) {
+      u(i, j) = 0.5 * (s_.ug(i, j) + s_.ug(i + 1, j));
+      v(i, j) = 0.5 * (vg_interstitial(i, j) + s_.vg(i, j + 1));
+    }
+  }
+}
+
+void TfmSolver::solids_velocity_cells(Field2& u, Field2& v) const {
+  u = Field2(grid_.nx, grid_.ny);
+  v = Field2(grid_.nx, grid_.ny);
+  for (int j = 0; j < grid_.ny; ++j) {
+    for (int i = 0; i < grid_.nx; ++i) {
+      u(i, j) = 0.5 * (s_.us(i, j) + s_.us(i + 1, j));
+      v(i, j) = 0.5 * (s_.vs(i, j) + s_.vs(i, j + 1));
+    }
+  }
+}
+
+std::vector<NamedArray> TfmSolver::save_state() const {
+  auto arr = [](const char* name, const Field2& f) { return NamedArray{name, f.nx, f.ny, f.v}; };
+  return {arr("eps", s_.eps),
+          arr("p", s_.p),
+          arr("ug", s_.ug),
+          arr("vg", s_.vg),
+          arr("us", s_.us),
+          arr("vs", s_.vs),
+          arr("theta", s_.theta),
+          NamedArray{"time", 1, 1, {s_.time}},
+          NamedArray{"dt", 1, 1, {s_.dt}},
+          NamedArray{"steps", 1, 1, {static_cast<double>(s_.steps)}}};
+}
+
+void TfmSolver::restore_state(const std::vector<NamedArray>& arrays) {
+  TfmState next = s_;
+  auto find = [&](const char* name, int nx, int ny) -> const NamedArray& {
+    for (const NamedArray& a : arrays) {
+      if (a.name != name) continue;
+      if (a.nx != nx || a.ny != ny || a.values.size() != static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny)) {
+        throw_input_error(std::string("tfm restart: array '") + name + "' does not match the grid");
+      }
+      return a;
+    }
+    throw_input_error(std::string("tfm restart: array '") + name + "' is missing");
+  };
+  auto load = [&](const char* name, Field2& f) { f.v = find(name, f.nx, f.ny).values; };
+  load("eps", next.eps);
+  load("p", next.p);
+  load("ug", next.ug);
+  load("vg", next.vg);
+  load("us", next.us);
+  load("vs", next.vs);
+  load("theta", next.theta);
+  next.time = find("time", 1, 1).values[0];
+  next.dt = find("dt", 1, 1).values[0];
+  next.steps = static_cast<long>(find("steps", 1, 1).values[0]);
+  s_ = std::move(next);
+}
+
+}  // namespace fluidbed::tfm
