@@ -120,9 +120,10 @@ inline double rel_err(double computed, double exact) { return std::abs(computed 
 /// A printed table in the style of the MFIX verification suite (exact vs computed vs error).
 class Table {
  public:
-  Table(std::string title, std::vector<std::string> columns) : cols_(std::move(columns)) {
+  /// `label` > 0 adds a leading text column of that width (see labelled_row).
+  Table(std::string title, std::vector<std::string> columns, int label = 0) : cols_(std::move(columns)), label_(label) {
     fmt::print("\n{}\n", title);
-    std::string line;
+    std::string line(static_cast<std::size_t>(label_), ' ');
     for (const auto& c : cols_) line += fmt::format("{:>14}", c);
     fmt::print("{}\n", line);
   }
@@ -132,9 +133,14 @@ class Table {
     fmt::print("{}\n", line);
     std::fflush(stdout);
   }
+  void labelled_row(const std::string& label, const std::vector<double>& v) const {
+    fmt::print("{:<{}}", label, label_);
+    row(v);
+  }
 
  private:
   std::vector<std::string> cols_;
+  int label_ = 0;
 };
 
 }  // namespace fluidbed::test
