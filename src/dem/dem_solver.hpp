@@ -68,6 +68,7 @@ class DemSolver {
 
  private:
   void rebuild();
+  static constexpr std::uint64_t kSortEvery = 16;
   void check_particles() const;
 
   DemConfig config_;

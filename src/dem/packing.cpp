@@ -9,6 +9,15 @@
 
 namespace fluidbed {
 
+std::int64_t random_placement_capacity(const DemConfig& dem, const PackingConfig& cfg) {
+  double d_max = 0.0;
+  for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
+  const double site = d_max + cfg.min_gap;
+  const auto nx = static_cast<std::int64_t>(std::floor((cfg.x_max - cfg.x_min) / site));
+  const auto ny = static_cast<std::int64_t>(std::floor((cfg.y_max - cfg.y_min) / site));
+  return std::max<std::int64_t>(nx, 0) * std::max<std::int64_t>(ny, 0);
+}
+
 ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
   double d_max = 0.0;
   for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);

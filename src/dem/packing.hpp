@@ -19,6 +19,9 @@ struct PackingConfig {
   std::vector<double> species_fraction{};
 };
 
+/// How many particles `place_random` can place in the region of `cfg`.
+std::int64_t random_placement_capacity(const DemConfig& dem, const PackingConfig& cfg);
+
 /// Place `count` particles at random without overlap: each occupies a distinct, randomly chosen site of a
 /// lattice of spacing (largest diameter + gap) and is jittered at random inside its site. O(N), reproducible
 /// for a given seed; throws a bad-input error when the particles do not fit in the region.

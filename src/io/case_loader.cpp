@@ -6,6 +6,8 @@
 
 #include "core/error.hpp"
 #include "dem/contact_law.hpp"
+#include "io/dem_model.hpp"
+#include <filesystem>
 
 namespace fluidbed {
 
@@ -33,7 +35,10 @@ namespace {
 void read_case(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   // [case]
-  c.name = r.string("case.name", "case", "name of the case; the default output folder is out/<name>");
+  c.name = r.required_string("case.name", "name of the case; the default output folder is out/<name>");
+  if (c.name.empty() || c.name.find_first_of("/\\") != std::string::npos) {
+    r.fail("case.name", "must be a non-empty name without slashes (it names the output folder)");
+  }
   c.description = r.string("case.description", "", "one line saying what the case is");
   const std::string model = r.string("case.model", "dem", "which model: discrete particles (CFD-DEM, or DEM alone "
                                      "when gas.enabled = false) or the two-fluid model", {"dem", "tfm"});
@@ -125,12 +130,27 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.particles.packing.min_gap = r.number("particles.gap", 0.05 * c.dem.species[0].diameter, "m",
                                          "smallest gap between randomly placed particles", R::non_negative());
   c.particles.packing.seed = c.seed;
+  if (c.particles.source == ParticleSource::Random) {
+    const std::int64_t capacity = random_placement_capacity(c.dem, c.particles.packing);
+    if (c.particles.packing.count > capacity) {
+      r.fail("particles.count", fmt::format("{} particles do not fit in the {} x {} m placement region: at most {} "
+                                            "with a gap of {} m; raise particles.fill_height or domain.height",
+                                            c.particles.packing.count, c.dem.width, c.particles.packing.y_max, capacity,
+                                            c.particles.packing.min_gap));
+    }
+  } else {
+    // Read the file now, so that `check` reports a bad row before any run.
+    const auto path = std::filesystem::path(c.particles.file).is_absolute()
+                          ? std::filesystem::path(c.particles.file)
+                          : std::filesystem::path(r.file_name()).parent_path() / c.particles.file;
+    c.particles.packing.count = static_cast<std::int64_t>(particles_from_csv(path.string(), c.dem).size());
+  }
   c.particles.layers = static_cast<int>(r.integer("particles.layers", 6, "colour layers of the initial bed (Fig. 4)",
                                                   R::between(1, 1000)));
 
   // [settle]
-  c.settle.enabled = c.particles.source != ParticleSource::File &&
-                     r.boolean("settle.enabled", true, "settle the random placement in vacuum before t = 0");
+  c.settle.enabled = r.boolean("settle.enabled", true, "settle the random placement in vacuum before t = 0") &&
+                     c.particles.source != ParticleSource::File;
   c.settle.kinetic_energy_per_particle = r.number("settle.kinetic_energy_per_particle", 1e-10, "J",
                                                   "the bed is settled when the mean kinetic energy per particle falls below this",
                                                   R::positive());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -123,8 +124,9 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 CaseReader::CaseReader(const std::string& path) : name_(path) {
+  std::error_code ec;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw_input_error(fmt::format("{}: cannot read the case file (missing or unreadable)", path));
+  if (!std::filesystem::is_regular_file(path, ec) || !in) throw_input_error(fmt::format("{}: cannot read the case file (missing or unreadable)", path));
   std::stringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw_input_error(fmt::format("{}: cannot read the case file", path));
@@ -290,6 +292,16 @@ std::string CaseReader::string(const std::string& path, const std::string& def, 
     fail(path, fmt::format("\"{}\" is not one of {}", v, range));
   }
   insert_at(resolved_, path, v);
+  return v;
+}
+
+std::string CaseReader::required_string(const std::string& path, const std::string& doc) {
+  if (!find(path)) {
+    record(path, "string", "", doc, "", "");
+    throw_input_error(fmt::format("{}: missing required value {} ({})", name_, path, doc));
+  }
+  const std::string v = string(path, "", doc);
+  keys_[key_index_[strip_indices(path)]].default_text = "";
   return v;
 }
 

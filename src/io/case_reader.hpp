@@ -51,6 +51,7 @@ class CaseReader {
   bool boolean(const std::string& path, bool def, const std::string& doc);
   std::string string(const std::string& path, const std::string& def, const std::string& doc,
                      const std::vector<std::string>& allowed = {});
+  std::string required_string(const std::string& path, const std::string& doc);
   std::vector<double> numbers(const std::string& path, const std::vector<double>& def, const std::string& unit,
                               const std::string& doc, std::size_t size = 0);
   /// Number of tables in an array of tables (e.g. [[species]]); its keys are read as "name[i].key".

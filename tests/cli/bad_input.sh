@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Every kind of bad input ends with exit code 2 and one line naming the file, line and key (issue 6).
+source "$(dirname "$0")/lib.sh"
+
+# A small valid DEM case the bad ones are derived from.
+# Dotted keys only, so a test can replace or add any key with one line.
+cat > "$WORK/ok.toml" <<'TOML'
+case.name = "ok"
+case.end_time = 0.002
+particles.count = 50
+settle.enabled = false
+gas.enabled = false
+output.interval = 0.001
+output.checkpoint_interval = 0.0
+TOML
+bad() {  # bad NAME REGEX 'key = value'...: ok.toml with those keys replaced or added
+  local name=$1 regex=$2
+  shift 2
+  cp "$WORK/ok.toml" "$WORK/$name.toml"
+  local kv key
+  for kv in "$@"; do
+    key=${kv%% =*}
+    if grep -q "^$key =" "$WORK/$name.toml"; then
+      grep -v "^$key =" "$WORK/$name.toml" > "$WORK/$name.tmp"
+      mv "$WORK/$name.tmp" "$WORK/$name.toml"
+    fi
+    printf '%s\n' "$kv" >> "$WORK/$name.toml"
+  done
+  expect 2 "$regex" "$name" "$FLUIDBED" check "$WORK/$name.toml"
+}
+
+expect 0 "OK" "valid case" "$FLUIDBED" check "$WORK/ok.toml"
+expect 2 "nonexistent.toml: cannot read" "missing case file" "$FLUIDBED" check "$WORK/nonexistent.toml"
+mkdir -p "$WORK/dir.toml"
+expect 2 "dir.toml: cannot read" "unreadable case file (a folder)" "$FLUIDBED" check "$WORK/dir.toml"
+printf '[case]\nname = "x"\nend_time = = 1\n' > "$WORK/syntax.toml"
+expect 2 "syntax.toml:3:[0-9]+: TOML syntax error" "TOML syntax error" "$FLUIDBED" check "$WORK/syntax.toml"
+printf '[case]\nend_time = 1.0\n' > "$WORK/noname.toml"
+expect 2 "missing required value case.name" "missing required value" "$FLUIDBED" check "$WORK/noname.toml"
+bad unknown_key "unknown key 'dem.tme_step'; did you mean 'dem.time_step'" "dem.tme_step = 1e-4"
+bad wrong_type "wrong_type.toml:[0-9]+:[0-9]+: dem.time_step: expected a number" 'dem.time_step = "fast"'
+bad zero_diameter "species\[0\].diameter: 0 is out of range: must be > 0" "species = [{diameter = 0.0}]"
+bad negative_density "species\[0\].density: -2700 is out of range" "species = [{density = -2700.0}]"
+bad zero_stiffness "contact.stiffness: 0 is out of range: must be > 0" "contact.stiffness = 0"
+bad restitution_zero "contact.restitution: 0 is out of range: must be > 0, <= 1" "contact.restitution = 0.0"
+bad restitution_above_one "contact.restitution: 1.2 is out of range" "contact.restitution = 1.2"
+bad negative_friction "contact.friction: -0.1 is out of range: must be >= 0" "contact.friction = -0.1"
+bad unstable_dt "dem.time_step: 0.001 s is above the stability limit.*largest stable time step is 0.00045" "dem.time_step = 1e-3"
+bad too_many_particles "particles.count: 1000000 particles do not fit" "particles.count = 1000000"
+bad bad_model 'case.model: "lbm" is not one of "dem", "tfm"' 'case.model = "lbm"'
+bad fractions "fractions add up to" "species = [{fraction = 0.5}, {fraction = 0.3}]"
+bad wall_restitution "contact.wall_restitution: 1.5 is out of range" "contact.wall_restitution = 1.5"
+bad gravity_size "dem.gravity: expected 2 values, got 3" "dem.gravity = [0.0, -9.81, 0.0]"
+bad fill_height "particles.fill_height: 2 m is above the domain height" "particles.fill_height = 2.0"
+bad particle_file_missing "particles.source = \"file\" needs particles.file" 'particles.source = "file"'
+expect 2 "--set dem.time_step=abc.*expected a number|dem.time_step: expected a number" "--set with a wrong type" \
+  "$FLUIDBED" check "$WORK/ok.toml" --set dem.time_step=abc
+expect 2 "--set nosuchkey: expected SECTION.KEY=VALUE" "--set without =" "$FLUIDBED" check "$WORK/ok.toml" --set nosuchkey
+expect 2 "unknown key 'contact.stifness'; did you mean 'contact.stiffness'" "--set unknown key" \
+  "$FLUIDBED" check "$WORK/ok.toml" --set contact.stifness=100
+expect 2 "threads" "--threads 0" "$FLUIDBED" run "$WORK/ok.toml" --threads 0
+
+# A particle CSV with a bad row names the file, the row and the column.
+printf 'id,x,y,vx,vy,omega,species\n0,0.1,0.1,0,0,0,0\n1,0.2,abc,0,0,0,0\n' > "$WORK/bad.csv"
+bad bad_particle_csv "bad.csv: row 3, column (3|y)" 'particles.source = "file"' "particles.file = \"$WORK/bad.csv\""
+
+# Output folder that cannot be written.
+touch "$WORK/not-a-folder"
+expect 2 "cannot" "unwritable output folder" "$FLUIDBED" run "$WORK/ok.toml" --quiet --out "$WORK/not-a-folder/out"
+
+# Restart files: not HDF5, and a checkpoint of another case.
+echo "garbage" > "$WORK/garbage.h5"
+expect 2 "garbage.h5" "unreadable restart file" "$FLUIDBED" run "$WORK/ok.toml" --quiet --out "$WORK/r1" --restart "$WORK/garbage.h5"
+expect 0 "" "a run that writes a checkpoint" "$FLUIDBED" run "$WORK/ok.toml" --quiet --out "$WORK/r2"
+sed 's/case.name = "ok"/case.name = "other"/' "$WORK/ok.toml" > "$WORK/other.toml"
+expect 2 "checkpoint is of case 'ok'" "mismatched restart file" \
+  "$FLUIDBED" run "$WORK/other.toml" --quiet --out "$WORK/r3" --restart "$WORK/r2/checkpoints/final.h5"
+expect 2 "restart file not found" "missing restart file" "$FLUIDBED" run "$WORK/ok.toml" --quiet --out "$WORK/r4" --restart "$WORK/none.h5"
+
+finish
