@@ -4,7 +4,6 @@
 
 #include <bit>
 #include <cstdint>
-#include <cstring>
 #include <stdexcept>
 #include <string_view>
 
@@ -25,6 +24,10 @@ class VtkFile {
 
   template <class T>
   void data_array(std::string_view type, std::string_view name, int components, const std::vector<T>& values) {
+    // Names go into an XML attribute unescaped; ParaView also expects them printable.
+    if (name.empty() || name.find_first_of("\"<>&\n") != std::string_view::npos) {
+      throw std::invalid_argument("VTK array name '" + std::string(name) + "' is empty or has XML characters");
+    }
     xml += fmt::format(R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
                        "\n",
                        type, name, components, appended_.size());

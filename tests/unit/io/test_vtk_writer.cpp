@@ -76,6 +76,8 @@ TEST(VtkWriter, FieldOfWrongShapeIsRejectedAndNothingWritten) {
   EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::scalar("a", good), VtiArray::scalar("b", bad)}),
                std::invalid_argument);
   EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::vector("u", good, bad)}), std::invalid_argument);
+  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::scalar("a\"b", good)}), std::invalid_argument);
+  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::scalar("", good)}), std::invalid_argument);
   EXPECT_FALSE(std::filesystem::exists(dir / "f.vti"));
   EXPECT_EQ(test::temp_files_in(dir), 0);
 }
