@@ -1,0 +1,53 @@
+// TfmConfig validation: every bad setting is an input error (exit code 2) that names the setting.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "core/error.hpp"
+#include "tfm/tfm_config.hpp"
+
+namespace fluidbed::tfm {
+namespace {
+
+void expect_rejected(const std::function<void(TfmConfig&)>& spoil, const std::string& key) {
+  TfmConfig c;
+  spoil(c);
+  try {
+    validate(c);
+    ADD_FAILURE() << "accepted a bad " << key;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exit_code(), 2);
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
+}
+
+TEST(TfmConfig, PaperDefaultsAreValid) {
+  const TfmConfig c;
+  EXPECT_NO_THROW(validate(c));
+  // Table 1, TFM column.
+  EXPECT_DOUBLE_EQ(c.d_p, 0.004);
+  EXPECT_DOUBLE_EQ(c.rho_s, 2700.0);
+  EXPECT_DOUBLE_EQ(c.eps_initial, 0.431);
+  EXPECT_DOUBLE_EQ(c.eps_star, 0.43);
+  EXPECT_DOUBLE_EQ(c.phi_deg, 40.0);
+  EXPECT_DOUBLE_EQ(c.cell_size, 0.02);
+  EXPECT_DOUBLE_EQ(c.packed_height, 0.54);
+  ASSERT_EQ(c.boundary.jets.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.boundary.jets[0].velocity, 30.0);
+  EXPECT_DOUBLE_EQ(c.boundary.jets[0].t_end, 0.4);
+  EXPECT_DOUBLE_EQ(c.boundary.inlet_velocity, 1.8);
+}
+
+TEST(TfmConfig, BadSettingsAreNamed) {
+  expect_rejected([](TfmConfig& c) { c.cell_size = 0.03; }, "cell_size");
+  expect_rejected([](TfmConfig& c) { c.eps_initial = 0.4; }, "eps_initial");
+  expect_rejected([](TfmConfig& c) { c.e = 1.5; }, "e must");
+  expect_rejected([](TfmConfig& c) { c.cfl = 0.0; }, "cfl");
+  expect_rejected([](TfmConfig& c) { c.packed_height = 2.0; }, "packed_height");
+  expect_rejected([](TfmConfig& c) { c.rho_s = 1.0; }, "rho_s");
+  expect_rejected([](TfmConfig& c) { c.boundary.jets[0].width = 0.0; }, "jet");
+}
+
+}  // namespace
+}  // namespace fluidbed::tfm
