@@ -9,7 +9,7 @@
 namespace fluidbed {
 
 /// Loops over fewer cells than this run serially: thread start-up would cost more than the work.
-inline constexpr int kParallelCells = 4096;
+inline constexpr int kParallelCells = 16384;
 
 class StencilMatrix {
  public:
