@@ -77,7 +77,7 @@ CavityResult run_cavity(int n, double re, const std::array<double, 15>& u_ref, c
     const double ev = gas.velocity_at({kGhiaX[k], 0.5}).y - v_ref[k];
     res.max_error = std::max(res.max_error, std::abs(ev));
   }
-  std::printf("[ cavity   ] Re %4.0f grid %3d x %3d: max |u - u_Ghia| on the centrelines = %.4f (SIMPLE iterations %d)\n",
+  std::printf("[ cavity   ] Re %4.0f grid %3d x %3d: max deviation of u(y) and v(x) on the centrelines = %.4f of the lid speed (SIMPLE iterations %d)\n",
               re, n, n, res.max_error, res.simple_iterations);
   return res;
 }
