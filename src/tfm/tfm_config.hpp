@@ -60,7 +60,7 @@ struct TfmConfig {
   ModulusParams modulus{};     ///< Eq. 20 for ConstantViscosity and Inviscid
   // Numerics.
   Limiter limiter = Limiter::Superbee;
-  double cfl = 0.4;            ///< dt = cfl * cell / max(velocity, solids-pressure wave speed)
+  double cfl = 0.5;            ///< dt = cfl * cell / max(velocity, solids-pressure wave speed); 0.5 keeps TVD
   double dt_max = 1e-3;        ///< [s]
   double dt_min = 1e-8;        ///< [s]; below this the run fails
   int mass_corrections = 2;    ///< deferred-correction passes of the implicit solids continuity

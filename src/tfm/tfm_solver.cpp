@@ -288,8 +288,9 @@ double TfmSolver::choose_dt(double t_stop) const {
   }
   double c2 = 0.0;
   for (double x : dps_deps_.v) c2 = std::max(c2, x);
-  // Paper Table 3 item 5: dt < dy / V_max, here with the solids-pressure wave speed added to V_max.
-  const double speed = vmax + std::sqrt(c2 / config_.rho_s);
+  // Paper Table 3 item 5: dt < dy / V_max; the explicit solids pressure adds its compaction-wave speed
+  // sqrt(dP_s/d eps_s / rho_s) as a second speed that the step must resolve.
+  const double speed = std::max(vmax, std::sqrt(c2 / config_.rho_s));
   double dt = config_.dt_max;
   if (speed > 0.0) dt = std::min(dt, config_.cfl * std::min(grid_.dx, grid_.dy) / speed);
   return std::min(dt, t_stop - s_.time);
