@@ -113,6 +113,9 @@ TEST(DemParticleStore, PermuteMovesEveryAttributeTogether) {
     p.torque[i] = 30.0 + i;
     p.fx_ext[i] = 40.0 + i;
     p.fy_ext[i] = 50.0 + i;
+    p.drag_k[i] = 60.0 + i;
+    p.ugx[i] = 70.0 + i;
+    p.ugy[i] = 80.0 + i;
   }
   const ParticleStore old = p;
   const std::vector<std::size_t> order{3, 0, 5, 1, 4, 2};
@@ -128,7 +131,8 @@ TEST(DemParticleStore, PermuteMovesEveryAttributeTogether) {
                         std::pair{&p.mass, &old.mass}, std::pair{&p.inv_mass, &old.inv_mass},
                         std::pair{&p.inv_inertia, &old.inv_inertia}, std::pair{&p.fx, &old.fx},
                         std::pair{&p.fy, &old.fy}, std::pair{&p.torque, &old.torque},
-                        std::pair{&p.fx_ext, &old.fx_ext}, std::pair{&p.fy_ext, &old.fy_ext}}) {
+                        std::pair{&p.fx_ext, &old.fx_ext}, std::pair{&p.fy_ext, &old.fy_ext},
+                        std::pair{&p.drag_k, &old.drag_k}, std::pair{&p.ugx, &old.ugx}, std::pair{&p.ugy, &old.ugy}}) {
       EXPECT_EQ((*a)[k], (*b)[o]) << k;
     }
   }
@@ -142,7 +146,7 @@ TEST(DemParticleStore, PermuteMovesEveryAttributeTogether) {
   EXPECT_EQ(p.fy_ext, old.fy_ext);
   p.clear();
   EXPECT_EQ(p.size(), 0u);
-  EXPECT_TRUE(p.x.empty() && p.fx_ext.empty() && p.layer.empty());
+  EXPECT_TRUE(p.x.empty() && p.fx_ext.empty() && p.layer.empty() && p.ugy.empty());
 }
 
 TEST(DemParticleStore, SphereMassAndInertia) {
