@@ -40,7 +40,7 @@ struct GasBoundaryConfig {
   /// Superficial (volume flux per area) velocity through the whole bottom [m/s]; paper: U_mf = 1.8.
   double inlet_velocity = 1.8;
   /// Jets replacing the background inflow over their width; paper: one 0.02 m jet at the centre, 30 m/s, 0-0.4 s.
-  std::vector<InletJet> jets{InletJet{}};
+  std::vector<InletJet> jets = std::vector<InletJet>(1);
   TopBoundary top = TopBoundary::PressureOutlet;
   double top_pressure = 0.0;  ///< [Pa], PressureOutlet only
   double lid_velocity = 0.0;  ///< tangential speed of a top Wall [m/s]
