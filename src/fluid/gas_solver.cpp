@@ -331,6 +331,17 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
     if (fld->nx != nx || fld->ny != ny) throw_input_error("gas advance: cell fields must be nx x ny");
   }
   if (!(dt > 0.0)) throw_input_error("gas advance: dt must be positive");
+  for (std::size_t k = 0; k < eps_new.size(); ++k) {
+    // eps divides the inlet flux and scales every control volume; beta < 0 would make the drag anti-dissipative.
+    if (!(eps_new.v[k] > 0.0 && eps_new.v[k] <= 1.0) || !(eps_old.v[k] > 0.0 && eps_old.v[k] <= 1.0) ||
+        !(beta.v[k] >= 0.0) || !std::isfinite(beta.v[k]) || !std::isfinite(us.v[k]) || !std::isfinite(vs.v[k])) {
+      throw_simulation_error(fmt::format(
+          "gas advance at t = {:.6g} s: cell ({}, {}) has eps_old = {:.4g}, eps_new = {:.4g}, beta = {:.4g}, "
+          "solids velocity ({:.4g}, {:.4g}); need 0 < eps <= 1, beta >= 0 and finite values",
+          t_new, k % static_cast<std::size_t>(nx), k / static_cast<std::size_t>(nx), eps_old.v[k], eps_new.v[k],
+          beta.v[k], us.v[k], vs.v[k]));
+    }
+  }
   const GasConfig& cfg = s.cfg;
   s.eps_cell = eps_new;
   cell_to_u_faces(eps_new, s.epsx);

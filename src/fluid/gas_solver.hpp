@@ -35,7 +35,8 @@ class GasSolver {
 
   /// One backward-Euler step from t_new - dt to t_new. All inputs are cell-centred (nx x ny): voidage at the start
   /// and end of the step, beta [kg/m^3/s] and the solids velocity (us, vs). Jets are switched at mid-step.
-  /// Throws a simulation error when SIMPLE does not converge within max_simple_iterations or a field turns NaN.
+  /// Throws a simulation error when an input is out of range (eps outside (0, 1], beta < 0, NaN), when SIMPLE does
+  /// not converge within max_simple_iterations, or when a field turns NaN; an input error on wrong field sizes.
   GasStepReport advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new, const Field2& beta,
                         const Field2& us, const Field2& vs);
 

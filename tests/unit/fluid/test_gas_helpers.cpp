@@ -117,5 +117,29 @@ TEST(GasSolverSmoke, UniformFlowThroughEmptyColumnIsExact) {
   EXPECT_NEAR(gas.pressure_gradient_at({0.05, 0.1}).y, -cfg.rho_g * 9.81, 1e-7);
 }
 
+TEST(GasSolverSmoke, RejectsOutOfRangeInputs) {
+  GasConfig cfg;
+  const Grid2 g = Grid2::uniform(0.1, 0.2, 4, 8);
+  GasSolver gas(g, cfg);
+  Field2 eps(4, 8, 0.5), zero(4, 8, 0.0), bad(4, 8, 0.5), small(3, 8, 0.5);
+  bad(2, 3) = 0.0;
+  EXPECT_THROW(gas.advance(1e-3, 1e-3, eps, bad, zero, zero, zero), Error);
+  Field2 beta(4, 8, 0.0);
+  beta(1, 1) = -1.0;
+  EXPECT_THROW(gas.advance(1e-3, 1e-3, eps, eps, beta, zero, zero), Error);
+  EXPECT_THROW(gas.advance(1e-3, 1e-3, eps, small, zero, zero, zero), Error);
+  EXPECT_THROW(gas.advance(1e-3, 0.0, eps, eps, zero, zero, zero), Error);
+  // SIMPLE limited to one iteration cannot converge the start of a jet: a simulation error with a diagnosis.
+  cfg.max_simple_iterations = 1;
+  GasSolver capped(g, cfg);
+  try {
+    capped.advance(1e-3, 1e-3, eps, eps, zero, zero, zero);
+    ADD_FAILURE() << "expected a simulation error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exit_code(), 3);
+    EXPECT_NE(std::string(e.what()).find("did not converge"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace fluidbed
