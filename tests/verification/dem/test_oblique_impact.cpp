@@ -95,5 +95,64 @@ TEST(DemObliqueImpact, SlidingImpactsMatchImpulseTheoryAndStickingOnesStayWithin
   }
 }
 
+// While the contact sticks, the slip s = v_t + omega r of a solid sphere on a flat wall obeys
+// (m / 3.5) s' = f_t = -k_t xi - eta_t s with xi' = s (Eq. 3 with the spring accumulated from the first
+// touch): a damped oscillator with closed form, valid until |f_t| first reaches mu |f_n| (Eq. 6), which
+// happens at the latest where the normal force falls to zero near the end of the contact. A high friction
+// (mu = 10) keeps every angle of the sweep sticking until then, so the tangential spring and its history
+// are checked against a closed form over most of the contact.
+// Tolerance: at N = 400 steps per normal contact the tangential oscillation (frequency sqrt(3.5) times the
+// normal one) is resolved with omega_t dt = 0.026, a first-order phase error of about omega_t dt / 2 = 1.3%
+// of the slip amplitude (v_t), i.e. 0.4% of v_t in the centre velocity (the slip changes 3.5 times faster)
+// and 0.9% in omega r (2.5 / 3.5 of the slip change); 1% of v_t bounds both.
+TEST(DemObliqueImpact, StickingContactFollowsTheTangentialOscillatorUntilItSlips) {
+  const test::ScopedThreads one_thread(1);
+  const double mu = 10.0;
+  const int steps_per_contact = 400;
+  const Species sp{kD, kRho};
+  const double m = sp.mass(), r = sp.radius();
+  const double eta = damping_from_restitution(m, kK, kE);  // the same dashpot for both directions (Eqs. 2-3)
+  const double dt = contact_duration(m, kK, eta) / steps_per_contact;
+  test::Table t(fmt::format("Sticking phase of an oblique wall impact, mu = {}, e = {}, dt = t_contact / {}", mu,
+                            kE, steps_per_contact),
+                {"theta deg", "t_slip/t_c", "v_t exact", "v_t comp.", "max err/v_t0", "w r exact", "w r comp."});
+  // The last four columns at 0.9 t_slip; the error is the largest over the steps before it.
+  for (int deg : {10, 20, 30, 45, 60}) {
+    const double theta = deg * std::numbers::pi / 180.0;
+    const double vn = kV * std::cos(theta), vt = kV * std::sin(theta);
+    const test::DampedOscillator normal{m, kK, eta, 0.0, 0.0, vn};
+    const test::DampedOscillator tangential{m / 3.5, kK, eta, 0.0, 0.0, vt};  // xi and s
+    const double t_c = test::contact_end_time(normal);
+    auto f_t = [&](double tt) { return kK * tangential.overlap(tt) + eta * tangential.rate(tt); };
+    const double t_slip = test::first_root([&](double tt) { return mu * normal.force(tt) - std::abs(f_t(tt)); },
+                                           0.0, t_c, t_c / 4000.0);
+    // Centre velocity and spin from the slip: the same tangential impulse acts on both (I = 0.4 m r^2).
+    auto vt_exact = [&](double tt) { return vt + (tangential.rate(tt) - vt) / 3.5; };
+    auto wr_exact = [&](double tt) { return 2.5 * (tangential.rate(tt) - vt) / 3.5; };
+
+    const DemConfig c = test::one_species_config(kD, kRho, kK, kE, mu, dt, {0.0, 0.0}, 1.0, 0.1,
+                                                 WallConfig{false, false, true, false});
+    ParticleStore p;
+    p.add(0, 0, c.species[0], {0.1, r + 2.5 * vn * dt}, {vt, -vn});  // first touch at t = 2.5 dt
+    DemSolver s(c, std::move(p));
+    const ParticleStore& q = s.particles();
+    double worst = 0.0, last_t = 0.0, last_v = 0.0, last_wr = 0.0;
+    for (int n = 0; n < 4 * steps_per_contact; ++n) {
+      s.step();
+      // v_{n+1} of Eq. 10 is the mean velocity over the step: compare it half a step back.
+      const double tt = s.time() - 2.5 * dt - 0.5 * dt;
+      if (tt <= 0.0) continue;
+      if (tt > 0.9 * t_slip) break;
+      worst = std::max(worst, std::max(std::abs(q.vx[0] - vt_exact(tt)), std::abs(q.omega[0] * r - wr_exact(tt))));
+      last_t = tt;
+      last_v = q.vx[0];
+      last_wr = q.omega[0] * r;
+    }
+    t.row({static_cast<double>(deg), t_slip / t_c, vt_exact(last_t), last_v, worst / vt, wr_exact(last_t), last_wr});
+    EXPECT_GT(t_slip, 0.8 * t_c) << deg;  // sticks over most of the contact, as intended
+    EXPECT_LE(worst, 0.01 * vt) << deg;
+  }
+}
+
 }  // namespace
 }  // namespace fluidbed
