@@ -13,19 +13,29 @@ namespace fluidbed {
 
 double dem_stable_time_step(const DemConfig& dem) {
   double dt = 1e300;
-  auto limit = [&](double m_eff, double e) {
-    const double k = dem.stiffness * std::max(1.0, dem.tangential_stiffness_ratio);
-    const double eta = damping_from_restitution(m_eff, k, e);
-    const double w0 = std::sqrt(k / m_eff);
-    const double zeta = eta / (2.0 * std::sqrt(m_eff * k));
-    dt = std::min(dt, 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta));
+  // A linear contact integrated by Eq. 10 (symplectic Euler) is stable for omega dt < 2 (sqrt(1 + zeta^2) - zeta).
+  // Two modes per contact: normal (k_n on the reduced mass) and tangential, where the contact point also moves
+  // by rotation: 1/m_t = 1/m1 + 1/m2 + r1^2/I1 + r2^2/I2 (7/m for equal spheres).
+  auto limit = [&](double inv_m, double inv_m_t, double e) {
+    const double m_eff = 1.0 / inv_m;
+    const double eta = damping_from_restitution(m_eff, dem.stiffness, e);
+    for (const auto& [k, inv] : {std::pair{dem.stiffness, inv_m},
+                                 std::pair{dem.stiffness * dem.tangential_stiffness_ratio, inv_m_t}}) {
+      const double w0 = std::sqrt(k * inv);
+      const double zeta = 0.5 * eta * inv / w0;
+      dt = std::min(dt, 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta));
+    }
   };
   for (std::size_t a = 0; a < dem.n_species(); ++a) {
+    const Species& sa = dem.species[a];
+    const double rot_a = sa.radius() * sa.radius() / sa.inertia();
     for (std::size_t b = 0; b < dem.n_species(); ++b) {
-      limit(reduced_mass(dem.species[a].mass(), dem.species[b].mass()),
+      const Species& sb = dem.species[b];
+      const double rot_b = sb.radius() * sb.radius() / sb.inertia();
+      limit(1.0 / sa.mass() + 1.0 / sb.mass(), 1.0 / sa.mass() + 1.0 / sb.mass() + rot_a + rot_b,
             dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution);
     }
-    limit(dem.species[a].mass(), dem.wall[a].restitution);
+    limit(1.0 / sa.mass(), 1.0 / sa.mass() + rot_a, dem.wall[a].restitution);
   }
   return dt;
 }
@@ -158,6 +168,103 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.settle.cache = r.string("settle.cache", "", "CSV of the settled bed: reused when present, written after "
                             "settling; relative to the case file");
   c.gas_enabled = r.boolean("gas.enabled", true, "couple the particles to the gas (false: DEM alone, in vacuum)");
+  c.max_overlap_fraction = r.number("dem.max_overlap_fraction", 0.1, "",
+                                    "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
+}
+
+void read_gas(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
+  // [grid]: one staggered grid for the gas, the voidage and the two-fluid model.
+  const double dx = r.number("grid.cell_width", 0.02, "m", "gas cell width (the paper: 0.02 m)", R::positive());
+  const double dy = r.number("grid.cell_height", dx, "m", "gas cell height", R::positive());
+  const double fx = c.dem.width / dx, fy = c.dem.height / dy;
+  if (std::abs(fx - std::round(fx)) > 1e-9 * fx) {
+    r.fail("grid.cell_width", fmt::format("{} m does not divide the domain width {} m into whole cells", dx, c.dem.width));
+  }
+  if (std::abs(fy - std::round(fy)) > 1e-9 * fy) {
+    r.fail("grid.cell_height", fmt::format("{} m does not divide the domain height {} m into whole cells", dy, c.dem.height));
+  }
+  c.grid = Grid2::uniform(c.dem.width, c.dem.height, static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy)));
+
+  GasConfig& g = c.gas;
+  g.rho_g = r.number("gas.density", 1.205, "kg/m^3", "gas density rho_g", R::positive());
+  g.mu_g = r.number("gas.viscosity", 1.8e-5, "Pa s", "gas viscosity mu_g", R::positive());
+  g.gravity = c.dem.gravity;
+  const std::string visc = r.string("gas.viscous_stress", "off", "gas viscous stress (off in the paper's Eq. 12)",
+                                    {"off", "laplacian"});
+  g.viscous = visc == "off" ? ViscousStress::Off : ViscousStress::Laplacian;
+  const std::string conv = r.string("gas.convection", "van_leer", "bounded convection scheme of the gas momentum",
+                                    {"upwind", "van_leer", "minmod"});
+  g.convection = conv == "upwind" ? ConvectionScheme::Upwind
+                 : conv == "minmod" ? ConvectionScheme::Minmod : ConvectionScheme::VanLeer;
+  const std::string pc = r.string("gas.pressure_coupling", "simplec", "pressure-velocity coupling", {"simple", "simplec"});
+  g.coupling = pc == "simple" ? PressureCoupling::Simple : PressureCoupling::Simplec;
+  g.relax_velocity = r.number("gas.relax_velocity", 0.8, "", "momentum under-relaxation", R::Range{0.0, 1.0, true, false});
+  g.relax_pressure = r.number("gas.relax_pressure", 1.0, "", "pressure under-relaxation", R::Range{0.0, 1.0, true, false});
+  g.max_simple_iterations = static_cast<int>(r.integer("gas.max_iterations", 200, "SIMPLE iterations per gas step at most",
+                                                       R::between(1, 100000)));
+  g.mass_tolerance = r.number("gas.mass_tolerance", 1e-8, "", "SIMPLE stops when the normalised mass residual is below this",
+                              R::positive());
+  const std::string side = r.string("gas.side_walls", "no_slip", "tangential gas condition on the side walls", {"slip", "no_slip"});
+  g.boundary.side_walls = side == "slip" ? WallKind::Slip : WallKind::NoSlip;
+  const std::string top = r.string("gas.top", "outlet", "top boundary: pressure outlet or wall", {"outlet", "wall"});
+  g.boundary.top = top == "outlet" ? TopBoundary::PressureOutlet : TopBoundary::Wall;
+  g.boundary.top_pressure = r.number("gas.top_pressure", 0.0, "Pa", "gauge pressure at the outlet");
+
+  // [inlet]
+  g.boundary.inlet_velocity = r.number("inlet.velocity", 1.8, "m/s",
+                                       "superficial gas velocity through the whole bottom (the paper: U_mf = 1.8 m/s)");
+  const std::size_t nj = r.table_count("inlet.jet", "jets through the bottom, replacing the background inflow");
+  g.boundary.jets.clear();
+  for (std::size_t k = 0; k < nj; ++k) {
+    const std::string p = fmt::format("inlet.jet[{}].", k);
+    InletJet j;
+    j.x_centre = r.number(p + "centre", c.dem.width / 2, "m", "x of the jet centre");
+    j.width = r.number(p + "width", dx, "m", "jet width", R::positive());
+    j.velocity = r.number(p + "velocity", 30.0, "m/s", "superficial gas velocity through the jet");
+    j.t_start = r.number(p + "start", 0.0, "s", "the jet opens at this time", R::non_negative());
+    j.t_end = r.number(p + "end", 0.4, "s", "the jet closes at this time", R::non_negative());
+    if (j.x_centre - 0.5 * j.width < -1e-12 || j.x_centre + 0.5 * j.width > c.dem.width + 1e-12) {
+      r.fail(p + "centre", fmt::format("the jet [{}, {}] m is not inside the bottom [0, {}] m",
+                                       j.x_centre - 0.5 * j.width, j.x_centre + 0.5 * j.width, c.dem.width));
+    }
+    if (j.width < dx * (1.0 - 1e-9)) {
+      r.fail(p + "width", fmt::format("{} m is narrower than a gas cell ({} m): the grid cannot resolve it", j.width, dx));
+    }
+    if (j.t_end < j.t_start) r.fail(p + "end", "the jet closes before it opens");
+    g.boundary.jets.push_back(j);
+  }
+
+  // [coupling]
+  CouplingConfig& cc = c.coupling;
+  const std::string vm = r.string("coupling.voidage", "bilinear", "how particle volume is shared among cells: "
+                                  "bilinear (cloud in cell) or centre (the paper's counting)", {"bilinear", "centre"});
+  cc.voidage = vm == "centre" ? VoidageMethod::Centre : VoidageMethod::Bilinear;
+  cc.depth = r.number("coupling.depth", c.model == Model::Dem ? c.dem.species[0].diameter : 0.004, "m",
+                      "bed depth that turns particle volume into a volume fraction (one diameter: a monolayer)", R::positive());
+  cc.eps_min = r.number("coupling.eps_min", 0.3, "", "smallest voidage the gas and the drag see", R::Range{0.0, 1.0, true, true});
+  cc.dem_substeps = static_cast<int>(r.integer("coupling.dem_substeps", 1, "DEM steps per gas step", R::between(1, 1000)));
+  const std::string sw = r.string("coupling.drag_switch", "sharp", "Ergun to Wen-Yu at eps = 0.8: the paper's step or "
+                                  "a smooth blend", {"sharp", "smooth"});
+  cc.drag_switch = sw == "smooth" ? DragSwitch::Smooth : DragSwitch::Sharp;
+  cc.pressure_gradient_force = r.boolean("coupling.pressure_force", true, "apply -V_p grad P to each particle");
+
+  // [bubble]
+  BubbleConfig& b = c.bubble;
+  b.grid = c.grid;
+  b.eps_threshold = r.number("bubble.threshold", 0.8, "", "voidage above which a cell is bubble (the paper: 0.8)",
+                             R::Range{0.0, 1.0, true, true});
+  b.jet_x = r.number("bubble.jet_x", g.boundary.jets.empty() ? c.dem.width / 2 : g.boundary.jets[0].x_centre, "m",
+                     "vertical line on which the nose is measured");
+  b.jet_width = r.number("bubble.jet_width", g.boundary.jets.empty() ? dx : g.boundary.jets[0].width, "m",
+                         "width of the jet the bubble grows from", R::positive());
+  b.u_mf = r.number("bubble.u_mf", g.boundary.inlet_velocity > 0 ? g.boundary.inlet_velocity : 1.8, "m/s",
+                    "U_mf of the throughflow ratio", R::positive());
+  b.min_area = r.number("bubble.min_area", b.min_area, "m^2", "smallest void counted as a bubble", R::positive());
+  b.surface_eps = r.number("bubble.surface_voidage", b.surface_eps, "", "voidage that marks the bed surface",
+                           R::Range{0.0, 1.0, true, true});
+  (void)needs_gas;
 }
 
 void read_output(CaseReader& r, CaseConfig& c) {
@@ -177,6 +284,7 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) r.set_override(o);
   LoadedCase out;
   read_case(r, out.config);
+  read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
   read_output(r, out.config);
   r.reject_unknown_keys();
   out.config.source_path = r.file_name();

@@ -6,6 +6,8 @@
 #include <spdlog/spdlog.h>
 
 #include "analysis/layer_tracers.hpp"
+#include "analysis/mixing_index.hpp"
+#include "coupling/cfd_dem.hpp"
 #include "core/error.hpp"
 #include "dem/dem_solver.hpp"
 #include "dem/packing.hpp"
@@ -48,30 +50,7 @@ std::vector<double> wall_xi_flat(const std::vector<std::array<Vec2, 4>>& w) {
   return out;
 }
 
-class DemModel final : public ModelRun {
- public:
-  DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
-      : config_(c), log_(log), dem_(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}) {}
-
-  double time() const override { return dem_.time(); }
-  void advance() override { dem_.step(); }
-  double macro_dt() const override { return dem_.config().dt; }
-
-  std::vector<std::string> monitor_columns() const override {
-    return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
-            "neighbor_rebuilds"};
-  }
-  std::vector<std::optional<double>> monitor_values() override {
-    double mass = 0.0;
-    for (double m : dem_.particles().mass) mass += m;
-    return {dem_.kinetic_energy(), std::nullopt, dem_.max_overlap(), std::nullopt, mass,
-            static_cast<double>(dem_.rebuild_count())};
-  }
-  FieldView fields() override { return {}; }
-  const ParticleStore* particles() const override { return &dem_.particles(); }
-
-  void save(Hdf5File& f) const override {
-    const DemSolver::State s = dem_.state();
+void save_dem(Hdf5File& f, const DemSolver::State& s) {
     const ParticleStore& p = s.particles;
     f.create_group("dem");
     f.write("dem/id", p.id);
@@ -99,9 +78,9 @@ class DemModel final : public ModelRun {
     f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
     f.set_attribute("dem", "rebuilds", static_cast<std::int64_t>(s.rebuilds));
     f.set_attribute("dem", "need_rebuild", static_cast<std::int64_t>(s.need_rebuild));
-  }
+}
 
-  void load(const Hdf5File& f) override {
+DemSolver::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
     DemSolver::State s;
     const auto id = f.read_int64("dem/id");
     const auto species = f.read_int32("dem/species");
@@ -167,12 +146,126 @@ class DemModel final : public ModelRun {
     s.steps = static_cast<std::uint64_t>(f.attribute_int64("dem", "steps"));
     s.rebuilds = static_cast<std::uint64_t>(f.attribute_int64("dem", "rebuilds"));
     s.need_rebuild = f.attribute_int64("dem", "need_rebuild") != 0;
-    dem_.restore(std::move(s));
+    return s;
+}
+
+class DemModel final : public ModelRun {
+ public:
+  DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
+      : config_(c),
+        log_(log),
+        sim_(DemSolver(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}),
+             c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid, c.gas)) : std::nullopt, c.coupling) {
+    double d_min = 1e300;
+    for (const Species& s : c.dem.species) d_min = std::min(d_min, s.diameter);
+    overlap_limit_ = c.max_overlap_fraction * d_min;
+    if (fresh) sim_.initialize();
   }
 
-  CostInfo cost() const override { return {dem_.particles().size(), 0, dem_.step_count()}; }
+  double time() const override { return sim_.time(); }
+  void advance() override {
+    sim_.advance();
+    const double ov = sim_.dem().max_overlap();
+    if (ov > overlap_limit_) {
+      throw_simulation_error(fmt::format(
+          "t = {:.6g} s: a contact overlaps by {:.3g} m, more than {:.0f}% of the diameter. Likely cause: the "
+          "springs are too soft for the loads (stiffness {} N/m) or particles hit at high speed; remedy: raise "
+          "contact.stiffness (and lower dem.time_step), or raise dem.max_overlap_fraction if this is intended.",
+          time(), ov, 100.0 * config_.max_overlap_fraction, config_.dem.stiffness));
+    }
+    if (sim_.has_gas() && !std::isfinite(sim_.gas().pressure_drop())) {
+      throw_simulation_error(fmt::format("t = {:.6g} s: the gas pressure is not finite. Likely cause: an unstable gas "
+                                         "step; remedy: lower dem.time_step or coupling.dem_substeps.", time()));
+    }
+  }
+  double macro_dt() const override { return sim_.macro_dt(); }
+
+  std::vector<std::string> monitor_columns() const override {
+    return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
+            "gas_mass_balance", "simple_iterations", "min_voidage", "fluid_force_y_N", "gas_reaction_y_N",
+            "neighbor_rebuilds", "lacey_index"};
+  }
+  std::vector<std::optional<double>> monitor_values() override {
+    const ParticleStore& p = sim_.dem().particles();
+    double mass = 0.0;
+    for (double m : p.mass) mass += m;
+    std::vector<std::optional<double>> v{sim_.dem().kinetic_energy(), std::nullopt, sim_.dem().max_overlap(),
+                                         std::nullopt, mass, std::nullopt, std::nullopt, std::nullopt,
+                                         std::nullopt, std::nullopt, static_cast<double>(sim_.dem().rebuild_count()),
+                                         std::nullopt};
+    if (sim_.has_gas()) {
+      const GasStepReport& r = sim_.last_gas_report();
+      v[1] = sim_.gas().pressure_drop();
+      v[3] = r.mass_residual;
+      v[5] = r.mass_balance_relative;
+      v[6] = static_cast<double>(r.simple_iterations);
+      v[7] = sim_.min_voidage();
+      v[8] = sim_.total_fluid_force().y;
+      v[9] = sim_.total_gas_reaction().y;
+      const LaceyResult l = lacey_index(p, config_.particles.layers / 2, config_.grid, MixingConfig{});
+      if (l.valid) v[11] = l.index;
+    }
+    return v;
+  }
+  FieldView fields() override {
+    if (!sim_.has_gas()) return {};
+    FieldView f;
+    f.grid = &sim_.gas().grid();
+    f.eps = &sim_.voidage();
+    f.p = &sim_.gas().fields().p;
+    f.ug = &sim_.gas_u();
+    f.vg = &sim_.gas_v();
+    f.us = &sim_.solids_u();
+    f.vs = &sim_.solids_v();
+    return f;
+  }
+  const ParticleStore* particles() const override { return &sim_.dem().particles(); }
+
+  void save(Hdf5File& f) const override {
+    save_dem(f, sim_.dem().state());
+    f.set_attribute("dem", "gas_steps", static_cast<std::int64_t>(sim_.gas_steps()));
+    if (sim_.has_gas()) {
+      const StaggeredFields& g = sim_.gas().fields();
+      f.create_group("gas");
+      f.write("gas/p", g.p.v);
+      f.write("gas/u", g.u.v);
+      f.write("gas/v", g.v.v);
+      f.write("gas/eps", sim_.voidage().v);
+    }
+  }
+
+  void load(const Hdf5File& f) override {
+    sim_.dem().restore(load_dem(f, config_));
+    Field2 eps;
+    if (sim_.has_gas()) {
+      StaggeredFields& g = sim_.gas().fields();
+      auto read = [&](const char* name, Field2& dst) {
+        std::vector<double> v = f.read_double(std::string("gas/") + name);
+        if (v.size() != dst.v.size()) {
+          throw_input_error(fmt::format("{}: gas/{} has {} values, the case's grid needs {}", f.path().string(), name,
+                                        v.size(), dst.v.size()));
+        }
+        dst.v = std::move(v);
+      };
+      read("p", g.p);
+      read("u", g.u);
+      read("v", g.v);
+      eps = Field2(config_.grid.nx, config_.grid.ny);
+      read("eps", eps);
+    }
+    sim_.restore(std::move(eps), static_cast<std::uint64_t>(f.attribute_int64("dem", "gas_steps")));
+  }
+
+  CostInfo cost() const override {
+    return {sim_.dem().particles().size(), sim_.has_gas() ? config_.grid.cells() : 0, sim_.dem().step_count()};
+  }
   std::string describe() const override {
-    return fmt::format("DEM, {} particles, dt = {:g} s, no gas", dem_.particles().size(), dem_.config().dt);
+    if (!sim_.has_gas()) {
+      return fmt::format("DEM, {} particles, dt = {:g} s, no gas", sim_.dem().particles().size(), sim_.dem().config().dt);
+    }
+    return fmt::format("CFD-DEM, {} particles, dt = {:g} s, gas {} x {} cells every {} DEM step{}",
+                       sim_.dem().particles().size(), sim_.dem().config().dt, config_.grid.nx, config_.grid.ny,
+                       config_.coupling.dem_substeps, config_.coupling.dem_substeps == 1 ? "" : "s");
   }
 
  private:
@@ -221,7 +314,8 @@ class DemModel final : public ModelRun {
 
   CaseConfig config_;
   spdlog::logger& log_;
-  DemSolver dem_;
+  CfdDemSimulation sim_;
+  double overlap_limit_ = 0.0;
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include "analysis/bed_surface.hpp"
 #include "analysis/bubble_tracker.hpp"
 #include "analysis/layer_tracers.hpp"
 #include "core/error.hpp"
@@ -145,7 +146,8 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
   const FieldView fv0 = model->fields();
   if (fv0.grid && cfg.output.tracers) {
     // Balls of the paper's Fig. 4b/c over the initial bed.
-    tracers.emplace(*fv0.grid, 0.0, cfg.particles.layers);
+    const double h = fv0.eps ? bed_surface_height(*fv0.grid, *fv0.eps).value_or(0.0) : 0.0;
+    if (h > 0.0) tracers.emplace(*fv0.grid, h, cfg.particles.layers);
   }
   if (restart && tracers && restart_file->has("tracers/x")) {
     tracers->x = restart_file->read_double("tracers/x");

@@ -45,7 +45,7 @@ bad zero_stiffness "contact.stiffness: 0 is out of range: must be > 0" "contact.
 bad restitution_zero "contact.restitution: 0 is out of range: must be > 0, <= 1" "contact.restitution = 0.0"
 bad restitution_above_one "contact.restitution: 1.2 is out of range" "contact.restitution = 1.2"
 bad negative_friction "contact.friction: -0.1 is out of range: must be >= 0" "contact.friction = -0.1"
-bad unstable_dt "dem.time_step: 0.001 s is above the stability limit.*largest stable time step is 0.00045" "dem.time_step = 1e-3"
+bad unstable_dt "dem.time_step: 0.001 s is above the stability limit.*largest stable time step is 0.00023" "dem.time_step = 1e-3"
 bad too_many_particles "particles.count: 1000000 particles do not fit" "particles.count = 1000000"
 bad bad_model 'case.model: "lbm" is not one of "dem", "tfm"' 'case.model = "lbm"'
 bad fractions "fractions add up to" "species = [{fraction = 0.5}, {fraction = 0.3}]"

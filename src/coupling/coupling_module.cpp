@@ -1,1 +1,0 @@
-// Module coupling: filled in by its issue.
