@@ -22,6 +22,7 @@ enum class ConvectionScheme { Upwind, VanLeer, Minmod };
 enum class ViscousStress {
   Off,        ///< the paper's inviscid gas (default)
   Laplacian,  ///< div(eps mu_g grad u): the transpose part of the stress is dropped
+  Full,       ///< div(eps mu_g (grad u + grad u^T)), the transpose part lagged by deferred correction
 };
 
 /// Pressure-velocity coupling of the outer iterations.

@@ -169,6 +169,9 @@ void GasSolver::Impl::solve_momentum(Momentum& m, double dt) {
   const auto m_ac = [&](int c, int k) { return C == Comp::U ? my(c, k) : mx(k, c); };
   const auto pres = [&](int c, int b) { return C == Comp::U ? f.p(c, b) : f.p(b, c); };
   const auto phi = [&](int a, int b) { return face(phi_field, a, b); };
+  // The other velocity component at (along cell c, across face k).
+  const auto other = [&](int c, int k) { return C == Comp::U ? f.v(c, k) : f.u(k, c); };
+  const bool full_stress = cfg.viscous == ViscousStress::Full;
   const auto fixed = [&](int a, int b) {
     return m.id[static_cast<std::size_t>(b) * static_cast<std::size_t>(n_al + 1) + static_cast<std::size_t>(a)] < 0;
   };
@@ -267,6 +270,23 @@ void GasSolver::Impl::solve_momentum(Momentum& m, double dt) {
         const double coeff = mu * ef * h_al / (0.5 * h_ac);
         sum_nb += coeff;
         b_src += coeff * high_speed;
+      }
+      if (full_stress) {
+        // Transpose part of the stress, div(eps mu (grad u)^T), lagged (deferred) from the current iterate:
+        // along faces eps mu d(phi)/d(along), across faces eps mu d(other)/d(along). Zero at slip walls and outlets.
+        b_src += mu * h_ac / h_al *
+                 (cell(eps_cell, a, b) * (phi(a + 1, b) - phi(a, b)) -
+                  cell(eps_cell, a - 1, b) * (phi(a, b) - phi(a - 1, b)));
+        const auto corner_eps = [&](int k) {
+          if (k > 0 && k < n_ac)
+            return 0.25 * (cell(eps_cell, a - 1, k - 1) + cell(eps_cell, a, k - 1) + cell(eps_cell, a - 1, k) +
+                           cell(eps_cell, a, k));
+          return ef;
+        };
+        const bool low_open = b > 0 || low_noslip;
+        const bool high_open = b < n_ac - 1 || (high_is_wall && high_noslip);
+        if (high_open) b_src += mu * corner_eps(b + 1) * (other(a, b + 1) - other(a - 1, b + 1));
+        if (low_open) b_src -= mu * corner_eps(b) * (other(a, b) - other(a - 1, b));
       }
     }
     // Backward Euler in the non-conservative form (continuity subtracted), implicit drag, gravity, pressure.
