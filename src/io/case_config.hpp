@@ -4,7 +4,11 @@
 #include <string>
 #include <vector>
 
+#include "analysis/bubble_tracker.hpp"
+#include "core/grid2.hpp"
+#include "coupling/coupling_config.hpp"
 #include "dem/dem_config.hpp"
+#include "fluid/gas_config.hpp"
 #include "dem/packing.hpp"
 
 namespace fluidbed {
@@ -54,6 +58,11 @@ struct CaseConfig {
   SettleConfig settle{};
   OutputConfig output{};
   bool gas_enabled = true;
+  Grid2 grid{};
+  GasConfig gas{};
+  CouplingConfig coupling{};
+  BubbleConfig bubble{};
+  double max_overlap_fraction = 0.1;  ///< a run fails when an overlap exceeds this fraction of the diameter
 };
 
 }  // namespace fluidbed

@@ -27,7 +27,7 @@ ParticleStore particles_from_csv(const std::string& path, const DemConfig& dem) 
                                     path, r + 2, row.species, dem.n_species()));
     }
     const Species& s = dem.species[static_cast<std::size_t>(row.species)];
-    if (row.x < s.radius() || row.x > dem.width - s.radius() || row.y < s.radius() || row.y > dem.height) {
+    if (!(row.x >= 0.0 && row.x <= dem.width && row.y >= 0.0 && row.y <= dem.height)) {
       throw_input_error(fmt::format("{}: row {}, columns x,y: particle {} at ({}, {}) m is not inside the "
                                     "{} x {} m domain", path, r + 2, row.id, row.x, row.y, dem.width, dem.height));
     }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/error.hpp"
 #include "fluid/drag.hpp"
@@ -57,7 +59,8 @@ double advect_v(Limiter lim, const Field2& u, const Field2& v, int i, int j, dou
 // one face are solved together as a 2x2 system, so the drag is fully implicit and never limits dt.
 struct FaceSolve {
   double ug, us;  // predicted velocities
-  double dg, ds;  // velocity response to a unit pressure-correction gradient
+  double dg, ds;  // velocity response to a unit gas-pressure-correction gradient
+  double gs, ss;  // velocity response to a unit solids-pressure-correction gradient
 };
 
 FaceSolve solve_face(double a_g, double a_s, double beta, double rhs_g, double rhs_s, double eps_g, double eps_s) {
@@ -68,6 +71,8 @@ FaceSolve solve_face(double a_g, double a_s, double beta, double rhs_g, double r
   f.us = (m11 * rhs_s - m12 * rhs_g) / det;
   f.dg = (m22 * eps_g - m12 * eps_s) / det;
   f.ds = (m11 * eps_s - m12 * eps_g) / det;
+  f.gs = -m12 / det;
+  f.ss = m11 / det;
   return f;
 }
 
@@ -102,6 +107,7 @@ void validate(const TfmConfig& c) {
   need(c.mu_s_constant >= 0.0 && c.mu_s_max > 0.0, "solids viscosities must be non-negative (mu_s_max positive)");
   need(c.modulus.a > 0.0 && c.modulus.b > 0.0, "modulus a and b must be positive");
   need(c.cfl > 0.0 && c.cfl <= 1.0, "cfl must lie in (0, 1]");
+  need(c.max_dense_change > 0.0 && c.max_dense_change < 0.1, "max_dense_change must lie in (0, 0.1)");
   need(c.dt_max > 0.0 && c.dt_min > 0.0 && c.dt_min < c.dt_max, "need 0 < dt_min < dt_max");
   need(c.mass_corrections >= 0 && c.mass_corrections <= 10, "mass_corrections must lie in [0, 10]");
   for (const TfmJet& j : c.boundary.jets) {
@@ -286,13 +292,13 @@ double TfmSolver::choose_dt(double t_stop) const {
       if (std::min(es, es2) > kEpsSTrace) vmax = std::max(vmax, std::abs(s_.vs(i, j)));
     }
   }
-  double c2 = 0.0;
-  for (double x : dps_deps_.v) c2 = std::max(c2, x);
-  // Paper Table 3 item 5: dt < dy / V_max; the explicit solids pressure adds its compaction-wave speed
-  // sqrt(dP_s/d eps_s / rho_s) as a second speed that the step must resolve.
-  const double speed = std::max(vmax, std::sqrt(c2 / config_.rho_s));
+  // Paper Table 3 item 5: dt < dy / V_max. The solids pressure is implicit through the coupled correction,
+  // so its compaction-wave speed does not enter.
+  const double speed = vmax;
   double dt = config_.dt_max;
   if (speed > 0.0) dt = std::min(dt, config_.cfl * std::min(grid_.dx, grid_.dy) / speed);
+  // Compaction rate of the last step, extrapolated: keeps dense cells from jumping deep past eps* in one step.
+  if (s_.dense_change > 0.0 && s_.dt > 0.0) dt = std::min(dt, s_.dt * config_.max_dense_change / s_.dense_change);
   return std::min(dt, t_stop - s_.time);
 }
 
@@ -321,9 +327,18 @@ double TfmSolver::step(double t_stop) {
   Field2 vg0 = s_.vg;
   for (int i = 0; i < nx; ++i) vg0(i, 0) = s_.vg(i, 0) / eps(i, 0);
   Field2 dgu(nx + 1, ny), dsu(nx + 1, ny), dgv(nx, ny + 1), dsv(nx, ny + 1);
+  Field2 gsu(nx + 1, ny), ssu(nx + 1, ny), gsv(nx, ny + 1), ssv(nx, ny + 1);
   const double mu_wall = c.boundary.solids_no_slip_walls ? 1.0 : 0.0;
   auto mu_corner = [&](int i, int j) {  // corner at (x_i, y_j), interior only
-    return 0.25 * (mu_s_(i - 1, j - 1) + mu_s_(i, j - 1) + mu_s_(i - 1, j) + mu_s_(i, j));
+    // Harmonic mean of the four cells: a corner touching an empty cell carries no shear, so a dilute face is
+    // never driven by the viscosity of a dense diagonal neighbour (which the explicit cross terms cannot bear).
+    const double m[4] = {mu_s_(i - 1, j - 1), mu_s_(i, j - 1), mu_s_(i - 1, j), mu_s_(i, j)};
+    double inv = 0.0;
+    for (double x : m) {
+      if (x <= 0.0) return 0.0;
+      inv += 1.0 / x;
+    }
+    return 4.0 / inv;
   };
   auto bearing = [&](int i0, int j0, int i1, int j1) {
     return std::min(1.0 - eps(i0, j0), 1.0 - eps(i1, j1)) > kEpsSTrace;
@@ -368,6 +383,8 @@ double TfmSolver::step(double t_stop) {
       s_.us(i, j) = f.us;
       dgu(i, j) = f.dg;
       dsu(i, j) = f.ds;
+      gsu(i, j) = f.gs;
+      ssu(i, j) = f.ss;
     }
   }
   // y-momentum on interior horizontal faces and, when open, the top face (ghost pressure keeps P = P_top there).
@@ -422,6 +439,8 @@ double TfmSolver::step(double t_stop) {
       s_.vs(i, j) = f.us;
       dgv(i, j) = f.dg;
       dsv(i, j) = f.ds;
+      gsv(i, j) = f.gs;
+      ssv(i, j) = f.ss;
     }
   }
   // Boundary faces: walls, inflow through the distributor, closed lid.
@@ -435,8 +454,11 @@ double TfmSolver::step(double t_stop) {
     if (!top_open) s_.vg(i, ny) = 0.0;
   }
 
-  // Pressure correction: the mixture volume flux sum_phases eps_f v_f must be divergence-free, because both
-  // phases are incompressible (Eqs. 15 + 16). Face volume fractions are the same TVD values the continuity uses.
+  // Coupled correction of the gas pressure P' and the solids fraction E' (MFIX-like solids volume fraction
+  // correction, solved together): the mixture volume flux must be divergence-free because both phases are
+  // incompressible (Eqs. 15 + 16), and the solids continuity (Eq. 16) must hold with the solids pressure taken
+  // at the new time, P_s + K E' (K = dP_s/d eps_s), so that the stiff compaction limit is implicit.
+  // Face volume fractions are the same TVD values the continuity uses.
   Field2 eps_s(nx, ny), eg_x, eg_y, es_x, es_y;
   for (std::size_t k = 0; k < eps_s.size(); ++k) eps_s.v[k] = 1.0 - eps.v[k];
   tvd_face_values(grid_, c.limiter, eps, FaceVelocity{s_.ug, s_.vg, false}, eg_x, eg_y);
@@ -444,61 +466,85 @@ double TfmSolver::step(double t_stop) {
   for (int i = 0; i < nx; ++i) eg_y(i, 0) = 1.0;  // gas enters through the distributor undiluted
   const int n = nx * ny;
   std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(n) * 5);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
+  trip.reserve(static_cast<std::size_t>(n) * 22);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * n);
   auto id = [&](int i, int j) { return static_cast<int>(grid_.index(i, j)); };
+  const double vol = dx * dy;
   double coeff_scale = 0.0;
+  // One interior face between cells l and r (r on the positive side): area over distance a_h, fractions eg, es,
+  // responses (dg, ds) to grad P' and (gs, ss) to grad(K E').
+  auto add_face = [&](int l, int r, double a_h, double eg, double es, double dg, double ds, double gs, double ss) {
+    const double cm = a_h * (eg * dg + es * ds), dm = a_h * (eg * gs + es * ss);
+    const double cs = a_h * es * ds, d_s = a_h * es * ss;
+    const double kl = dps_deps_.v[static_cast<std::size_t>(l)], kr = dps_deps_.v[static_cast<std::size_t>(r)];
+    coeff_scale = std::max(coeff_scale, cm);
+    for (int side = 0; side < 2; ++side) {
+      const int row = side == 0 ? l : r;
+      const double sg = side == 0 ? 1.0 : -1.0;  // outflow sign of this face for the row's cell
+      trip.emplace_back(row, l, sg * cm);
+      trip.emplace_back(row, r, -sg * cm);
+      trip.emplace_back(row, n + l, sg * dm * kl);
+      trip.emplace_back(row, n + r, -sg * dm * kr);
+      trip.emplace_back(n + row, l, sg * cs);
+      trip.emplace_back(n + row, r, -sg * cs);
+      trip.emplace_back(n + row, n + l, sg * d_s * kl);
+      trip.emplace_back(n + row, n + r, -sg * d_s * kr);
+    }
+  };
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const int pc = id(i, j);
-      const double out = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) + es_x(i + 1, j) * s_.us(i + 1, j) -
-                               eg_x(i, j) * s_.ug(i, j) - es_x(i, j) * s_.us(i, j)) +
-                         dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) + es_y(i, j + 1) * s_.vs(i, j + 1) -
-                               eg_y(i, j) * s_.vg(i, j) - es_y(i, j) * s_.vs(i, j));
-      rhs[pc] = -out;
-      // Neighbour couplings: east and north faces (each added symmetrically once).
+      const double out_g = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
+                           dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j));
+      const double out_s = dy * (es_x(i + 1, j) * s_.us(i + 1, j) - es_x(i, j) * s_.us(i, j)) +
+                           dx * (es_y(i, j + 1) * s_.vs(i, j + 1) - es_y(i, j) * s_.vs(i, j));
+      rhs[pc] = -(out_g + out_s);
+      rhs[n + pc] = -out_s;
+      trip.emplace_back(n + pc, n + pc, vol / dt);
       if (i + 1 < nx) {
-        const double a = dy * (eg_x(i + 1, j) * dgu(i + 1, j) + es_x(i + 1, j) * dsu(i + 1, j)) / dx;
-        diag[pc] += a;
-        diag[id(i + 1, j)] += a;
-        trip.emplace_back(pc, id(i + 1, j), -a);
-        trip.emplace_back(id(i + 1, j), pc, -a);
-        coeff_scale = std::max(coeff_scale, a);
+        add_face(pc, id(i + 1, j), dy / dx, eg_x(i + 1, j), es_x(i + 1, j), dgu(i + 1, j), dsu(i + 1, j),
+                 gsu(i + 1, j), ssu(i + 1, j));
       }
       if (j + 1 < ny) {
-        const double a = dx * (eg_y(i, j + 1) * dgv(i, j + 1) + es_y(i, j + 1) * dsv(i, j + 1)) / dy;
-        diag[pc] += a;
-        diag[id(i, j + 1)] += a;
-        trip.emplace_back(pc, id(i, j + 1), -a);
-        trip.emplace_back(id(i, j + 1), pc, -a);
-        coeff_scale = std::max(coeff_scale, a);
+        add_face(pc, id(i, j + 1), dx / dy, eg_y(i, j + 1), es_y(i, j + 1), dgv(i, j + 1), dsv(i, j + 1),
+                 gsv(i, j + 1), ssv(i, j + 1));
       } else if (top_open) {
-        // P' = 0 on the outlet face, half a cell above the centre.
-        diag[pc] += 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy;
+        // P' = 0 on the outlet face, half a cell above the centre; no solids cross it.
+        trip.emplace_back(pc, pc, 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy);
       }
     }
   }
   // A closed box fixes the pressure only up to a constant: pin the top-left cell (its row sums to zero anyway).
-  if (!top_open) diag[id(0, ny - 1)] += coeff_scale;
-  for (int k = 0; k < n; ++k) trip.emplace_back(k, k, diag[k]);
-  Eigen::SparseMatrix<double> a(n, n);
+  trip.emplace_back(id(0, ny - 1), id(0, ny - 1), top_open ? 0.0 : coeff_scale);
+  Eigen::SparseMatrix<double> a(2 * n, 2 * n);
   a.setFromTriplets(trip.begin(), trip.end());
+  Eigen::VectorXd pc;
+  if (std::getenv("TFM_LU")) {
   if (!pattern_ready_) {
     pressure_solver_.analyzePattern(a);
     pattern_ready_ = true;
   }
   pressure_solver_.factorize(a);
   if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction factorisation failed");
-  const Eigen::VectorXd pc = pressure_solver_.solve(rhs);
+  pc = pressure_solver_.solve(rhs);
   if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction solve failed");
+  } else {
+    iterative_solver_.preconditioner().setDroptol(1e-4);
+    iterative_solver_.preconditioner().setFillfactor(std::getenv("FILL") ? std::atoi(std::getenv("FILL")) : 5);
+    iterative_solver_.setTolerance(1e-10);
+    iterative_solver_.compute(a);
+    pc = iterative_solver_.solve(rhs);
+    if (std::getenv("ITS")) std::fprintf(stderr, "its %ld err %.2e\n", static_cast<long>(iterative_solver_.iterations()), iterative_solver_.error());
+    if (iterative_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction solve failed");
+  }
 
   auto pcorr = [&](int i, int j) { return pc[id(i, j)]; };
+  auto wcorr = [&](int i, int j) { return dps_deps_(i, j) * pc[n + id(i, j)]; };
   for (int j = 0; j < ny; ++j) {
     for (int i = 1; i < nx; ++i) {
-      const double g = (pcorr(i, j) - pcorr(i - 1, j)) / dx;
-      s_.ug(i, j) -= dgu(i, j) * g;
-      s_.us(i, j) -= dsu(i, j) * g;
+      const double g = (pcorr(i, j) - pcorr(i - 1, j)) / dx, w = (wcorr(i, j) - wcorr(i - 1, j)) / dx;
+      s_.ug(i, j) -= dgu(i, j) * g + gsu(i, j) * w;
+      s_.us(i, j) -= dsu(i, j) * g + ssu(i, j) * w;
     }
   }
   for (int j = 1; j <= ny; ++j) {
@@ -506,8 +552,9 @@ double TfmSolver::step(double t_stop) {
     for (int i = 0; i < nx; ++i) {
       const double above = j == ny ? -pcorr(i, ny - 1) : pcorr(i, j);
       const double g = (above - pcorr(i, j - 1)) / dy;
-      s_.vg(i, j) -= dgv(i, j) * g;
-      s_.vs(i, j) -= dsv(i, j) * g;
+      const double w = j == ny ? 0.0 : (wcorr(i, j) - wcorr(i, j - 1)) / dy;
+      s_.vg(i, j) -= dgv(i, j) * g + gsv(i, j) * w;
+      s_.vs(i, j) -= dsv(i, j) * g + ssv(i, j) * w;
     }
   }
   for (int k = 0; k < n; ++k) s_.p.v[static_cast<std::size_t>(k)] += pc[k];
@@ -515,7 +562,14 @@ double TfmSolver::step(double t_stop) {
   // Eq. 16, fully implicit with the limiter by deferred correction; eps = 1 - eps_s closes Eq. 15.
   const Field2 eps_s_new =
       advance_scalar_implicit(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, dt, c.mass_corrections);
-  for (std::size_t k = 0; k < eps_s_new.size(); ++k) s_.eps.v[k] = 1.0 - eps_s_new.v[k];
+  double dense_change = 0.0;
+  for (std::size_t k = 0; k < eps_s_new.size(); ++k) {
+    const double eps_new = 1.0 - eps_s_new.v[k];
+    if (std::min(eps_new, s_.eps.v[k]) < c.eps_star + 0.02) {
+      dense_change = std::max(dense_change, std::abs(eps_new - s_.eps.v[k]));
+    }
+    s_.eps.v[k] = eps_new;
+  }
 
   for (double x : s_.eps.v) {
     if (!std::isfinite(x)) throw_simulation_error("tfm: voidage became NaN at t = " + std::to_string(s_.time));
@@ -524,7 +578,11 @@ double TfmSolver::step(double t_stop) {
     if (!std::isfinite(x)) throw_simulation_error("tfm: pressure became NaN at t = " + std::to_string(s_.time));
   }
   s_.time += dt;
-  s_.dt = dt;
+  // A step clipped to reach t_stop says little about the natural step; keep the rate of a full one.
+  if (dt >= 0.5 * s_.dt || s_.steps == 0) {
+    s_.dt = dt;
+    s_.dense_change = dense_change;
+  }
   ++s_.steps;
   return dt;
 }
@@ -623,7 +681,8 @@ std::vector<NamedArray> TfmSolver::save_state() const {
           arr("theta", s_.theta),
           NamedArray{"time", 1, 1, {s_.time}},
           NamedArray{"dt", 1, 1, {s_.dt}},
-          NamedArray{"steps", 1, 1, {static_cast<double>(s_.steps)}}};
+          NamedArray{"steps", 1, 1, {static_cast<double>(s_.steps)}},
+          NamedArray{"dense_change", 1, 1, {s_.dense_change}}};
 }
 
 void TfmSolver::restore_state(const std::vector<NamedArray>& arrays) {
@@ -649,6 +708,7 @@ void TfmSolver::restore_state(const std::vector<NamedArray>& arrays) {
   next.time = find("time", 1, 1).values[0];
   next.dt = find("dt", 1, 1).values[0];
   next.steps = static_cast<long>(find("steps", 1, 1).values[0]);
+  next.dense_change = find("dense_change", 1, 1).values[0];
   s_ = std::move(next);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Two-fluid model solver (paper Eqs. 15-26) on the staggered MAC grid: P, eps, Theta at cell centres,
 // u on vertical faces ((nx+1) x ny), v on horizontal faces (nx x (ny+1)).
-#include <Eigen/SparseCholesky>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseLU>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct TfmState {
   double time = 0.0;
   double dt = 0.0;
   long steps = 0;
+  /// Largest voidage change of a dense cell (eps < eps* + 0.02) in the last step; steers the next dt.
+  double dense_change = 0.0;
 };
 
 class TfmSolver {
@@ -84,7 +87,9 @@ class TfmSolver {
   TfmState s_;
   // Work arrays (derived each step, not state).
   Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> pressure_solver_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> pressure_solver_;
+  Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::IncompleteLUT<double>> iterative_solver_;
+  Eigen::VectorXd last_correction_;
   bool pattern_ready_ = false;
 };
 
