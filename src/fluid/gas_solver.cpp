@@ -289,7 +289,7 @@ void GasSolver::Impl::solve_momentum(Momentum& m, double dt) {
         if (low_open) b_src -= mu * corner_eps(b) * (other(a, b) - other(a - 1, b));
       }
     }
-    // Backward Euler in the non-conservative form (continuity subtracted), implicit drag, gravity, pressure.
+    // Eq. 12: backward Euler in the non-conservative form (continuity subtracted), implicit drag, gravity, pressure.
     const double ap0 = rho * face(eps_f_old, a, b) * vol / dt;
     const double drag = face(beta_f, a, b) * vol;
     const double ap = ap0 + sum_nb + drag;
