@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/error.hpp"
 #include "fluid/drag.hpp"
@@ -454,110 +452,134 @@ double TfmSolver::step(double t_stop) {
     if (!top_open) s_.vg(i, ny) = 0.0;
   }
 
-  // Coupled correction of the gas pressure P' and the solids fraction E' (MFIX-like solids volume fraction
-  // correction, solved together): the mixture volume flux must be divergence-free because both phases are
-  // incompressible (Eqs. 15 + 16), and the solids continuity (Eq. 16) must hold with the solids pressure taken
-  // at the new time, P_s + K E' (K = dP_s/d eps_s), so that the stiff compaction limit is implicit.
-  // Face volume fractions are the same TVD values the continuity uses.
+  // Correction step. Both phases are incompressible, so the mixture volume flux must be divergence-free
+  // (Eqs. 15 + 16); that fixes the gas-pressure correction P'. The solids pressure is then made implicit by a
+  // solids volume fraction correction E' (as in MFIX): the solids continuity (Eq. 16) must hold with
+  // P_s + K E', K = dP_s/d eps_s, so the stiff compaction limit does not limit dt. A second P' solve (same
+  // matrix) restores the mixture constraint after the E' correction. Face volume fractions are the TVD values
+  // the continuity uses.
   Field2 eps_s(nx, ny), eg_x, eg_y, es_x, es_y;
   for (std::size_t k = 0; k < eps_s.size(); ++k) eps_s.v[k] = 1.0 - eps.v[k];
   tvd_face_values(grid_, c.limiter, eps, FaceVelocity{s_.ug, s_.vg, false}, eg_x, eg_y);
   tvd_face_values(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, es_x, es_y);
   for (int i = 0; i < nx; ++i) eg_y(i, 0) = 1.0;  // gas enters through the distributor undiluted
   const int n = nx * ny;
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(n) * 22);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * n);
   auto id = [&](int i, int j) { return static_cast<int>(grid_.index(i, j)); };
-  const double vol = dx * dy;
-  double coeff_scale = 0.0;
-  // One interior face between cells l and r (r on the positive side): area over distance a_h, fractions eg, es,
-  // responses (dg, ds) to grad P' and (gs, ss) to grad(K E').
-  auto add_face = [&](int l, int r, double a_h, double eg, double es, double dg, double ds, double gs, double ss) {
-    const double cm = a_h * (eg * dg + es * ds), dm = a_h * (eg * gs + es * ss);
-    const double cs = a_h * es * ds, d_s = a_h * es * ss;
-    const double kl = dps_deps_.v[static_cast<std::size_t>(l)], kr = dps_deps_.v[static_cast<std::size_t>(r)];
-    coeff_scale = std::max(coeff_scale, cm);
-    for (int side = 0; side < 2; ++side) {
-      const int row = side == 0 ? l : r;
-      const double sg = side == 0 ? 1.0 : -1.0;  // outflow sign of this face for the row's cell
-      trip.emplace_back(row, l, sg * cm);
-      trip.emplace_back(row, r, -sg * cm);
-      trip.emplace_back(row, n + l, sg * dm * kl);
-      trip.emplace_back(row, n + r, -sg * dm * kr);
-      trip.emplace_back(n + row, l, sg * cs);
-      trip.emplace_back(n + row, r, -sg * cs);
-      trip.emplace_back(n + row, n + l, sg * d_s * kl);
-      trip.emplace_back(n + row, n + r, -sg * d_s * kr);
+  // Net outflow of gas and of solids volume from every cell with the current face velocities.
+  auto outflow = [&](Eigen::VectorXd& out_g, Eigen::VectorXd& out_s) {
+    out_g.resize(n);
+    out_s.resize(n);
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        out_g[id(i, j)] = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
+                          dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j));
+        out_s[id(i, j)] = dy * (es_x(i + 1, j) * s_.us(i + 1, j) - es_x(i, j) * s_.us(i, j)) +
+                          dx * (es_y(i, j + 1) * s_.vs(i, j + 1) - es_y(i, j) * s_.vs(i, j));
+      }
     }
   };
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const int pc = id(i, j);
-      const double out_g = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
-                           dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j));
-      const double out_s = dy * (es_x(i + 1, j) * s_.us(i + 1, j) - es_x(i, j) * s_.us(i, j)) +
-                           dx * (es_y(i, j + 1) * s_.vs(i, j + 1) - es_y(i, j) * s_.vs(i, j));
-      rhs[pc] = -(out_g + out_s);
-      rhs[n + pc] = -out_s;
-      trip.emplace_back(n + pc, n + pc, vol / dt);
-      if (i + 1 < nx) {
-        add_face(pc, id(i + 1, j), dy / dx, eg_x(i + 1, j), es_x(i + 1, j), dgu(i + 1, j), dsu(i + 1, j),
-                 gsu(i + 1, j), ssu(i + 1, j));
-      }
-      if (j + 1 < ny) {
-        add_face(pc, id(i, j + 1), dx / dy, eg_y(i, j + 1), es_y(i, j + 1), dgv(i, j + 1), dsv(i, j + 1),
-                 gsv(i, j + 1), ssv(i, j + 1));
-      } else if (top_open) {
-        // P' = 0 on the outlet face, half a cell above the centre; no solids cross it.
-        trip.emplace_back(pc, pc, 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy);
+  // Laplacian-type matrix of one correction; coef(face) is area / distance times the flux response.
+  auto assemble = [&](auto coef_x, auto coef_y, bool pressure) {
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(static_cast<std::size_t>(n) * 5);
+    Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
+    double scale = 0.0;
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        const int pc = id(i, j);
+        if (i + 1 < nx) {
+          const double a = coef_x(i + 1, j);
+          diag[pc] += a;
+          diag[id(i + 1, j)] += a;
+          trip.emplace_back(pc, id(i + 1, j), -a);
+          trip.emplace_back(id(i + 1, j), pc, -a);
+          scale = std::max(scale, a);
+        }
+        if (j + 1 < ny) {
+          const double a = coef_y(i, j + 1);
+          diag[pc] += a;
+          diag[id(i, j + 1)] += a;
+          trip.emplace_back(pc, id(i, j + 1), -a);
+          trip.emplace_back(id(i, j + 1), pc, -a);
+          scale = std::max(scale, a);
+        } else if (pressure && top_open) {
+          // P' = 0 on the outlet face, half a cell above the centre.
+          diag[pc] += 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy;
+        }
       }
     }
-  }
-  // A closed box fixes the pressure only up to a constant: pin the top-left cell (its row sums to zero anyway).
-  trip.emplace_back(id(0, ny - 1), id(0, ny - 1), top_open ? 0.0 : coeff_scale);
-  Eigen::SparseMatrix<double> a(2 * n, 2 * n);
-  a.setFromTriplets(trip.begin(), trip.end());
-  Eigen::VectorXd pc;
-  if (std::getenv("TFM_LU")) {
+    // A closed box fixes the pressure only up to a constant: pin the top-left cell (its row sums to zero anyway).
+    if (pressure && !top_open) diag[id(0, ny - 1)] += scale;
+    for (int k = 0; k < n; ++k) trip.emplace_back(k, k, diag[k]);
+    Eigen::SparseMatrix<double> m(n, n);
+    m.setFromTriplets(trip.begin(), trip.end());
+    return m;
+  };
+  const Eigen::SparseMatrix<double> a_p = assemble(
+      [&](int i, int j) { return dy / dx * (eg_x(i, j) * dgu(i, j) + es_x(i, j) * dsu(i, j)); },
+      [&](int i, int j) { return dx / dy * (eg_y(i, j) * dgv(i, j) + es_y(i, j) * dsv(i, j)); }, true);
   if (!pattern_ready_) {
-    pressure_solver_.analyzePattern(a);
+    pressure_solver_.analyzePattern(a_p);
     pattern_ready_ = true;
   }
-  pressure_solver_.factorize(a);
+  pressure_solver_.factorize(a_p);
   if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction factorisation failed");
-  pc = pressure_solver_.solve(rhs);
-  if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction solve failed");
-  } else {
-    iterative_solver_.preconditioner().setDroptol(1e-4);
-    iterative_solver_.preconditioner().setFillfactor(std::getenv("FILL") ? std::atoi(std::getenv("FILL")) : 5);
-    iterative_solver_.setTolerance(1e-10);
-    iterative_solver_.compute(a);
-    pc = iterative_solver_.solve(rhs);
-    if (std::getenv("ITS")) std::fprintf(stderr, "its %ld err %.2e\n", static_cast<long>(iterative_solver_.iterations()), iterative_solver_.error());
-    if (iterative_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction solve failed");
-  }
+  Eigen::VectorXd out_g, out_s;
+  auto correct_pressure = [&]() {
+    outflow(out_g, out_s);
+    const Eigen::VectorXd pc = pressure_solver_.solve(-(out_g + out_s));
+    if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction solve failed");
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 1; i < nx; ++i) {
+        const double g = (pc[id(i, j)] - pc[id(i - 1, j)]) / dx;
+        s_.ug(i, j) -= dgu(i, j) * g;
+        s_.us(i, j) -= dsu(i, j) * g;
+      }
+    }
+    for (int j = 1; j <= ny; ++j) {
+      if (j == ny && !top_open) break;
+      for (int i = 0; i < nx; ++i) {
+        const double above = j == ny ? -pc[id(i, ny - 1)] : pc[id(i, j)];
+        const double g = (above - pc[id(i, j - 1)]) / dy;
+        s_.vg(i, j) -= dgv(i, j) * g;
+        s_.vs(i, j) -= dsv(i, j) * g;
+      }
+    }
+    for (int k = 0; k < n; ++k) s_.p.v[static_cast<std::size_t>(k)] += pc[k];
+  };
+  correct_pressure();
 
-  auto pcorr = [&](int i, int j) { return pc[id(i, j)]; };
-  auto wcorr = [&](int i, int j) { return dps_deps_(i, j) * pc[n + id(i, j)]; };
+  // Solids volume fraction correction: (V/dt) E' - sum_faces es ss K grad E' = -(solids outflow). The matrix
+  // is the Laplacian of the solids-pressure response times diag(K), plus V/dt; solved for W = K E' would be
+  // symmetric, but K vanishes in dilute cells, so E' is the unknown.
+  const Eigen::SparseMatrix<double> lap_s = assemble(
+      [&](int i, int j) { return dy / dx * es_x(i, j) * ssu(i, j); },
+      [&](int i, int j) { return dx / dy * es_y(i, j) * ssv(i, j); }, false);
+  const Eigen::Map<const Eigen::VectorXd> k_cells(dps_deps_.v.data(), n);
+  Eigen::SparseMatrix<double> a_e = lap_s * k_cells.asDiagonal();
+  const double vol = dx * dy;
+  for (int k = 0; k < n; ++k) a_e.coeffRef(k, k) += vol / dt;
+  outflow(out_g, out_s);
+  solids_solver_.setTolerance(1e-12);
+  solids_solver_.compute(a_e);
+  const Eigen::VectorXd e_corr = solids_solver_.solve(-out_s);
+  if (solids_solver_.info() != Eigen::Success) throw_simulation_error("tfm: solids-fraction correction did not converge");
+  auto w = [&](int i, int j) { return dps_deps_(i, j) * e_corr[id(i, j)]; };
   for (int j = 0; j < ny; ++j) {
     for (int i = 1; i < nx; ++i) {
-      const double g = (pcorr(i, j) - pcorr(i - 1, j)) / dx, w = (wcorr(i, j) - wcorr(i - 1, j)) / dx;
-      s_.ug(i, j) -= dgu(i, j) * g + gsu(i, j) * w;
-      s_.us(i, j) -= dsu(i, j) * g + ssu(i, j) * w;
+      const double g = (w(i, j) - w(i - 1, j)) / dx;
+      s_.ug(i, j) -= gsu(i, j) * g;
+      s_.us(i, j) -= ssu(i, j) * g;
     }
   }
-  for (int j = 1; j <= ny; ++j) {
-    if (j == ny && !top_open) break;
+  for (int j = 1; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
-      const double above = j == ny ? -pcorr(i, ny - 1) : pcorr(i, j);
-      const double g = (above - pcorr(i, j - 1)) / dy;
-      const double w = j == ny ? 0.0 : (wcorr(i, j) - wcorr(i, j - 1)) / dy;
-      s_.vg(i, j) -= dgv(i, j) * g + gsv(i, j) * w;
-      s_.vs(i, j) -= dsv(i, j) * g + ssv(i, j) * w;
+      const double g = (w(i, j) - w(i, j - 1)) / dy;
+      s_.vg(i, j) -= gsv(i, j) * g;
+      s_.vs(i, j) -= ssv(i, j) * g;
     }
   }
-  for (int k = 0; k < n; ++k) s_.p.v[static_cast<std::size_t>(k)] += pc[k];
+  correct_pressure();
 
   // Eq. 16, fully implicit with the limiter by deferred correction; eps = 1 - eps_s closes Eq. 15.
   const Field2 eps_s_new =

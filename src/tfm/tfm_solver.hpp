@@ -2,7 +2,7 @@
 // Two-fluid model solver (paper Eqs. 15-26) on the staggered MAC grid: P, eps, Theta at cell centres,
 // u on vertical faces ((nx+1) x ny), v on horizontal faces (nx x (ny+1)).
 #include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseLU>
+#include <Eigen/SparseCholesky>
 #include <string>
 #include <vector>
 
@@ -87,9 +87,8 @@ class TfmSolver {
   TfmState s_;
   // Work arrays (derived each step, not state).
   Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> pressure_solver_;
-  Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::IncompleteLUT<double>> iterative_solver_;
-  Eigen::VectorXd last_correction_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> pressure_solver_;
+  Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::DiagonalPreconditioner<double>> solids_solver_;
   bool pattern_ready_ = false;
 };
 
