@@ -64,7 +64,7 @@ struct TfmConfig {
   double dt_max = 1e-3;        ///< [s]
   /// Largest voidage change per step allowed in dense cells: a step that compacts far past eps* lands where
   /// the solids pressure is orders of magnitude stiffer than the one dt was chosen for.
-  double max_dense_change = 0.01;
+  double max_dense_change = 0.002;
   double dt_min = 1e-8;        ///< [s]; below this the run fails
   int mass_corrections = 2;    ///< deferred-correction passes of the implicit solids continuity
   TfmBoundary boundary;
