@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# SIGINT, SIGTERM, the stop file <out>/STOP and --max-wall-time each stop a run with exit 130 and a checkpoint
+# named in the log, and --restart from it runs on to the end with exit 0 (issue 6).
+source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/reliability.bash"
+
+# Long enough (100 s simulated) to be running whenever the stop comes.
+write_cfd_case "$WORK/cfd.toml" cfd
+LONG=100
+
+# stop_and_resume LABEL HOW: start a run, stop it by HOW (INT, TERM, STOP, WALL), check, restart to the end.
+stop_and_resume() {
+  local label=$1 how=$2 out=$WORK/$1 rc pid
+  local -a extra=()
+  [[ $how == WALL ]] && extra=(--max-wall-time 1)
+  "$FLUIDBED" run "$WORK/cfd.toml" --out "$out" --end-time "$LONG" --quiet "${extra[@]}" >"$WORK/$label.stdout" 2>&1 &
+  pid=$!
+  if ! wait_for_stepping "$out" "$pid"; then
+    check "$label: the run started stepping" false
+    kill -KILL "$pid" 2>/dev/null
+    wait "$pid" 2>/dev/null
+    return
+  fi
+  sleep 0.5
+  case $how in
+    INT | TERM) kill -"$how" "$pid" ;;
+    STOP) touch "$out/STOP" ;;
+  esac
+  # Nothing may hang: give it 60 s to stop, then fail.
+  local k
+  for ((k = 0; k < 600; ++k)); do
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.1
+  done
+  if kill -0 "$pid" 2>/dev/null; then
+    kill -KILL "$pid"
+    check "$label: the run stopped within 60 s" false
+  fi
+  wait "$pid"
+  rc=$?
+  check "$label: exit code 130 (got $rc)" test "$rc" -eq 130
+  local reason
+  case $how in
+    INT) reason='interrupted \(SIGINT\)' ;;
+    TERM) reason='terminated \(SIGTERM\)' ;;
+    STOP) reason='stop file .*STOP found' ;;
+    WALL) reason='wall-time limit of 1 s reached' ;;
+  esac
+  check "$label: the log says why it stopped" grep -Eq "$reason" "$out/log.txt"
+  local cp
+  cp=$(logged_checkpoint "$out")
+  check "$label: the log names the checkpoint to restart from" test -n "$cp"
+  check "$label: that checkpoint exists" test -s "$cp"
+  check "$label: the log names the checkpoint as written" grep -qF "checkpoint $cp" "$out/log.txt"
+  [[ $how == STOP ]] && check "$label: the stop file is removed" test ! -e "$out/STOP"
+  local t_stop t_end
+  t_stop=$(grep -o 'stopped at t = [0-9.e+-]*' "$out/log.txt" | tail -1 | awk '{ print $5 }')
+  check "$label: stopped before the end (t = $t_stop s)" awk -v t="$t_stop" -v e="$LONG" 'BEGIN { exit !(t > 0 && t < e) }'
+  t_end=$(awk -v t="$t_stop" 'BEGIN { printf "%.3f", t + 0.005 }')
+  expect 0 "" "$label: --restart runs on to t = $t_end s" "$FLUIDBED" run "$WORK/cfd.toml" --out "$out" \
+    --end-time "$t_end" --quiet --restart "$cp"
+  check "$label: the restarted run reached the end" grep -q "done: t = " "$out/log.txt"
+  check "$label: a final checkpoint" test -s "$out/checkpoints/final.h5"
+  echo "$t_end" >"$WORK/$label.end"
+}
+
+stop_and_resume sigint INT
+stop_and_resume sigterm TERM
+stop_and_resume stopfile STOP
+stop_and_resume walltime WALL
+
+# The interrupted and resumed run equals one that was never interrupted.
+t_end=$(cat "$WORK/sigint.end")
+run_ok "uninterrupted run to t = $t_end s" run "$WORK/cfd.toml" --out "$WORK/straight" --end-time "$t_end"
+same_results "SIGINT + restart vs uninterrupted" "$WORK/straight" "$WORK/sigint"
+
+finish
