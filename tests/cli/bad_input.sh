@@ -53,6 +53,22 @@ bad wall_restitution "contact.wall_restitution: 1.5 is out of range" "contact.wa
 bad gravity_size "dem.gravity: expected 2 values, got 3" "dem.gravity = [0.0, -9.81, 0.0]"
 bad fill_height "particles.fill_height: 2 m is above the domain height" "particles.fill_height = 2.0"
 bad particle_file_missing "particles.source = \"file\" needs particles.file" 'particles.source = "file"'
+# Gas, grid and jets: read and checked even when gas.enabled = false.
+bad gas_viscosity_zero "gas_viscosity_zero.toml:[0-9]+:[0-9]+: gas.viscosity: 0 is out of range: must be > 0" "gas.viscosity = 0.0"
+bad gas_viscosity_negative "gas.viscosity: -1e-05 is out of range: must be > 0" "gas.viscosity = -1e-5"
+bad cell_width_zero "grid.cell_width: 0 is out of range: must be > 0" "grid.cell_width = 0.0"
+bad cell_height_negative "grid.cell_height: -0.02 is out of range: must be > 0" "grid.cell_height = -0.02"
+bad cell_width_not_dividing "grid.cell_width: 0.07 m does not divide the domain width 0.6 m into whole cells" "grid.cell_width = 0.07"
+bad cell_height_not_dividing "grid.cell_height: 0.03 m does not divide the domain height 1 m into whole cells" "grid.cell_height = 0.03"
+bad jet_outside "inlet.jet\[0\].centre: the jet \[0.69, 0.71\] m is not inside the bottom \[0, 0.6\] m" "inlet.jet = [{centre = 0.7}]"
+bad jet_narrow "inlet.jet\[0\].width: 0.01 m is narrower than a gas cell \(0.02 m\)" "inlet.jet = [{width = 0.01}]"
+bad jet_ends_before_start "inlet.jet\[0\].end: the jet closes before it opens" "inlet.jet = [{start = 0.3, end = 0.1}]"
+bad second_jet_outside "inlet.jet\[1\].centre: the jet" "inlet.jet = [{centre = 0.3}, {centre = 0.595}]"
+bad inlet_unknown_key "unknown key 'inlet.velocty'; did you mean 'inlet.velocity'" "inlet.velocty = 1.8"
+bad jet_unknown_key "unknown key 'inlet.jet\[0\].speed'" "inlet.jet = [{centre = 0.3, speed = 3.0}]"
+bad jet_wrong_type "jet_wrong_type.toml:[0-9]+:[0-9]+: inlet.jet\[0\].velocity: expected a number in m/s, got a string" \
+  'inlet.jet = [{velocity = "fast"}]'
+bad jet_not_tables "inlet.jet: expected an array of tables" "inlet.jet = [1.0, 2.0]"
 expect 2 "--set dem.time_step=abc.*expected a number|dem.time_step: expected a number" "--set with a wrong type" \
   "$FLUIDBED" check "$WORK/ok.toml" --set dem.time_step=abc
 expect 2 "--set nosuchkey: expected SECTION.KEY=VALUE" "--set without =" "$FLUIDBED" check "$WORK/ok.toml" --set nosuchkey
