@@ -587,9 +587,8 @@ double TfmSolver::step(double t_stop) {
   double dense_change = 0.0;
   for (std::size_t k = 0; k < eps_s_new.size(); ++k) {
     const double eps_new = 1.0 - eps_s_new.v[k];
-    if (std::min(eps_new, s_.eps.v[k]) < c.eps_star + 0.02) {
-      dense_change = std::max(dense_change, std::abs(eps_new - s_.eps.v[k]));
-    }
+    // Only compaction below eps* matters: that is where the solids pressure stiffens exponentially.
+    if (eps_new < c.eps_star) dense_change = std::max(dense_change, s_.eps.v[k] - eps_new);
     s_.eps.v[k] = eps_new;
   }
 
