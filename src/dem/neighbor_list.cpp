@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace fluidbed {
 
@@ -15,6 +18,9 @@ struct CellBins {
   std::vector<std::uint32_t> cell_of;  // per particle
   std::vector<std::size_t> start;      // per cell + 1
   std::vector<std::uint32_t> slots;    // particle slots grouped by cell
+  // Copies of x, y, r in the order of `slots`: a row of three neighbouring cells is one contiguous run, so the
+  // search streams through memory whatever the storage order of the particles.
+  std::vector<double> xs, ys, rs;
 
   int ci(double x) const { return std::clamp(static_cast<int>((x - x_min) / size), 0, nx - 1); }
   int cj(double y) const { return std::clamp(static_cast<int>((y - y_min) / size), 0, ny - 1); }
@@ -52,25 +58,38 @@ CellBins bin_particles(const ParticleStore& p, double cell_size) {
   return b;
 }
 
-/// Calls f(j) for every particle j != i within r_i + r_j + skin of particle i, in a fixed order.
+void add_cell_ordered_copies(const ParticleStore& p, CellBins& b) {
+  const std::size_t n = b.slots.size();
+  b.xs.resize(n);
+  b.ys.resize(n);
+  b.rs.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = b.slots[k];
+    b.xs[k] = p.x[i];
+    b.ys[k] = p.y[i];
+    b.rs[k] = p.radius[i];
+  }
+}
+
+/// Calls f(j) for every particle j != i within r_i + r_j + skin of particle i, in a fixed order (cell rows
+/// bottom to top, within a row by cell and then by slot).
 template <class F>
 void for_each_near(const ParticleStore& p, const CellBins& b, std::size_t i, double skin, F&& f) {
-  const int ci = b.ci(p.x[i]);
-  const int cj = b.cj(p.y[i]);
+  const double x = p.x[i], y = p.y[i], r = p.radius[i] + skin;
+  const int ci = b.ci(x);
+  const int cj = b.cj(y);
   // A clamped edge cell may hold particles farther than one cell size away: widen the search there.
   const int di_lo = (ci == 0) ? 0 : -1, di_hi = (ci == b.nx - 1) ? 0 : 1;
   const int dj_lo = (cj == 0) ? 0 : -1, dj_hi = (cj == b.ny - 1) ? 0 : 1;
+  const auto self = static_cast<std::uint32_t>(i);
   for (int dj = dj_lo; dj <= dj_hi; ++dj) {
-    for (int di = di_lo; di <= di_hi; ++di) {
-      const std::size_t c = static_cast<std::size_t>(cj + dj) * b.nx + static_cast<std::size_t>(ci + di);
-      for (std::size_t k = b.start[c]; k < b.start[c + 1]; ++k) {
-        const std::size_t j = b.slots[k];
-        if (j == i) continue;
-        const double dx = p.x[j] - p.x[i];
-        const double dy = p.y[j] - p.y[i];
-        const double reach = p.radius[i] + p.radius[j] + skin;
-        if (dx * dx + dy * dy < reach * reach) f(j);
-      }
+    const std::size_t row = static_cast<std::size_t>(cj + dj) * static_cast<std::size_t>(b.nx);
+    const std::size_t k_end = b.start[row + static_cast<std::size_t>(ci + di_hi) + 1];
+    for (std::size_t k = b.start[row + static_cast<std::size_t>(ci + di_lo)]; k < k_end; ++k) {
+      const double dx = b.xs[k] - x;
+      const double dy = b.ys[k] - y;
+      const double reach = r + b.rs[k];
+      if (dx * dx + dy * dy < reach * reach && b.slots[k] != self) f(b.slots[k]);
     }
   }
 }
@@ -84,24 +103,42 @@ std::vector<std::size_t> sort_by_cell(const ParticleStore& p, double cell_size) 
 
 void build_neighbor_list(const ParticleStore& p, double cell_size, double skin, NeighborList& out) {
   const std::size_t n = p.size();
-  const CellBins b = bin_particles(p, cell_size);
+  CellBins b = bin_particles(p, cell_size);
+  add_cell_ordered_copies(p, b);
   out.offset.assign(n + 1, 0);
-  const auto sn = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    std::size_t count = 0;
-    for_each_near(p, b, i, skin, [&](std::size_t) { ++count; });
-    out.offset[i + 1] = count;
+  // One search pass: each thread fills its own buffer for a contiguous block of particles, and the blocks are
+  // joined in block order, so the list is the same for any number of threads.
+#ifdef _OPENMP
+  const int max_threads = omp_get_max_threads();
+#else
+  const int max_threads = 1;
+#endif
+  std::vector<std::vector<std::uint32_t>> found(static_cast<std::size_t>(max_threads));
+  std::vector<std::size_t> block(static_cast<std::size_t>(max_threads) + 1, n);
+  block[0] = 0;
+#pragma omp parallel num_threads(max_threads)
+  {
+#ifdef _OPENMP
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nt = static_cast<std::size_t>(omp_get_num_threads());
+#else
+    const std::size_t t = 0, nt = 1;
+#endif
+    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    block[t + 1] = hi;
+    std::vector<std::uint32_t>& mine = found[t];
+    mine.reserve((hi - lo) * 8);
+    for (std::size_t i = lo; i < hi; ++i) {
+      const std::size_t before = mine.size();
+      for_each_near(p, b, i, skin, [&](std::uint32_t j) { mine.push_back(j); });
+      out.offset[i + 1] = mine.size() - before;
+    }
   }
   for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.partner.resize(out.offset[n]);
   out.history.assign(out.offset[n], Vec2{});
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    std::size_t k = out.offset[i];
-    for_each_near(p, b, i, skin, [&](std::size_t j) { out.partner[k++] = static_cast<std::uint32_t>(j); });
+  for (std::size_t t = 0; t < found.size(); ++t) {
+    if (block[t] < block[t + 1]) std::copy(found[t].begin(), found[t].end(), out.partner.begin() + static_cast<std::ptrdiff_t>(out.offset[block[t]]));
   }
 }
 
