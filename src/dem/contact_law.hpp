@@ -54,9 +54,11 @@ struct ContactForce {
 /// partners, bit for bit, so that both partners of a pair evaluate the same contact with opposite signs.
 inline ContactForce linear_spring_dashpot(const ContactParams& p, const ContactKinematics& c, double dt, Vec2& xi) {
   const double vn = dot(c.v_rel, c.n);
-  const Vec2 v_n = vn * c.n;       // Eq. 5
-  const Vec2 v_t = c.v_rel - v_n;  // Eq. 4
-  const Vec2 f_n = (-p.k_n * c.overlap) * c.n - p.eta_n * v_n;  // Eq. 2
+  const Vec2 v_t = c.v_rel - vn * c.n;  // Eqs. 4-5
+  // The normal force lies along n; its signed size is the same from both partners, which keeps the law
+  // antisymmetric and spares a square root in the Coulomb limit below.
+  const double fn = -p.k_n * c.overlap - p.eta_n * vn;  // Eq. 2
+  const Vec2 f_n = fn * c.n;
 
   // Rotate the stored spring into the current tangent plane, keeping its length.
   const double xi_len2 = norm2(xi);
@@ -68,7 +70,7 @@ inline ContactForce linear_spring_dashpot(const ContactParams& p, const ContactK
   xi += dt * v_t;
   Vec2 f_t = -p.k_t * xi - p.eta_t * v_t;  // Eq. 3
 
-  const double ft_max = p.mu * norm(f_n);  // Eq. 6
+  const double ft_max = p.mu * std::abs(fn);  // Eq. 6
   const double ft2 = norm2(f_t);
   if (ft2 > ft_max * ft_max) {
     f_t = (ft_max / std::sqrt(ft2)) * f_t;  // Eq. 7: slide at the Coulomb limit

@@ -129,7 +129,8 @@ double DemSolver::compute_forces() {
         continue;
       }
       const double d = std::sqrt(d2);
-      const Vec2 nrm{dx / d, dy / d};
+      const double inv_d = 1.0 / d;
+      const Vec2 nrm{dx * inv_d, dy * inv_d};
       const double overlap = rsum - d;
       // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
       const Vec2 v_rel = (vi - p_.vel(j)) + cross(wi * ri + p_.omega[j] * p_.radius[j], nrm);
