@@ -74,4 +74,30 @@ t_end=$(cat "$WORK/sigint.end")
 run_ok "uninterrupted run to t = $t_end s" run "$WORK/cfd.toml" --out "$WORK/straight" --end-time "$t_end"
 same_results "SIGINT + restart vs uninterrupted" "$WORK/straight" "$WORK/sigint"
 
+# A hard kill (SIGKILL: no handler runs) loses nothing but the steps after the last periodic checkpoint: a
+# restart from it cuts the series back to its time and continues to the same state as an uninterrupted run.
+# The first periodic checkpoint comes after the first step, so wait for three.
+"$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/killed" --end-time "$LONG" --quiet \
+  --set output.checkpoint_interval=0.002 >/dev/null 2>&1 &
+pid=$!
+if wait_for_stepping "$WORK/killed" "$pid"; then
+  for ((k = 0; k < 600; ++k)); do
+    [[ $(ls "$WORK"/killed/checkpoints/t*.h5 2>/dev/null | wc -l) -ge 3 ]] && break
+    sleep 0.1
+  done
+fi
+kill -KILL "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+last=$(ls "$WORK"/killed/checkpoints/t*.h5 2>/dev/null | sort | tail -1)
+check "SIGKILL: periodic checkpoints were written before the kill" test -n "$last"
+if [[ -n $last ]]; then
+  t_cp=$(basename "$last" .h5)
+  t_end=$(awk -v t="${t_cp#t}" 'BEGIN { printf "%.3f", t + 0.005 }')
+  expect 0 "" "SIGKILL: --restart from $(basename "$last") to t = $t_end s" "$FLUIDBED" run "$WORK/cfd.toml" \
+    --out "$WORK/killed" --end-time "$t_end" --quiet --set output.checkpoint_interval=0.002 --restart "$last"
+  run_ok "SIGKILL: uninterrupted run to t = $t_end s" run "$WORK/cfd.toml" --out "$WORK/unkilled" --end-time "$t_end" \
+    --set output.checkpoint_interval=0.002
+  same_results "SIGKILL + restart vs uninterrupted" "$WORK/unkilled" "$WORK/killed"
+fi
+
 finish
