@@ -51,44 +51,46 @@ DemSolver::DemSolver(DemConfig config, ParticleStore particles)
 
 void DemSolver::rebuild() {
   const std::size_t n = p_.size();
-  // Keep the old lists keyed by partner id: storage slots change with the re-sort below.
+  // The old list in its old storage slots; its buffers are reused by the next rebuild.
   const bool have_old = nbr_.offset.size() == n + 1;
-  std::vector<std::size_t> old_offset;
-  std::vector<std::int64_t> old_partner_id;
-  std::vector<Vec2> old_xi;
   if (have_old) {
-    old_offset = std::move(nbr_.offset);
-    old_partner_id.resize(nbr_.partner.size());
-    for (std::size_t k = 0; k < nbr_.partner.size(); ++k) old_partner_id[k] = p_.id[nbr_.partner[k]];
-    old_xi = std::move(nbr_.history);
+    old_offset_.swap(nbr_.offset);
+    old_partner_.swap(nbr_.partner);
+    old_history_.swap(nbr_.history);
   }
 
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles
   // drift from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
-  std::vector<std::size_t> order;
-  if (rebuilds_ % kSortEvery == 0) {
+  const bool sorted = rebuilds_ % kSortEvery == 0;
+  std::vector<std::size_t> order, new_slot;
+  if (sorted) {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
     std::vector<std::array<Vec2, 4>> w(n);
-    for (std::size_t k = 0; k < n; ++k) w[k] = wall_xi_[order[k]];
+    new_slot.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      w[k] = wall_xi_[order[k]];
+      new_slot[order[k]] = k;
+    }
     wall_xi_.swap(w);
-  } else {
-    order.resize(n);
-    for (std::size_t k = 0; k < n; ++k) order[k] = k;
   }
   build_neighbor_list(p_, cell_size_, config_.skin, nbr_);
 
   if (have_old) {
+    // Carry each stretched spring over to the new entry of the same pair; released springs (zero) need no
+    // search, and a pair that left the list had released its spring already (it was beyond contact).
     const auto sn = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      const std::size_t o = order[i];
-      for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
-        const std::int64_t pid = p_.id[nbr_.partner[k]];
-        for (std::size_t q = old_offset[o]; q < old_offset[o + 1]; ++q) {
-          if (old_partner_id[q] == pid) {
-            nbr_.history[k] = old_xi[q];
+      const std::size_t o = sorted ? order[i] : i;
+      for (std::size_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
+        const Vec2 h = old_history_[q];
+        if (h.x == 0.0 && h.y == 0.0) continue;
+        const std::size_t j = sorted ? new_slot[old_partner_[q]] : old_partner_[q];
+        for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+          if (nbr_.partner[k] == j) {
+            nbr_.history[k] = h;
             break;
           }
         }
@@ -181,9 +183,12 @@ DemStepInfo DemSolver::step() {
   const double dt = config_.dt;
   const Vec2 g = config_.gravity;
   const double half_skin2 = 0.25 * config_.skin * config_.skin;
+  const double W = config_.width;
+  const double H = config_.height;
   int moved_far = 0;
+  int bad = 0;
   const auto sn = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static) reduction(max : moved_far)
+#pragma omp parallel for schedule(static) reduction(max : moved_far, bad)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double k = p_.drag_k[i];
@@ -196,11 +201,14 @@ DemStepInfo DemSolver::step() {
     const double ddx = p_.x[i] - x_build_[i];
     const double ddy = p_.y[i] - y_build_[i];
     if (ddx * ddx + ddy * ddy >= half_skin2) moved_far = 1;
+    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && p_.y[i] <= H &&
+                        std::isfinite(p_.vx[i]) && std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
+    if (!inside) bad = 1;
   }
   need_rebuild_ = moved_far != 0;
   ++steps_;
   time_ += dt;  // accumulated the same way in every run, so restarts reproduce it exactly
-  check_particles();
+  if (bad != 0) check_particles();
   return info;
 }
 

@@ -78,6 +78,10 @@ class DemSolver {
   NeighborList nbr_;
   std::vector<std::array<Vec2, 4>> wall_xi_;
   std::vector<double> x_build_, y_build_;
+  // The previous list during a rebuild (kept to reuse its memory).
+  std::vector<std::size_t> old_offset_;
+  std::vector<std::uint32_t> old_partner_;
+  std::vector<Vec2> old_history_;
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double time_ = 0.0;
