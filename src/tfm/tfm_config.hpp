@@ -62,8 +62,8 @@ struct TfmConfig {
   Limiter limiter = Limiter::Superbee;
   double cfl = 0.5;            ///< dt = cfl * cell / max(velocity, solids-pressure wave speed); 0.5 keeps TVD
   double dt_max = 1e-3;        ///< [s]
-  /// Largest voidage change per step allowed in dense cells: a step that compacts far past eps* lands where
-  /// the solids pressure is orders of magnitude stiffer than the one dt was chosen for.
+  /// Largest compaction below eps* (voidage decrease) allowed per step: a step that compacts far past eps*
+  /// lands where the solids pressure is orders of magnitude stiffer than its linearisation.
   double max_dense_change = 0.002;
   double dt_min = 1e-8;        ///< [s]; below this the run fails
   int mass_corrections = 2;    ///< deferred-correction passes of the implicit solids continuity

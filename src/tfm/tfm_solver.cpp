@@ -295,7 +295,7 @@ double TfmSolver::choose_dt(double t_stop) const {
   const double speed = vmax;
   double dt = config_.dt_max;
   if (speed > 0.0) dt = std::min(dt, config_.cfl * std::min(grid_.dx, grid_.dy) / speed);
-  // Compaction rate of the last step, extrapolated: keeps dense cells from jumping deep past eps* in one step.
+  // Compaction rate of the last step, extrapolated: keeps cells from jumping deep past eps* in one step.
   if (s_.dense_change > 0.0 && s_.dt > 0.0) dt = std::min(dt, s_.dt * config_.max_dense_change / s_.dense_change);
   return std::min(dt, t_stop - s_.time);
 }

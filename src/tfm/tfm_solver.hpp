@@ -30,7 +30,7 @@ struct TfmState {
   double time = 0.0;
   double dt = 0.0;
   long steps = 0;
-  /// Largest voidage change of a dense cell (eps < eps* + 0.02) in the last step; steers the next dt.
+  /// Largest compaction (voidage decrease) of a cell below eps* in the last full step; steers the next dt.
   double dense_change = 0.0;
 };
 
