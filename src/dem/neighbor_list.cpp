@@ -71,10 +71,12 @@ void add_cell_ordered_copies(const ParticleStore& p, CellBins& b) {
   }
 }
 
-/// Calls f(j) for every particle j != i within r_i + r_j + skin of particle i, in a fixed order (cell rows
-/// bottom to top, within a row by cell and then by slot).
-template <class F>
-void for_each_near(const ParticleStore& p, const CellBins& b, std::size_t i, double skin, F&& f) {
+/// Appends to `out`, from position `used`, every particle j != i within r_i + r_j + skin of particle i, in a
+/// fixed order (cell rows bottom to top, within a row by cell and then by slot); returns the new `used`. The
+/// candidates are written unconditionally and kept by advancing the end, which avoids a hard-to-predict branch
+/// (about a third of the candidates of a 3 x 3 cell search are in reach).
+std::size_t append_near(const ParticleStore& p, const CellBins& b, std::size_t i, double skin,
+                        std::vector<std::uint32_t>& out, std::size_t used) {
   const double x = p.x[i], y = p.y[i], r = p.radius[i] + skin;
   const int ci = b.ci(x);
   const int cj = b.cj(y);
@@ -84,14 +86,19 @@ void for_each_near(const ParticleStore& p, const CellBins& b, std::size_t i, dou
   const auto self = static_cast<std::uint32_t>(i);
   for (int dj = dj_lo; dj <= dj_hi; ++dj) {
     const std::size_t row = static_cast<std::size_t>(cj + dj) * static_cast<std::size_t>(b.nx);
+    const std::size_t k_begin = b.start[row + static_cast<std::size_t>(ci + di_lo)];
     const std::size_t k_end = b.start[row + static_cast<std::size_t>(ci + di_hi) + 1];
-    for (std::size_t k = b.start[row + static_cast<std::size_t>(ci + di_lo)]; k < k_end; ++k) {
+    if (out.size() < used + (k_end - k_begin)) out.resize(2 * (used + (k_end - k_begin)));
+    std::uint32_t* dst = out.data();
+    for (std::size_t k = k_begin; k < k_end; ++k) {
       const double dx = b.xs[k] - x;
       const double dy = b.ys[k] - y;
       const double reach = r + b.rs[k];
-      if (dx * dx + dy * dy < reach * reach && b.slots[k] != self) f(b.slots[k]);
+      dst[used] = b.slots[k];
+      used += static_cast<std::size_t>((dx * dx + dy * dy < reach * reach) & (b.slots[k] != self));
     }
   }
+  return used;
 }
 
 }  // namespace
@@ -127,12 +134,14 @@ void build_neighbor_list(const ParticleStore& p, double cell_size, double skin, 
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     block[t + 1] = hi;
     std::vector<std::uint32_t>& mine = found[t];
-    mine.reserve((hi - lo) * 8);
+    mine.resize((hi - lo) * 8 + 64);
+    std::size_t used = 0;
     for (std::size_t i = lo; i < hi; ++i) {
-      const std::size_t before = mine.size();
-      for_each_near(p, b, i, skin, [&](std::uint32_t j) { mine.push_back(j); });
-      out.offset[i + 1] = mine.size() - before;
+      const std::size_t before = used;
+      used = append_near(p, b, i, skin, mine, used);
+      out.offset[i + 1] = used - before;
     }
+    mine.resize(used);
   }
   for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.partner.resize(out.offset[n]);
