@@ -60,12 +60,13 @@ inline ContactForce linear_spring_dashpot(const ContactParams& p, const ContactK
   const double fn = -p.k_n * c.overlap - p.eta_n * vn;  // Eq. 2
   const Vec2 f_n = fn * c.n;
 
-  // Rotate the stored spring into the current tangent plane, keeping its length.
+  // Rotate the stored spring into the current tangent plane, keeping its length. In 2D the plane is the line
+  // of t = (-n_y, n_x), so the rotated spring is +-|xi| t: one square root, no division.
   const double xi_len2 = norm2(xi);
   if (xi_len2 > 0.0) {
-    Vec2 xi_t = xi - dot(xi, c.n) * c.n;
-    const double t_len2 = norm2(xi_t);
-    xi = t_len2 > 0.0 ? std::sqrt(xi_len2 / t_len2) * xi_t : Vec2{};
+    const Vec2 t{-c.n.y, c.n.x};
+    const double along = dot(xi, t);
+    xi = along > 0.0 ? std::sqrt(xi_len2) * t : (along < 0.0 ? -std::sqrt(xi_len2) * t : Vec2{});
   }
   xi += dt * v_t;
   Vec2 f_t = -p.k_t * xi - p.eta_t * v_t;  // Eq. 3
