@@ -40,6 +40,11 @@ run_ok "cfd: restart from T/2 over the finished run" run "$WORK/cfd.toml" --out 
   --set output.checkpoint_interval=0.01 --restart "$WORK/mid.h5"
 same_results "cfd over a finished run" "$WORK/cfd-split" "$WORK/cfd-full"
 
+# A checkpoint that does not fit the case is bad input (exit 2), never read half-way: another gas grid, or gas
+# fields missing from a DEM-alone checkpoint.
+expect 2 "gas/. has [0-9]+ values, the case's grid needs [0-9]+" "cfd: restart on another grid" \
+  "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-grid" --quiet --set grid.cell_width=0.005 --restart "$WORK/mid.h5"
+
 # DEM alone (no gas: no fields, particles only); 400 steps of the default 2e-4 s.
 cat >"$WORK/dem.toml" <<'TOML'
 case.name = "dem"
@@ -57,6 +62,9 @@ output.checkpoint_interval = 0.0
 output.particles_csv = true
 TOML
 restart_case dem "$WORK/dem.toml" 0.08
+expect 2 "dem-full/checkpoints/final.h5" "dem: a DEM-alone checkpoint cannot start a run with gas" \
+  "$FLUIDBED" run "$WORK/dem.toml" --out "$WORK/dem-gas" --quiet --set gas.enabled=true \
+  --restart "$WORK/dem-full/checkpoints/final.h5"
 
 # The two-fluid model: runs once the lead has wired it (a tfm case that `fluidbed check` accepts).
 tfm_case=$ROOT/cases/gera1998/tfm.toml
