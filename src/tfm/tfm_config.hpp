@@ -4,6 +4,7 @@
 
 #include "core/vec2.hpp"
 #include "fluid/drag.hpp"
+#include "fluid/gas_config.hpp"
 #include "tfm/flux_limiter.hpp"
 #include "tfm/solids_stress.hpp"
 
@@ -14,25 +15,6 @@ enum class SolidsRheology {
   ConstantViscosity,  ///< mu_s = mu_s_constant, P_s from Eq. 20
   Inviscid,           ///< mu_s = 0, P_s from Eq. 20
   KineticTheory,      ///< Eqs. 23-26 with algebraic Theta above eps*, frictional Eqs. 21-22 at or below eps*
-};
-
-/// A jet through the distributor, active for t_start <= t < t_end (superficial velocity over its width).
-struct TfmJet {
-  double x_centre = 0.3;   ///< [m]
-  double width = 0.02;     ///< [m]
-  double velocity = 30.0;  ///< [m/s]
-  double t_start = 0.0;    ///< [s]
-  double t_end = 0.4;      ///< [s]
-};
-
-/// Boundaries: gas inflow through the bottom (solids cannot cross it), side walls, top pressure outlet or lid.
-/// Kept separate from the gas solver's own boundary config until that is committed (see docs/model-tfm.md).
-struct TfmBoundary {
-  double inlet_velocity = 1.8;          ///< superficial gas velocity through the bottom [m/s]; paper: U_mf
-  std::vector<TfmJet> jets{TfmJet{}};   ///< jets replacing the background inflow over their width
-  bool top_open = true;                 ///< true: pressure outlet (gas only); false: closed lid
-  double top_pressure = 0.0;            ///< [Pa] on the top face when open
-  bool solids_no_slip_walls = false;    ///< solids tangential condition on the side walls
 };
 
 struct TfmConfig {
@@ -67,7 +49,10 @@ struct TfmConfig {
   double max_dense_change = 0.002;
   double dt_min = 1e-8;        ///< [s]; below this the run fails
   int mass_corrections = 2;    ///< deferred-correction passes of the implicit solids continuity
-  TfmBoundary boundary;
+  /// Gas boundaries, shared with the gas solver: distributor inflow and jets, side walls, top outlet or lid
+  /// (the TFM gas has no viscous stress, so the gas wall kinds do not enter; a moving lid is not supported).
+  GasBoundaryConfig boundary;
+  bool solids_no_slip_walls = false;  ///< solids tangential condition on the side walls (default free slip)
 };
 
 /// Throws an input error naming the offending setting.

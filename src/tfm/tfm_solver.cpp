@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "fluid/drag.hpp"
+#include "fluid/gas_boundary.hpp"
 #include "tfm/tvd_convection.hpp"
 
 namespace fluidbed::tfm {
@@ -108,9 +109,11 @@ void validate(const TfmConfig& c) {
   need(c.max_dense_change > 0.0 && c.max_dense_change < 0.1, "max_dense_change must lie in (0, 0.1)");
   need(c.dt_max > 0.0 && c.dt_min > 0.0 && c.dt_min < c.dt_max, "need 0 < dt_min < dt_max");
   need(c.mass_corrections >= 0 && c.mass_corrections <= 10, "mass_corrections must lie in [0, 10]");
-  for (const TfmJet& j : c.boundary.jets) {
+  for (const InletJet& j : c.boundary.jets) {
     need(j.width > 0.0 && j.t_end >= j.t_start, "each jet needs width > 0 and t_end >= t_start");
   }
+  need(c.boundary.top == TopBoundary::PressureOutlet || c.boundary.lid_velocity == 0.0,
+       "a moving lid (boundary lid_velocity) is not supported by the two-fluid model");
 }
 
 TfmSolver::TfmSolver(const TfmConfig& config) : config_(config) {
@@ -138,7 +141,7 @@ TfmSolver::TfmSolver(const TfmConfig& config) : config_(config) {
     tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity{up, vp, false}, eg_x, eg_y);
     for (int j = 0; j <= ny; ++j) {
       for (int i = 0; i < nx; ++i) {
-        const bool closed = j == ny && !config_.boundary.top_open;
+        const bool closed = j == ny && !(config_.boundary.top == TopBoundary::PressureOutlet);
         s_.vg(i, j) = closed ? 0.0 : u_in / (j == 0 ? 1.0 : eg_y(i, j));
       }
     }
@@ -157,7 +160,7 @@ TfmSolver::TfmSolver(const TfmConfig& config) : config_(config) {
     return config_.rho_g * g * grid_.dy + beta * s_.vg(i, j) * grid_.dy / eg;
   };
   for (int i = 0; i < nx; ++i) {
-    s_.p(i, ny - 1) = config_.boundary.top_pressure + (config_.boundary.top_open ? 0.5 * drop_across(i, ny) : 0.0);
+    s_.p(i, ny - 1) = config_.boundary.top_pressure + ((config_.boundary.top == TopBoundary::PressureOutlet) ? 0.5 * drop_across(i, ny) : 0.0);
     for (int j = ny - 1; j > 0; --j) s_.p(i, j - 1) = s_.p(i, j) + drop_across(i, j);
   }
   p_s_ = Field2(nx, ny);
@@ -165,23 +168,6 @@ TfmSolver::TfmSolver(const TfmConfig& config) : config_(config) {
   lambda_s_ = Field2(nx, ny);
   beta_c_ = Field2(nx, ny);
   dps_deps_ = Field2(nx, ny);
-}
-
-void TfmSolver::inlet_profile(double t, std::vector<double>& out) const {
-  const TfmBoundary& bc = config_.boundary;
-  out.assign(static_cast<std::size_t>(grid_.nx), bc.inlet_velocity);
-  for (int i = 0; i < grid_.nx; ++i) {
-    const double x_lo = grid_.x0 + i * grid_.dx, x_hi = x_lo + grid_.dx;
-    double u = bc.inlet_velocity;
-    for (const TfmJet& jet : bc.jets) {
-      if (t < jet.t_start || t >= jet.t_end) continue;
-      // The jet replaces the background over the part of the face it covers, so its volume flux is exact.
-      const double lo = std::max(x_lo, jet.x_centre - 0.5 * jet.width);
-      const double hi = std::min(x_hi, jet.x_centre + 0.5 * jet.width);
-      if (hi > lo) u += (jet.velocity - bc.inlet_velocity) * (hi - lo) / grid_.dx;
-    }
-    out[static_cast<std::size_t>(i)] = u;
-  }
 }
 
 double TfmSolver::vg_interstitial(int i, int j) const {
@@ -306,7 +292,7 @@ double TfmSolver::step(double t_stop) {
   const double dx = grid_.dx, dy = grid_.dy;
   const double rho_g = c.rho_g, rho_s = c.rho_s;
   const double gx = c.gravity.x, gy = c.gravity.y;
-  const bool top_open = c.boundary.top_open;
+  const bool top_open = c.boundary.top == TopBoundary::PressureOutlet;
 
   mask_trace_solids_velocity();
   compute_cell_closures();
@@ -316,7 +302,7 @@ double TfmSolver::step(double t_stop) {
                            std::to_string(s_.time) + " s");
   }
   std::vector<double> inlet;
-  inlet_profile(s_.time + dt, inlet);
+  inlet_superficial_profile(config_.boundary, grid_, s_.time + dt, inlet);
 
   const Field2& eps = s_.eps;
   const Field2& p = s_.p;
@@ -326,7 +312,7 @@ double TfmSolver::step(double t_stop) {
   for (int i = 0; i < nx; ++i) vg0(i, 0) = s_.vg(i, 0) / eps(i, 0);
   Field2 dgu(nx + 1, ny), dsu(nx + 1, ny), dgv(nx, ny + 1), dsv(nx, ny + 1);
   Field2 gsu(nx + 1, ny), ssu(nx + 1, ny), gsv(nx, ny + 1), ssv(nx, ny + 1);
-  const double mu_wall = c.boundary.solids_no_slip_walls ? 1.0 : 0.0;
+  const double mu_wall = c.solids_no_slip_walls ? 1.0 : 0.0;
   auto mu_corner = [&](int i, int j) {  // corner at (x_i, y_j), interior only
     // Harmonic mean of the four cells: a corner touching an empty cell carries no shear, so a dilute face is
     // never driven by the viscosity of a dense diagonal neighbour (which the explicit cross terms cannot bear).
@@ -625,7 +611,7 @@ double TfmSolver::pressure_drop() const {
   for (int i = 0; i < grid_.nx; ++i) {
     sum += ny > 1 ? 1.5 * s_.p(i, 0) - 0.5 * s_.p(i, 1) : s_.p(i, 0);
   }
-  const double top = config_.boundary.top_open ? config_.boundary.top_pressure : 0.0;
+  const double top = (config_.boundary.top == TopBoundary::PressureOutlet) ? config_.boundary.top_pressure : 0.0;
   return sum / grid_.nx - top;
 }
 

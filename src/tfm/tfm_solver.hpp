@@ -80,7 +80,6 @@ class TfmSolver {
   void mask_trace_solids_velocity();
   void compute_cell_closures();
   double choose_dt(double t_stop) const;
-  void inlet_profile(double t, std::vector<double>& out) const;
 
   TfmConfig config_;
   Grid2 grid_;

@@ -47,6 +47,12 @@ TEST(TfmConfig, BadSettingsAreNamed) {
   expect_rejected([](TfmConfig& c) { c.packed_height = 2.0; }, "packed_height");
   expect_rejected([](TfmConfig& c) { c.rho_s = 1.0; }, "rho_s");
   expect_rejected([](TfmConfig& c) { c.boundary.jets[0].width = 0.0; }, "jet");
+  expect_rejected(
+      [](TfmConfig& c) {
+        c.boundary.top = TopBoundary::Wall;
+        c.boundary.lid_velocity = 1.0;
+      },
+      "lid_velocity");
 }
 
 }  // namespace

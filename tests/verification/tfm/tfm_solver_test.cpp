@@ -60,7 +60,7 @@ TfmConfig sedimentation_column() {
   c.rheology = SolidsRheology::Inviscid;
   c.boundary.inlet_velocity = 0.0;
   c.boundary.jets.clear();
-  c.boundary.top_open = false;
+  c.boundary.top = TopBoundary::Wall;
   return c;
 }
 
@@ -132,7 +132,7 @@ TEST(TfmSolver, RestartIsBitIdentical) {
   c.width = 0.2;
   c.height = 0.4;
   c.packed_height = 0.2;
-  c.boundary.jets = {TfmJet{0.1, 0.02, 20.0, 0.0, 1.0}};
+  c.boundary.jets = {InletJet{0.1, 0.02, 20.0, 0.0, 1.0}};
   TfmSolver a(c);
   a.advance_to(0.02);
   const std::vector<NamedArray> saved = a.save_state();
