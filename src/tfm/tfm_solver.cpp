@@ -116,11 +116,17 @@ void validate(const TfmConfig& c) {
        "a moving lid (boundary lid_velocity) is not supported by the two-fluid model");
 }
 
-TfmSolver::TfmSolver(const TfmConfig& config) : config_(config) {
-  validate(config_);
-  const int nx = static_cast<int>(std::lround(config_.width / config_.cell_size));
-  const int ny = static_cast<int>(std::lround(config_.height / config_.cell_size));
-  grid_ = Grid2::uniform(config_.width, config_.height, nx, ny);
+namespace {
+Grid2 validated_grid(const TfmConfig& c) {
+  validate(c);
+  return Grid2::uniform(c.width, c.height, static_cast<int>(std::lround(c.width / c.cell_size)),
+                        static_cast<int>(std::lround(c.height / c.cell_size)));
+}
+}  // namespace
+
+TfmSolver::TfmSolver(const TfmConfig& config)
+    : config_(config), grid_(validated_grid(config)), pressure_solver_(grid_) {
+  const int nx = grid_.nx, ny = grid_.ny;
   s_.eps = Field2(nx, ny, 1.0);
   for (int j = 0; j < ny; ++j) {
     // Partly filled cells get the volume-weighted voidage, so the initial mass matches packed_height exactly.
@@ -501,23 +507,28 @@ double TfmSolver::step(double t_stop) {
     m.setFromTriplets(trip.begin(), trip.end());
     return m;
   };
-  const Eigen::SparseMatrix<double> a_p = assemble(
-      [&](int i, int j) { return dy / dx * (eg_x(i, j) * dgu(i, j) + es_x(i, j) * dsu(i, j)); },
-      [&](int i, int j) { return dx / dy * (eg_y(i, j) * dgv(i, j) + es_y(i, j) * dsv(i, j)); }, true);
-  if (!pattern_ready_) {
-    pressure_solver_.analyzePattern(a_p);
-    pattern_ready_ = true;
+  // Face coefficients of the P' equation for the shared pressure-correction solver (src/fluid): interior faces
+  // couple neighbours; the open top couples to P' = 0 on the outlet face, half a cell above the centre.
+  Field2 a_x(nx + 1, ny), a_y(nx, ny + 1), rhs_p(nx, ny), p_corr(nx, ny);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) a_x(i, j) = dy / dx * (eg_x(i, j) * dgu(i, j) + es_x(i, j) * dsu(i, j));
   }
-  pressure_solver_.factorize(a_p);
-  if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction factorisation failed");
+  for (int j = 1; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) a_y(i, j) = dx / dy * (eg_y(i, j) * dgv(i, j) + es_y(i, j) * dsv(i, j));
+  }
+  if (top_open) {
+    for (int i = 0; i < nx; ++i) a_y(i, ny) = 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy;
+  }
   Eigen::VectorXd out_g, out_s;
   auto correct_pressure = [&]() {
     outflow(out_g, out_s);
-    const Eigen::VectorXd pc = pressure_solver_.solve(-(out_g + out_s));
-    if (pressure_solver_.info() != Eigen::Success) throw_simulation_error("tfm: pressure-correction solve failed");
+    for (int k = 0; k < n; ++k) rhs_p.v[static_cast<std::size_t>(k)] = -(out_g[k] + out_s[k]);
+    p_corr.fill(0.0);
+    pressure_solver_.solve(a_x, a_y, rhs_p, p_corr);
+    const std::vector<double>& pc = p_corr.v;
     for (int j = 0; j < ny; ++j) {
       for (int i = 1; i < nx; ++i) {
-        const double g = (pc[id(i, j)] - pc[id(i - 1, j)]) / dx;
+        const double g = (pc[static_cast<std::size_t>(id(i, j))] - pc[static_cast<std::size_t>(id(i - 1, j))]) / dx;
         s_.ug(i, j) -= dgu(i, j) * g;
         s_.us(i, j) -= dsu(i, j) * g;
       }
@@ -525,13 +536,13 @@ double TfmSolver::step(double t_stop) {
     for (int j = 1; j <= ny; ++j) {
       if (j == ny && !top_open) break;
       for (int i = 0; i < nx; ++i) {
-        const double above = j == ny ? -pc[id(i, ny - 1)] : pc[id(i, j)];
-        const double g = (above - pc[id(i, j - 1)]) / dy;
+        const double above = j == ny ? -p_corr(i, ny - 1) : p_corr(i, j);
+        const double g = (above - p_corr(i, j - 1)) / dy;
         s_.vg(i, j) -= dgv(i, j) * g;
         s_.vs(i, j) -= dsv(i, j) * g;
       }
     }
-    for (int k = 0; k < n; ++k) s_.p.v[static_cast<std::size_t>(k)] += pc[k];
+    for (std::size_t k = 0; k < pc.size(); ++k) s_.p.v[k] += pc[k];
   };
   correct_pressure();
 

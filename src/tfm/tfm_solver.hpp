@@ -2,12 +2,13 @@
 // Two-fluid model solver (paper Eqs. 15-26) on the staggered MAC grid: P, eps, Theta at cell centres,
 // u on vertical faces ((nx+1) x ny), v on horizontal faces (nx x (ny+1)).
 #include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
+#include "fluid/pressure_correction.hpp"
 #include "tfm/tfm_config.hpp"
 
 namespace fluidbed::tfm {
@@ -86,9 +87,8 @@ class TfmSolver {
   TfmState s_;
   // Work arrays (derived each step, not state).
   Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> pressure_solver_;
+  PressureCorrectionSolver pressure_solver_;  // shared with the gas solver (src/fluid)
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::DiagonalPreconditioner<double>> solids_solver_;
-  bool pattern_ready_ = false;
 };
 
 }  // namespace fluidbed::tfm
