@@ -43,7 +43,7 @@ lmp_rebuilds="$(awk '/^Neighbor list builds/ {print $5}' "$work/lammps.log")"
 compiler="$(c++ -v 2>&1 | grep -q '^gcc version' && echo g++ || echo clang++)"
 log="$here/log.$(date -u +%d%b%y).settle-22k.$compiler.1"
 {
-  echo "# settle-22k side by side, $(date -u +%Y-%m-%dT%H:%M:%SZ), $(uname -n), $(nproc) cores, load: $(uptime | sed 's/.*load average: //')"
+  echo "# settle-22k side by side, $(date -u +%Y-%m-%dT%H:%M:%SZ), $(uname -n), $(nproc --all) cores, load: $(uptime | sed 's/.*load average: //')"
   echo "# $steps steps of $dt s, 22000 particles, skin $skin m, 1 thread / 1 MPI rank each"
   echo "# LAMMPS: $(head -1 "$work/lammps.log")"
   printf "fluidbed_loop_wall_s %s\nfluidbed_neighbor_rebuilds %s\n" "$fb_wall" "$fb_rebuilds"
