@@ -37,7 +37,8 @@ struct TfmState {
 
 class TfmSolver {
  public:
-  /// Sets up the grid and the initial bed (uniform eps_initial below packed_height, gas above, hydrostatic P).
+  /// Validates the config, sets up the grid and the initial bed: uniform eps_initial below packed_height, gas
+  /// above, gas at the background inflow, P from the steady gas momentum balance. Throws an input error.
   explicit TfmSolver(const TfmConfig& config);
 
   /// Advances one adaptive time step (never past t_stop); returns the step taken.
@@ -60,7 +61,7 @@ class TfmSolver {
   double max_solids_speed() const;
   /// Smallest voidage in the domain.
   double min_voidage() const;
-  /// Sum over cells of |net gas volume flux| / dt-free reference: the gas continuity residual [m^2/s].
+  /// Sum over cells of |net gas volume outflow| per unit depth [m^2/s]: the gas continuity residual.
   double gas_volume_residual() const;
 
   /// Solids pressure [Pa] and solids shear viscosity [Pa s] of the last step, cells.
