@@ -297,6 +297,15 @@ std::string bubble_csv_header() {
          "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m";
 }
 
+std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s) {
+  std::optional<double> attached;
+  if (s.attached) attached = *s.attached ? 1.0 : 0.0;
+  std::optional<double> id;
+  if (s.bubble_id >= 0) id = static_cast<double>(s.bubble_id);
+  return {s.time, s.nose_height, s.rise_velocity, s.nose_gas_velocity, s.throughflow_ratio, s.area, attached,
+          s.equivalent_diameter, s.bed_height, s.erupted ? 1.0 : 0.0, id, s.nose_x};
+}
+
 std::string bubble_csv_row(const BubbleSample& s) {
   const std::string attached = s.attached ? (*s.attached ? "1" : "0") : "";
   const std::string id = s.bubble_id >= 0 ? fmt::format("{}", s.bubble_id) : std::string();

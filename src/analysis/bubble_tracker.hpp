@@ -56,6 +56,29 @@ class BubbleTracker {
   std::optional<double> eruption_time() const { return eruption_time_; }
   const BubbleConfig& config() const { return config_; }
 
+  /// Everything the tracker remembers between samples, for checkpoints (a restarted run samples the same).
+  struct State {
+    std::vector<std::uint8_t> tracked;
+    bool tracking = false;
+    bool was_attached = false;
+    int bubble_count = 0;
+    std::vector<double> nose_t, nose_h;
+    std::optional<double> detachment_time, eruption_time;
+  };
+  State state() const {
+    return {tracked_, tracking_, was_attached_, bubble_count_, nose_t_, nose_h_, detachment_time_, eruption_time_};
+  }
+  void restore(State s) {
+    tracked_ = std::move(s.tracked);
+    tracking_ = s.tracking;
+    was_attached_ = s.was_attached;
+    bubble_count_ = s.bubble_count;
+    nose_t_ = std::move(s.nose_t);
+    nose_h_ = std::move(s.nose_h);
+    detachment_time_ = s.detachment_time;
+    eruption_time_ = s.eruption_time;
+  }
+
  private:
   BubbleConfig config_;
   std::vector<std::uint8_t> tracked_;  // cells of the tracked bubble at the previous sample
@@ -82,5 +105,7 @@ int label_regions(int nx, int ny, const std::vector<std::uint8_t>& mask, std::ve
 std::string bubble_csv_header();
 /// One bubble.csv line (no newline); empty values where the sample has none.
 std::string bubble_csv_row(const BubbleSample& s);
+/// The same row as numbers (empty optionals where there is no value), in bubble_csv_header() order.
+std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s);
 
 }  // namespace fluidbed

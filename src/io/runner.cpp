@@ -5,6 +5,8 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <limits>
+#include <span>
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/sinks/basic_file_sink.h>
@@ -93,6 +95,36 @@ struct Schedule {
   }
 };
 
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+
+void save_bubble_state(Hdf5File& f, const BubbleTracker::State& s) {
+  f.create_group("bubble");
+  f.write("bubble/tracked", std::vector<std::int32_t>(s.tracked.begin(), s.tracked.end()));
+  f.write("bubble/nose_t", s.nose_t);
+  f.write("bubble/nose_h", s.nose_h);
+  f.set_attribute("bubble", "tracking", static_cast<std::int64_t>(s.tracking));
+  f.set_attribute("bubble", "was_attached", static_cast<std::int64_t>(s.was_attached));
+  f.set_attribute("bubble", "bubble_count", static_cast<std::int64_t>(s.bubble_count));
+  f.set_attribute("bubble", "detachment_time", s.detachment_time.value_or(kNone));
+  f.set_attribute("bubble", "eruption_time", s.eruption_time.value_or(kNone));
+}
+
+BubbleTracker::State load_bubble_state(const Hdf5File& f) {
+  BubbleTracker::State s;
+  const auto tracked = f.read_int32("bubble/tracked");
+  s.tracked.assign(tracked.begin(), tracked.end());
+  s.nose_t = f.read_double("bubble/nose_t");
+  s.nose_h = f.read_double("bubble/nose_h");
+  s.tracking = f.attribute_int64("bubble", "tracking") != 0;
+  s.was_attached = f.attribute_int64("bubble", "was_attached") != 0;
+  s.bubble_count = static_cast<int>(f.attribute_int64("bubble", "bubble_count"));
+  const double det = f.attribute_double("bubble", "detachment_time");
+  const double eru = f.attribute_double("bubble", "eruption_time");
+  if (!std::isnan(det)) s.detachment_time = det;
+  if (!std::isnan(eru)) s.eruption_time = eru;
+  return s;
+}
+
 }  // namespace
 
 int run_case(const LoadedCase& loaded, const RunOptions& options) {
@@ -136,6 +168,7 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
   Schedule frames{cfg.output.interval}, monitors{cfg.output.monitor_interval}, checkpoints{cfg.output.checkpoint_interval};
   double wall_before = 0.0;
   std::optional<CellTracers> tracers;
+  std::optional<BubbleTracker> bubbles;
   if (restart) {
     model->load(*restart_file);
     frames.next = restart_file->attribute_int64("/", "next_frame");
@@ -153,6 +186,10 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
     tracers->x = restart_file->read_double("tracers/x");
     tracers->y = restart_file->read_double("tracers/y");
   }
+  if (fv0.grid && fv0.eps && fv0.ug && fv0.vg) {
+    bubbles.emplace(cfg.bubble);
+    if (restart && restart_file->has("bubble/tracked")) bubbles->restore(load_bubble_state(*restart_file));
+  }
   restart_file.reset();
 
   const double t_restart = model->time();
@@ -161,6 +198,17 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
   monitor_cols.push_back("wall_s");
   CsvWriter monitor = restart ? CsvWriter::resume(out / "monitor.csv", monitor_cols, t_restart)
                               : CsvWriter(out / "monitor.csv", monitor_cols);
+  std::optional<CsvWriter> bubble_csv;
+  if (bubbles) {
+    std::vector<std::string> cols;
+    std::string header = bubble_csv_header();
+    for (std::size_t a = 0, b; a <= header.size(); a = b + 1) {
+      b = header.find(',', a);
+      if (b == std::string::npos) b = header.size();
+      cols.push_back(header.substr(a, b - a));
+    }
+    bubble_csv.emplace(restart ? CsvWriter::resume(out / "bubble.csv", cols, t_restart) : CsvWriter(out / "bubble.csv", cols));
+  }
   PvdCollection fields_pvd = restart ? PvdCollection::resume(out / "fields.pvd", t_restart) : PvdCollection(out / "fields.pvd");
   PvdCollection particles_pvd =
       restart ? PvdCollection::resume(out / "particles.pvd", t_restart) : PvdCollection(out / "particles.pvd");
@@ -205,6 +253,7 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
     f.set_attribute("/", "next_checkpoint", checkpoints.next);
     f.set_attribute("/", "wall_s", wall_total);
     model->save(f);
+    if (bubbles) save_bubble_state(f, bubbles->state());
     if (tracers) {
       f.create_group("tracers");
       f.write("tracers/x", tracers->x);
@@ -234,6 +283,12 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
       monitors.advance(t, dt);
     }
     if (frames.due(t, dt)) {
+      if (bubbles) {
+        const FieldView fv = model->fields();
+        const BubbleSample b = bubbles->observe(t, *fv.grid, *fv.eps, *fv.ug, *fv.vg);
+        const auto values = bubble_csv_values(b);
+        bubble_csv->row(std::span<const std::optional<double>>(values.data(), values.size()));
+      }
       write_frame(t);
       frames.advance(t, dt);
     }
@@ -302,6 +357,11 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
     log.warn("{}: stopped at t = {:.6g} s; continue with: fluidbed run {} --out {} --restart {}", stop_reason,
              model->time(), cfg.source_path, out.string(), final_path.string());
     return 130;
+  }
+  if (bubbles) {
+    const auto fmt_time = [](std::optional<double> t) { return t ? fmt::format("{:.3f} s", *t) : std::string("none"); };
+    log.info("bubble: detachment {}, eruption {}", fmt_time(bubbles->detachment_time()),
+             fmt_time(bubbles->eruption_time()));
   }
   log.info("done: t = {:.6g} s; outputs in {}", model->time(), out.string());
   return 0;
