@@ -140,7 +140,10 @@ double GasSolver::Impl::reference_mass_flow() const {
   for (double x : f.u.v) speed = std::max(speed, std::abs(x));
   for (double x : f.v.v) speed = std::max(speed, std::abs(x));
   const double width = grid.width();
-  return std::max({std::abs(m_in), cfg.rho_g * speed * width, cfg.rho_g * 1e-12 * width});
+  // With the gas at rest the reference must not fall below the round-off of the velocities, or SIMPLE can never
+  // meet the tolerance: floor it at a micro-fraction of the free-fall speed over the domain height.
+  const double v_floor = std::max(1e-12, 1e-6 * std::sqrt(std::hypot(cfg.gravity.x, cfg.gravity.y) * grid.height()));
+  return std::max({std::abs(m_in), cfg.rho_g * speed * width, cfg.rho_g * v_floor * width});
 }
 
 template <Comp C>

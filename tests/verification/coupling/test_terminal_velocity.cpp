@@ -92,7 +92,7 @@ TEST_F(TerminalVelocity, OneWayDragLawWithGasAtRest) {
 // the velocities (~1e-16 m/s), so SIMPLE stops at max_simple_iterations with a relative residual ~1e-4.
 // Disabled until the floor of GasSolver::Impl::reference_mass_flow is a resolvable velocity scale (see the
 // verification-coupling report); enable to check the fix.
-TEST_F(TerminalVelocity, DISABLED_StillGasInClosedBoxConverges) {
+TEST_F(TerminalVelocity, StillGasInClosedBoxConverges) {
   GasConfig gas;
   gas.boundary.inlet_velocity = 0.0;
   gas.boundary.jets.clear();
@@ -110,9 +110,8 @@ TEST_F(TerminalVelocity, DISABLED_StillGasInClosedBoxConverges) {
 
 TEST_F(TerminalVelocity, TwoWayCoupledInStillGas) {
   GasConfig gas;
-  // Nearly closed bottom: a 1 mm/s inflow (0.2% of u_t) gives the gas solver's mass residual a reference
-  // flow above round-off (with none, SIMPLE cannot converge: see the disabled test above). The particle is
-  // therefore compared through its slip to the local gas, u_g - v_p, which the inflow does not change.
+  // Nearly closed bottom: a 1 mm/s inflow (0.2% of u_t); the closed box itself is the test above. The particle
+  // is compared through its slip to the local gas, u_g - v_p, which the inflow does not change.
   gas.boundary.inlet_velocity = 1e-3;
   gas.boundary.jets.clear();
   gas.boundary.top = TopBoundary::PressureOutlet;
