@@ -53,6 +53,8 @@ stop_and_resume() {
   check "$label: that checkpoint exists" test -s "$cp"
   check "$label: the log names the checkpoint as written" grep -qF "checkpoint $cp" "$out/log.txt"
   [[ $how == STOP ]] && check "$label: the stop file is removed" test ! -e "$out/STOP"
+  check "$label: no temporary file left (the stop comes between steps)" \
+    test -z "$(find "$out" -name '*.tmp.*' | head -1)"
   local t_stop t_end
   t_stop=$(grep -o 'stopped at t = [0-9.e+-]*' "$out/log.txt" | tail -1 | awk '{ print $5 }')
   check "$label: stopped before the end (t = $t_stop s)" awk -v t="$t_stop" -v e="$LONG" 'BEGIN { exit !(t > 0 && t < e) }'

@@ -70,6 +70,11 @@ pvd_entries() {
   grep -o 'timestep="[^"]*"[^>]*file="[^"]*"' "$1" | sed -E 's/timestep="([^"]*)".*file="([^"]*)"/\1 \2/'
 }
 
+# Frame files NNNNNN.csv/.vtu/.vti (not the NAME.tmp.<pid> a hard kill may leave behind).
+frame_count() {
+  find "$1/fields" "$1/particles" -regextype posix-extended -regex '.*/[0-9]{6}\.(csv|vtu|vti)' 2>/dev/null | wc -l
+}
+
 # Two run folders hold the same results: particle CSVs, .vti and .vtu frames byte for byte, monitor.csv without
 # wall_s, the same .pvd entries, none twice.
 same_results() {  # same_results LABEL DIR_A DIR_B
@@ -82,8 +87,7 @@ same_results() {  # same_results LABEL DIR_A DIR_B
   for rel in "${frames[@]}"; do
     check "$label: $rel identical" cmp "$a/$rel" "$b/$rel"
   done
-  check "$label: same number of frames" test "$(find "$a" -name '[0-9]*.*' -path '*/[fp]*/*' | wc -l)" = \
-    "$(find "$b" -name '[0-9]*.*' -path '*/[fp]*/*' | wc -l)"
+  check "$label: same number of frames" test "$(frame_count "$a")" = "$(frame_count "$b")"
   check "$label: monitor.csv rows identical (without wall_s)" \
     cmp <(monitor_without_wall "$a/monitor.csv") <(monitor_without_wall "$b/monitor.csv")
   for f in fields.pvd particles.pvd; do
