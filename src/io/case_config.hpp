@@ -9,6 +9,7 @@
 #include "coupling/coupling_config.hpp"
 #include "dem/dem_config.hpp"
 #include "fluid/gas_config.hpp"
+#include "tfm/tfm_config.hpp"
 #include "dem/packing.hpp"
 
 namespace fluidbed {
@@ -62,6 +63,7 @@ struct CaseConfig {
   GasConfig gas{};
   CouplingConfig coupling{};
   BubbleConfig bubble{};
+  tfm::TfmConfig tfm{};
   double max_overlap_fraction = 0.1;  ///< a run fails when an overlap exceeds this fraction of the diameter
 };
 

@@ -172,6 +172,53 @@ void read_case(CaseReader& r, CaseConfig& c) {
                                     "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
 }
 
+void read_tfm(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  tfm::TfmConfig& t = c.tfm;
+  t.width = c.dem.width;
+  t.height = c.dem.height;
+  if (std::abs(c.grid.dx - c.grid.dy) > 1e-12 * c.grid.dx) {
+    r.fail("grid.cell_height", "the two-fluid model needs square cells (cell_height = cell_width)");
+  }
+  t.cell_size = c.grid.dx;
+  t.rho_g = c.gas.rho_g;
+  t.mu_g = c.gas.mu_g;
+  t.gravity = c.gas.gravity;
+  t.boundary = c.gas.boundary;
+  t.drag_switch = c.coupling.drag_switch;
+  t.d_p = r.number("tfm.particle_diameter", 0.004, "m", "particle diameter d_p", R::positive());
+  t.rho_s = r.number("tfm.particle_density", 2700.0, "kg/m^3", "particle density rho_s", R::positive());
+  t.e = r.number("tfm.restitution", 0.9, "", "restitution e of the kinetic theory (Eqs. 23-25)", R::Range{0.0, 1.0, true, false});
+  t.phi_deg = r.number("tfm.friction_angle", 40.0, "deg", "angle of internal friction phi (Eq. 21)", R::Range{0.0, 90.0, true, true});
+  t.eps_initial = r.number("tfm.eps_initial", 0.431, "", "voidage of the initial bed (Table 1)", R::Range{0.0, 1.0, true, true});
+  t.packed_height = r.number("tfm.packed_height", 0.54, "m", "height of the initial bed", R::positive());
+  if (t.packed_height > c.dem.height) r.fail("tfm.packed_height", "the bed is taller than the domain");
+  t.eps_star = r.number("tfm.eps_star", 0.43, "", "compaction voidage eps* (Eq. 20)", R::Range{0.0, 1.0, true, true});
+  const std::string rh = r.string("tfm.rheology", "kinetic_theory", "solids rheology: kinetic theory with the "
+                                  "frictional regime (Eqs. 21-26), constant viscosity, or inviscid (both with Eq. 20)",
+                                  {"kinetic_theory", "constant_viscosity", "inviscid"});
+  t.rheology = rh == "inviscid" ? tfm::SolidsRheology::Inviscid
+               : rh == "constant_viscosity" ? tfm::SolidsRheology::ConstantViscosity : tfm::SolidsRheology::KineticTheory;
+  t.mu_s_constant = r.number("tfm.solids_viscosity", 0.5, "Pa s", "solids viscosity of the constant-viscosity rheology "
+                             "(the paper gives no value)", R::positive());
+  t.mu_s_max = r.number("tfm.max_solids_viscosity", 100.0, "Pa s", "cap on the frictional viscosity", R::positive());
+  t.modulus.a = r.number("tfm.modulus_a", 1.0, "Pa", "A of G = A exp(B (eps* - eps)) (Eq. 20)", R::positive());
+  t.modulus.b = r.number("tfm.modulus_b", 600.0, "", "B of G = A exp(B (eps* - eps)) (Eq. 20)", R::positive());
+  const std::string lim = r.string("tfm.limiter", "superbee", "flux limiter of the convection (the paper: superbee)",
+                                   {"superbee", "van_leer", "minmod", "upwind"});
+  t.limiter = lim == "upwind" ? tfm::Limiter::Upwind
+              : lim == "minmod" ? tfm::Limiter::Minmod : lim == "van_leer" ? tfm::Limiter::VanLeer : tfm::Limiter::Superbee;
+  t.cfl = r.number("tfm.cfl", 0.5, "", "Courant number of the adaptive time step", R::Range{0.0, 1.0, true, false});
+  t.dt_max = r.number("tfm.dt_max", 1e-3, "s", "largest time step", R::positive());
+  t.dt_min = r.number("tfm.dt_min", 1e-8, "s", "the run fails below this time step", R::positive());
+  t.solids_no_slip_walls = r.boolean("tfm.solids_no_slip_walls", false, "solids stick to the side walls");
+  try {
+    tfm::validate(t);
+  } catch (const Error& e) {
+    throw_input_error(fmt::format("{}: [tfm]: {}", r.file_name(), e.what()));
+  }
+}
+
 void read_gas(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
@@ -265,6 +312,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   b.surface_eps = r.number("bubble.surface_voidage", b.surface_eps, "", "voidage that marks the bed surface",
                            R::Range{0.0, 1.0, true, true});
   (void)needs_gas;
+  if (c.model == Model::Tfm) read_tfm(r, c);
 }
 
 void read_output(CaseReader& r, CaseConfig& c) {

@@ -21,6 +21,7 @@
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/dem_model.hpp"
+#include "io/tfm_model.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/pvd.hpp"
 #include "io/vtk_writer.hpp"
@@ -162,7 +163,11 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
                                     model_name, cfg.name, want_model));
     }
   }
-  model = make_dem_model(cfg, out.string(), !restart, log);
+  if (cfg.model == Model::Tfm) {
+    model = make_tfm_model(cfg);
+  } else {
+    model = make_dem_model(cfg, out.string(), !restart, log);
+  }
 
   // Observers.
   Schedule frames{cfg.output.interval}, monitors{cfg.output.monitor_interval}, checkpoints{cfg.output.checkpoint_interval};
@@ -175,6 +180,8 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
     monitors.next = restart_file->attribute_int64("/", "next_monitor");
     checkpoints.next = restart_file->attribute_int64("/", "next_checkpoint");
     wall_before = restart_file->attribute_double("/", "wall_s");
+  } else {
+    checkpoints.next = 1;  // none at t = 0
   }
   const FieldView fv0 = model->fields();
   if (fv0.grid && cfg.output.tracers) {

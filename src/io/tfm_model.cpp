@@ -1,0 +1,109 @@
+#include "io/tfm_model.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "io/hdf5_file.hpp"
+#include "tfm/tfm_solver.hpp"
+
+namespace fluidbed {
+
+namespace {
+
+class TfmModel final : public ModelRun {
+ public:
+  explicit TfmModel(const CaseConfig& c) : config_(c), solver_(c.tfm) {
+    const Grid2& g = solver_.grid();
+    for (Field2* f : {&ug_, &vg_, &us_, &vs_}) *f = Field2(g.nx, g.ny);
+    refresh();
+  }
+
+  double time() const override { return solver_.time(); }
+  void advance() override {
+    // Land exactly on the monitor times, so that every output is written at its scheduled instant.
+    const double interval = config_.output.monitor_interval;
+    const double t = solver_.time();
+    const double t_stop = (std::floor(t / interval + 1e-9) + 1.0) * interval;
+    last_dt_ = solver_.step(std::min(t_stop, config_.run.end_time));
+    refresh();
+  }
+  double macro_dt() const override { return std::max(last_dt_, 1e-12); }
+
+  std::vector<std::string> monitor_columns() const override {
+    return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
+            "time_step_s", "min_voidage", "max_solids_speed_m_s", "granular_temperature_max"};
+  }
+  std::vector<std::optional<double>> monitor_values() override {
+    // Solids kinetic energy per metre of depth, from cell-centred velocities.
+    const Grid2& g = solver_.grid();
+    const tfm::TfmState& s = solver_.state();
+    double ke = 0.0;
+    for (std::size_t c = 0; c < g.cells(); ++c) {
+      ke += 0.5 * config_.tfm.rho_s * (1.0 - s.eps.v[c]) * (us_.v[c] * us_.v[c] + vs_.v[c] * vs_.v[c]) * g.dx * g.dy;
+    }
+    double theta_max = 0.0;
+    for (double th : s.theta.v) theta_max = std::max(theta_max, th);
+    return {ke, solver_.pressure_drop(), std::nullopt, solver_.gas_volume_residual(), solver_.solids_mass(),
+            last_dt_, solver_.min_voidage(), solver_.max_solids_speed(), theta_max};
+  }
+  FieldView fields() override {
+    FieldView f;
+    f.grid = &solver_.grid();
+    f.eps = &solver_.state().eps;
+    f.p = &solver_.state().p;
+    f.ug = &ug_;
+    f.vg = &vg_;
+    f.us = &us_;
+    f.vs = &vs_;
+    f.theta = &solver_.state().theta;
+    return f;
+  }
+
+  void save(Hdf5File& f) const override {
+    f.create_group("tfm");
+    for (const tfm::NamedArray& a : solver_.save_state()) {
+      f.write("tfm/" + a.name, a.values);
+      f.set_attribute("tfm/" + a.name, "nx", static_cast<std::int64_t>(a.nx));
+      f.set_attribute("tfm/" + a.name, "ny", static_cast<std::int64_t>(a.ny));
+    }
+    f.set_attribute("tfm", "last_dt", last_dt_);
+  }
+  void load(const Hdf5File& f) override {
+    std::vector<tfm::NamedArray> arrays = solver_.save_state();  // the names and shapes this grid needs
+    for (tfm::NamedArray& a : arrays) {
+      a.values = f.read_double("tfm/" + a.name);
+      a.nx = static_cast<int>(f.attribute_int64("tfm/" + a.name, "nx"));
+      a.ny = static_cast<int>(f.attribute_int64("tfm/" + a.name, "ny"));
+    }
+    solver_.restore_state(arrays);
+    last_dt_ = f.attribute_double("tfm", "last_dt");
+    refresh();
+  }
+
+  CostInfo cost() const override { return {0, solver_.grid().cells(), static_cast<std::uint64_t>(solver_.state().steps)}; }
+  std::string describe() const override {
+    const char* rheology = config_.tfm.rheology == tfm::SolidsRheology::KineticTheory   ? "kinetic theory"
+                           : config_.tfm.rheology == tfm::SolidsRheology::Inviscid        ? "inviscid solids"
+                                                                                           : "constant solids viscosity";
+    return fmt::format("TFM ({}), {} x {} cells, adaptive dt <= {:g} s", rheology, solver_.grid().nx,
+                       solver_.grid().ny, config_.tfm.dt_max);
+  }
+
+ private:
+  void refresh() {
+    solver_.gas_velocity_cells(ug_, vg_);
+    solver_.solids_velocity_cells(us_, vs_);
+  }
+
+  CaseConfig config_;
+  tfm::TfmSolver solver_;
+  Field2 ug_, vg_, us_, vs_;
+  double last_dt_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<ModelRun> make_tfm_model(const CaseConfig& config) { return std::make_unique<TfmModel>(config); }
+
+}  // namespace fluidbed

@@ -1,0 +1,12 @@
+#pragma once
+// The two-fluid model behind the run driver.
+#include <memory>
+
+#include "io/case_config.hpp"
+#include "io/model_run.hpp"
+
+namespace fluidbed {
+
+std::unique_ptr<ModelRun> make_tfm_model(const CaseConfig& config);
+
+}  // namespace fluidbed
