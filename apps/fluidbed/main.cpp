@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
   check->add_option("case", check_file, "case file (TOML)")->required();
   check->add_option("--set", check_sets, "override a case key: SECTION.KEY=VALUE (repeatable)");
 
+  auto* keys = app.add_subcommand("keys", "print every case key (type, unit, default, range) as Markdown");
+
   std::vector<std::string> report_dirs;
   std::string report_out = "report";
   auto* rep = app.add_subcommand("report", "figures and summary.md from one or more run folders");
@@ -99,6 +101,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*rep) return report(report_dirs, report_out);
+    if (*keys) {
+      fmt::print("{}", fluidbed::case_keys_markdown());
+      return 0;
+    }
   } catch (const fluidbed::Error& e) {
     std::cerr << "fluidbed: " << e.what() << "\n";
     return e.exit_code();

@@ -90,7 +90,8 @@ void GasSolver::Impl::setup(Momentum& m) {
   std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(n));
   const auto get = [&](int a, int b) { return (a < 0 || a > n_al || b < 0 || b >= n_ac) ? -1 : m.id[idx(a, b)]; };
   for (int r = 0; r < n; ++r) {
-    const auto [a, b] = m.where[static_cast<std::size_t>(r)];
+    const int a = m.where[static_cast<std::size_t>(r)][0];
+      const int b = m.where[static_cast<std::size_t>(r)][1];
     nb[static_cast<std::size_t>(r)] = {get(a - 1, b), get(a + 1, b), get(a, b - 1), get(a, b + 1)};
     if (a == n_al) nb[static_cast<std::size_t>(r)] = {get(a - 1, b), -1, -1, -1};  // outlet half cell
   }
@@ -189,7 +190,8 @@ void GasSolver::Impl::solve_momentum(Momentum& m, double dt) {
 
 #pragma omp parallel for schedule(static) if (nx * ny >= kParallelCells)
   for (int r = 0; r < n; ++r) {
-    const auto [a, b] = m.where[static_cast<std::size_t>(r)];
+    const int a = m.where[static_cast<std::size_t>(r)][0];
+      const int b = m.where[static_cast<std::size_t>(r)][1];
     const bool half = a == n_al;  // outlet face: half control volume inside the domain
     const double vol = h_al * h_ac * (half ? 0.5 : 1.0);
     const double ef = face(eps_f, a, b);
@@ -315,7 +317,8 @@ void GasSolver::Impl::solve_momentum(Momentum& m, double dt) {
                                        C == Comp::U ? "u" : "v", m.solver.error(), m.solver.iterations()));
   }
   for (int r = 0; r < n; ++r) {
-    const auto [a, b] = m.where[static_cast<std::size_t>(r)];
+    const int a = m.where[static_cast<std::size_t>(r)][0];
+      const int b = m.where[static_cast<std::size_t>(r)][1];
     (C == Comp::U ? phi_field(a, b) : phi_field(b, a)) = sol[r];
   }
 }
@@ -394,8 +397,15 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
   double m_ref = 0.0;
   for (int it = 1; it <= cfg.max_simple_iterations; ++it) {
     s.mass_fluxes();
-    s.solve_momentum<Comp::U>(s.mom_u, dt);
-    s.solve_momentum<Comp::V>(s.mom_v, dt);
+    try {
+      s.solve_momentum<Comp::U>(s.mom_u, dt);
+      s.solve_momentum<Comp::V>(s.mom_v, dt);
+    } catch (const Error& e) {
+      throw_simulation_error(fmt::format(
+          "gas at t = {:.6g} s (dt = {:.3g} s), SIMPLE iteration {}: {}. Likely cause: an inflow or a drag too strong "
+          "for the time step; remedy: reduce the time step, check the inlet and jet velocities",
+          t_new, dt, it, e.what()));
+    }
     s.mass_fluxes();
     const double abs_imbalance = s.continuity(eps_old, eps_new, dt);
     m_ref = s.reference_mass_flow();
@@ -427,7 +437,7 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
   if (!converged) {
     throw_simulation_error(fmt::format(
         "gas: SIMPLE did not converge at t = {:.6g} s (dt = {:.3g} s): normalised mass residual {:.3e} > tolerance "
-        "{:.1e} after {} iterations; reduce the time step or raise gas.max_simple_iterations",
+        "{:.1e} after {} iterations; reduce the time step or raise gas.max_iterations",
         t_new, dt, residual, cfg.mass_tolerance, cfg.max_simple_iterations));
   }
   // Gas mass balance of the corrected velocities.

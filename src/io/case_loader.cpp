@@ -343,6 +343,31 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
 
 }  // namespace
 
+std::string case_keys_markdown() {
+  // Read a minimal case of each model with a jet, a pair table and one species so every key is registered.
+  const std::string base = "case.name = \"keys\"\nspecies = [{diameter = 0.004}]\ncontact.pair = [{species_a = 0}]\n"
+                           "inlet.jet = [{centre = 0.31}]\n";
+  std::vector<KeyInfo> all = load_case_text(base, "keys.toml").keys;
+  for (const KeyInfo& k :
+       load_case_text("case.name = \"keys\"\ncase.model = \"tfm\"\ninlet.jet = [{centre = 0.31}]\n", "keys.toml").keys) {
+    if (std::none_of(all.begin(), all.end(), [&](const KeyInfo& a) { return a.path == k.path; })) all.push_back(k);
+  }
+  std::string md;
+  std::string section;
+  for (const KeyInfo& k : all) {
+    if (k.type == "array of tables") continue;
+    const std::string sec = k.path.substr(0, k.path.find_first_of(".["));
+    if (sec != section) {
+      section = sec;
+      md += fmt::format("\n### [{}]\n\n| key | type | unit | default | allowed | meaning |\n|---|---|---|---|---|---|\n", sec);
+    }
+    md += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", k.path, k.type, k.unit.empty() ? "-" : k.unit,
+                      k.default_text.empty() ? "**required**" : "`" + k.default_text + "`",
+                      k.range.empty() ? "-" : k.range, k.doc);
+  }
+  return md;
+}
+
 LoadedCase load_case(const std::string& path, const std::vector<std::string>& overrides) {
   CaseReader r(path);
   return finish(r, overrides);

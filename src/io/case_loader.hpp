@@ -21,6 +21,9 @@ LoadedCase load_case(const std::string& path, const std::vector<std::string>& ov
 LoadedCase load_case_text(const std::string& text, const std::string& name,
                           const std::vector<std::string>& overrides = {});
 
+/// Every key of both models as a Markdown table (docs/case-format.md is this output).
+std::string case_keys_markdown();
+
 /// Largest stable DEM time step for the symplectic Euler update of the stiffest contact (lightest pair,
 /// strongest damping): omega dt < 2 (sqrt(1 + zeta^2) - zeta).
 double dem_stable_time_step(const DemConfig& dem);

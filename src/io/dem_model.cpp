@@ -153,7 +153,6 @@ class DemModel final : public ModelRun {
  public:
   DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
       : config_(c),
-        log_(log),
         sim_(DemSolver(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}),
              c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid, c.gas)) : std::nullopt, c.coupling) {
     double d_min = 1e300;
@@ -168,10 +167,10 @@ class DemModel final : public ModelRun {
     const double ov = sim_.dem().max_overlap();
     if (ov > overlap_limit_) {
       throw_simulation_error(fmt::format(
-          "t = {:.6g} s: a contact overlaps by {:.3g} m, more than {:.0f}% of the diameter. Likely cause: the "
+          "t = {:.6g} s: a contact overlaps by {:.3g} m, more than {:.0f}% of the diameter ({}). Likely cause: the "
           "springs are too soft for the loads (stiffness {} N/m) or particles hit at high speed; remedy: raise "
           "contact.stiffness (and lower dem.time_step), or raise dem.max_overlap_fraction if this is intended.",
-          time(), ov, 100.0 * config_.max_overlap_fraction, config_.dem.stiffness));
+          time(), ov, 100.0 * config_.max_overlap_fraction, deepest_contact(), config_.dem.stiffness));
     }
     if (sim_.has_gas() && !std::isfinite(sim_.gas().pressure_drop())) {
       throw_simulation_error(fmt::format("t = {:.6g} s: the gas pressure is not finite. Likely cause: an unstable gas "
@@ -312,8 +311,37 @@ class DemModel final : public ModelRun {
     return p;
   }
 
+  /// Where the deepest contact is, for the overlap diagnosis: the particle pair (from the neighbour list) or the
+  /// particle and wall. Runs only on the failure path.
+  std::string deepest_contact() const {
+    const ParticleStore& p = sim_.dem().particles();
+    const DemSolver::State s = sim_.dem().state();
+    double worst = -1.0;
+    std::string where;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      for (std::size_t k = s.neighbors.offset[i]; k < s.neighbors.offset[i + 1]; ++k) {
+        const std::size_t j = s.neighbors.partner[k];
+        const double ov = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+        if (ov > worst) {
+          worst = ov;
+          const std::size_t a = p.id[i] < p.id[j] ? i : j, b = a == i ? j : i;
+          where = fmt::format("particles {} and {} at ({:.6g}, {:.6g}) m and ({:.6g}, {:.6g}) m", p.id[a], p.id[b],
+                              p.x[a], p.y[a], p.x[b], p.y[b]);
+        }
+      }
+      const double W = config_.dem.width, H = config_.dem.height, r = p.radius[i];
+      for (const auto& [ov, wall] : {std::pair{r - p.x[i], "left"}, std::pair{p.x[i] + r - W, "right"},
+                                     std::pair{r - p.y[i], "bottom"}, std::pair{p.y[i] + r - H, "top"}}) {
+        if (ov > worst && (std::string(wall) != "top" || config_.dem.walls.top)) {
+          worst = ov;
+          where = fmt::format("particle {} at ({:.6g}, {:.6g}) m and the {} wall", p.id[i], p.x[i], p.y[i], wall);
+        }
+      }
+    }
+    return where;
+  }
+
   CaseConfig config_;
-  spdlog::logger& log_;
   CfdDemSimulation sim_;
   double overlap_limit_ = 0.0;
 };

@@ -163,10 +163,16 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
                                     model_name, cfg.name, want_model));
     }
   }
-  if (cfg.model == Model::Tfm) {
-    model = make_tfm_model(cfg);
-  } else {
-    model = make_dem_model(cfg, out.string(), !restart, log);
+  try {
+    if (cfg.model == Model::Tfm) {
+      model = make_tfm_model(cfg);
+    } else {
+      model = make_dem_model(cfg, out.string(), !restart, log);
+    }
+  } catch (const Error& e) {
+    // The initial gas solve runs here: its failure belongs in log.txt like any other.
+    if (e.kind() == ErrorKind::SimulationFailed) log.error("the simulation failed before the first step: {}", e.what());
+    throw;
   }
 
   // Observers.
