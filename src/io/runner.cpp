@@ -90,10 +90,11 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& out, bool quiet, boo
 struct Schedule {
   double interval = 0.0;
   std::int64_t next = 0;
-  bool due(double t, double dt) const { return interval > 0.0 && t >= next * interval - 0.5 * dt; }
+  bool due(double t, double dt) const { return interval > 0.0 && t >= next * interval - slack(dt); }
   void advance(double t, double dt) {
-    while (interval > 0.0 && t >= next * interval - 0.5 * dt) ++next;
+    while (interval > 0.0 && t >= next * interval - slack(dt)) ++next;
   }
+  double slack(double dt) const { return std::max(0.5 * dt, 1e-9 * interval); }
 };
 
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
@@ -310,12 +311,14 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
   try {
     if (!restart) observe(model->time());
     while (model->time() < cfg.run.end_time - 0.5 * dt) {
+      const double t_before = model->time();
       model->advance();
       ++steps_here;
       const double t = model->time();
       if (tracers) {
+        // The step actually taken: the two-fluid model's step is adaptive.
         const FieldView fv = model->fields();
-        if (fv.us && fv.vs) tracers->advance(*fv.us, *fv.vs, dt);
+        if (fv.us && fv.vs) tracers->advance(*fv.us, *fv.vs, t - t_before);
       }
       observe(t);
       if (checkpoints.due(t, dt) && t < cfg.run.end_time - 0.5 * dt) {
