@@ -42,11 +42,31 @@ std::string describe_case(const CaseConfig& c) {
       line("estimated settled bed height", fmt::format("{:.3f} m (random disc packing, area fraction 0.82)",
                                                         area / 0.82 / c.dem.width));
     }
-    const double rho_g = 1.205, mu_g = 1.8e-5;
+    const double rho_g = c.gas.rho_g, mu_g = c.gas.mu_g;
     line("terminal velocity in air (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(sp.diameter, sp.density, rho_g, mu_g, g)));
     line("Ergun U_mf at eps_mf = 0.43", fmt::format("{:.3f} m/s", ergun_minimum_fluidisation_velocity(0.43, sp.diameter, sp.density, rho_g, mu_g, g)));
     const double bytes_per_particle = 21 * 8 + 8 + 4 * 2 + 8 * (4 + 16) + 64;
     line("memory estimate", fmt::format("{:.1f} MB", static_cast<double>(n) * bytes_per_particle / 1e6));
+  }
+  if (c.model == Model::Tfm || c.gas_enabled) {
+    line("gas grid", fmt::format("{} x {} cells of {} x {} m", c.grid.nx, c.grid.ny, c.grid.dx, c.grid.dy));
+    if (c.model == Model::Dem) {
+      line("gas time step", fmt::format("{:g} s ({} DEM steps)", c.dem.dt * c.coupling.dem_substeps, c.coupling.dem_substeps));
+    }
+    line("inlet (superficial)", fmt::format("{} m/s through the bottom", c.gas.boundary.inlet_velocity));
+    for (const InletJet& j : c.gas.boundary.jets) {
+      line("jet", fmt::format("{} m/s over [{}, {}] m for {} <= t < {} s", j.velocity, j.x_centre - 0.5 * j.width,
+                              j.x_centre + 0.5 * j.width, j.t_start, j.t_end));
+    }
+  }
+  if (c.model == Model::Tfm) {
+    const tfm::TfmConfig& t = c.tfm;
+    const double g = std::abs(t.gravity.y);
+    line("solids", fmt::format("d = {} m, rho_s = {} kg/m^3, eps_initial = {}, eps* = {}", t.d_p, t.rho_s, t.eps_initial, t.eps_star));
+    line("Ergun U_mf at eps_initial", fmt::format("{:.3f} m/s", ergun_minimum_fluidisation_velocity(t.eps_initial, t.d_p, t.rho_s, t.rho_g, t.mu_g, g)));
+    line("terminal velocity (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(t.d_p, t.rho_s, t.rho_g, t.mu_g, g)));
+    line("bed weight per area", fmt::format("{:.0f} Pa", (1.0 - t.eps_initial) * (t.rho_s - t.rho_g) * g * t.packed_height));
+    line("memory estimate", fmt::format("{:.2f} MB", static_cast<double>(c.grid.cells()) * 40 * 8 / 1e6));
   }
   return s;
 }
