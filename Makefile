@@ -31,9 +31,11 @@ build: deps $(BUILD)/build.ninja
 $(ASAN_BUILD)/build.ninja: | deps
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFLUIDBED_SANITIZE=ON -DFLUIDBED_BENCH=OFF
 
-# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer.
+UNIT_TARGETS = $(patsubst tests/unit/%/,test_unit_%,$(sort $(dir $(wildcard tests/unit/*/*.cpp))))
+
+# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (only the unit test programs are built there).
 asan: deps $(ASAN_BUILD)/build.ninja
-	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(UNIT_TARGETS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest -L unit --output-on-failure -j $(JOBS)
 
