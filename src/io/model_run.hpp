@@ -37,7 +37,8 @@ class ModelRun {
   virtual double time() const = 0;
   /// One macro step: a gas step with its DEM sub-steps, a DEM step alone, or a TFM step.
   virtual void advance() = 0;
-  /// Time step of advance(), s (for progress and output scheduling).
+  /// Time step of advance(), s: half of it is the slack of output scheduling; 0 for a model whose adaptive steps
+  /// land on the output times themselves.
   virtual double macro_dt() const = 0;
   virtual std::vector<std::string> monitor_columns() const = 0;
   virtual std::vector<std::optional<double>> monitor_values() = 0;

@@ -21,15 +21,18 @@ class TfmModel final : public ModelRun {
 
   double time() const override { return solver_.time(); }
   void advance() override {
-    // Land exactly on the monitor times, so that every output is written at its scheduled instant.
-    const double interval = config_.output.monitor_interval;
+    // Land exactly on every scheduled output time (monitor rows, frames, checkpoints), so that each is written
+    // at its instant and a restarted run schedules the same steps.
     const double t = solver_.time();
-    const double t_stop = (std::floor(t / interval + 1e-9) + 1.0) * interval;
-    last_dt_ = solver_.step(std::min(t_stop, config_.run.end_time));
+    double t_stop = config_.run.end_time;
+    for (double interval : {config_.output.monitor_interval, config_.output.interval, config_.output.checkpoint_interval}) {
+      if (interval > 0.0) t_stop = std::min(t_stop, (std::floor(t / interval + 1e-9) + 1.0) * interval);
+    }
+    last_dt_ = solver_.step(t_stop);
     refresh();
   }
-  double macro_dt() const override { return std::max(last_dt_, 1e-12); }
-
+  /// The step is adaptive and lands on the output times: no scheduling slack is needed.
+  double macro_dt() const override { return 0.0; }
   std::vector<std::string> monitor_columns() const override {
     return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
             "time_step_s", "min_voidage", "max_solids_speed_m_s", "granular_temperature_max"};
