@@ -36,8 +36,13 @@ for entry in "${cases[@]}"; do
   IFS='|' read -r name file extra <<< "$entry"
   for r in $(seq 1 "$runs"); do
     out="$work/$name-$r"
+    # A case that fails (e.g. a model still being wired) is reported and skipped, not fatal to the others.
     # shellcheck disable=SC2086
-    /usr/bin/time -v -o "$out.time" "$fluidbed" run "$file" --out "$out" --threads "$threads" --quiet $extra
+    if ! /usr/bin/time -v -o "$out.time" "$fluidbed" run "$file" --out "$out" --threads "$threads" --quiet $extra \
+        2> "$out.err"; then
+      echo "$name: run $r failed: $(tail -n 1 "$out.err")" >&2
+      break
+    fi
     rss_kb="$(awk -F': ' '/Maximum resident set size/ {print $2}' "$out.time")"
     cpu_s="$(awk -F': ' '/User time|System time/ {s += $2} END {print s}' "$out.time")"
     echo "$name $r $rss_kb $cpu_s $(tr -d '\n' < "$out/cost.json")" >> "$results"
