@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <unistd.h>
 
 #include "core/error.hpp"
 #include "io/case_check.hpp"
@@ -49,6 +50,13 @@ int report(const std::vector<std::string>& dirs, const std::string& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Threads that spin while the other core runs the serial gas solve slowed 2-thread runs 2.3 times on the
+  // 2-core machine (docs/performance.md). libgomp reads its wait policy when it loads, so set it and restart
+  // the program once, unless the user chose a policy.
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr) {
+    setenv("OMP_WAIT_POLICY", "passive", 1);
+    execv("/proc/self/exe", argv);  // returns only on failure: then go on with the default policy
+  }
   CLI::App app{"fluidbed: gas-fluidized beds by CFD-DEM and the two-fluid model"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "fluidbed 0.1.0");
