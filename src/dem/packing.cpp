@@ -12,20 +12,20 @@ namespace fluidbed {
 std::int64_t random_placement_capacity(const DemConfig& dem, const PackingConfig& cfg) {
   double d_max = 0.0;
   for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
-  const double site = d_max + cfg.min_gap;
-  const auto nx = static_cast<std::int64_t>(std::floor((cfg.x_max - cfg.x_min) / site));
-  const auto ny = static_cast<std::int64_t>(std::floor((cfg.y_max - cfg.y_min) / site));
+  const double site = d_max + 2.0 * cfg.min_gap;  // half a gap of margin on each side, one gap of jitter
+  const auto nx = static_cast<std::int64_t>(std::floor((cfg.x_max - cfg.x_min) / site + 1e-9));
+  const auto ny = static_cast<std::int64_t>(std::floor((cfg.y_max - cfg.y_min) / site + 1e-9));
   return std::max<std::int64_t>(nx, 0) * std::max<std::int64_t>(ny, 0);
 }
 
 ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
   double d_max = 0.0;
   for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
-  const double site = d_max + cfg.min_gap;
+  const double site = d_max + 2.0 * cfg.min_gap;  // half a gap of margin on each side, one gap of jitter
   const double w = cfg.x_max - cfg.x_min;
   const double h = cfg.y_max - cfg.y_min;
-  const auto nx = static_cast<std::int64_t>(std::floor(w / site));
-  const auto ny = static_cast<std::int64_t>(std::floor(h / site));
+  const auto nx = static_cast<std::int64_t>(std::floor(w / site + 1e-9));
+  const auto ny = static_cast<std::int64_t>(std::floor(h / site + 1e-9));
   const std::int64_t sites = std::max<std::int64_t>(nx, 0) * std::max<std::int64_t>(ny, 0);
   if (cfg.count > sites) {
     throw_input_error(fmt::format(
@@ -59,9 +59,10 @@ ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
   for (std::int64_t k = 0; k < cfg.count; ++k) {
     const std::int64_t s = site_index[static_cast<std::size_t>(k)];
     const Species& sp = dem.species[static_cast<std::size_t>(species[static_cast<std::size_t>(k)])];
-    const double free = site - sp.diameter;  // jitter range that keeps the particle inside its site
-    const double x = cfg.x_min + (static_cast<double>(s % nx) * site) + sp.radius() + uniform() * free;
-    const double y = cfg.y_min + (static_cast<double>(s / nx) * site) + sp.radius() + uniform() * free;
+    // Jitter inside the site keeping half the gap to its edges, so neighbours stay at least min_gap apart.
+    const double free = site - sp.diameter - cfg.min_gap;
+    const double x = cfg.x_min + (static_cast<double>(s % nx) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;
+    const double y = cfg.y_min + (static_cast<double>(s / nx) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;
     p.add(k, species[static_cast<std::size_t>(k)], sp, {x, y});
   }
   return p;

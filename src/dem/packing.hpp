@@ -23,7 +23,8 @@ struct PackingConfig {
 std::int64_t random_placement_capacity(const DemConfig& dem, const PackingConfig& cfg);
 
 /// Place `count` particles at random without overlap: each occupies a distinct, randomly chosen site of a
-/// lattice of spacing (largest diameter + gap) and is jittered at random inside its site. O(N), reproducible
+/// lattice of spacing (largest diameter + 2 gap) and is jittered at random inside its site, keeping half a gap to
+/// its edges, so neighbours stay at least one gap apart. O(N), reproducible
 /// for a given seed; throws a bad-input error when the particles do not fit in the region.
 ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg);
 
