@@ -22,8 +22,9 @@ struct CellBins {
   // search streams through memory whatever the storage order of the particles.
   std::vector<double> xs, ys, rs;
 
-  int ci(double x) const { return std::clamp(static_cast<int>((x - x_min) / size), 0, nx - 1); }
-  int cj(double y) const { return std::clamp(static_cast<int>((y - y_min) / size), 0, ny - 1); }
+  // Clamp before the conversion: a far (or non-finite) coordinate must not overflow the int.
+  int ci(double x) const { const double f = (x - x_min) / size; return f > 0.0 ? static_cast<int>(std::min(f, nx - 1.0)) : 0; }
+  int cj(double y) const { const double f = (y - y_min) / size; return f > 0.0 ? static_cast<int>(std::min(f, ny - 1.0)) : 0; }
 };
 
 CellBins bin_particles(const ParticleStore& p, double cell_size) {

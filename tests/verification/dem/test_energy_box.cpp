@@ -48,7 +48,7 @@ TEST(DemEnergyBox, ElasticFrictionlessGasConservesEnergyOverTenThousandSteps) {
   pc.count = 1000;
   pc.x_max = W;
   pc.y_max = H;
-  pc.min_gap = 0.002;
+  pc.min_gap = 0.001;  // 6 mm lattice sites, neighbours at least 1 mm apart
   pc.seed = 7;
   ParticleStore p = place_random(c, pc);
   std::mt19937_64 rng(11);
