@@ -1,0 +1,90 @@
+// The case loader: defaults, overrides, the resolved case and the registry of keys.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "io/case_loader.hpp"
+#include "io/case_reader.hpp"
+
+namespace fluidbed {
+namespace {
+
+std::string error_of(const std::string& text, const std::vector<std::string>& sets = {}) {
+  try {
+    load_case_text(text, "t.toml", sets);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exit_code(), 2);
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CaseLoader, DefaultsAreThePapersTable1) {
+  const LoadedCase lc = load_case_text("case.name = \"x\"\n", "t.toml");
+  const CaseConfig& c = lc.config;
+  EXPECT_EQ(c.model, Model::Dem);
+  EXPECT_DOUBLE_EQ(c.dem.species[0].diameter, 0.004);
+  EXPECT_DOUBLE_EQ(c.dem.species[0].density, 2700.0);
+  EXPECT_DOUBLE_EQ(c.dem.stiffness, 800.0);
+  EXPECT_DOUBLE_EQ(c.dem.pair_params(0, 0).restitution, 0.9);
+  EXPECT_DOUBLE_EQ(c.dem.pair_params(0, 0).friction, 0.3);
+  EXPECT_EQ(c.particles.packing.count, 22000);
+  EXPECT_EQ(c.grid.nx, 30);
+  EXPECT_EQ(c.grid.ny, 50);
+  EXPECT_DOUBLE_EQ(c.gas.rho_g, 1.205);
+  EXPECT_DOUBLE_EQ(c.gas.mu_g, 1.8e-5);
+  EXPECT_DOUBLE_EQ(c.gas.boundary.inlet_velocity, 1.8);
+}
+
+TEST(CaseLoader, OverridesUseTheSameChecksAndReachTheResolvedCase) {
+  const LoadedCase lc = load_case_text("case.name = \"x\"\n", "t.toml", {"contact.stiffness=1000", "case.model=dem"});
+  EXPECT_DOUBLE_EQ(lc.config.dem.stiffness, 1000.0);
+  EXPECT_NE(lc.resolved_toml.find("stiffness = 1000"), std::string::npos) << lc.resolved_toml;
+  // The resolved case loads back to the same configuration.
+  const LoadedCase again = load_case_text(lc.resolved_toml, "resolved.toml");
+  EXPECT_DOUBLE_EQ(again.config.dem.stiffness, 1000.0);
+  EXPECT_EQ(again.resolved_toml, lc.resolved_toml);
+  EXPECT_NE(error_of("case.name = \"x\"\n", {"contact.stiffness=-1"}).find("contact.stiffness: -1 is out of range"),
+            std::string::npos);
+}
+
+TEST(CaseLoader, UnknownKeysNameTheNearestKnownOne) {
+  const std::string e = error_of("case.name = \"x\"\n[gas]\nvicosity = 1e-5\n");
+  EXPECT_NE(e.find("t.toml:3:12: unknown key 'gas.vicosity'; did you mean 'gas.viscosity'?"), std::string::npos) << e;
+}
+
+TEST(CaseLoader, ArraysOfTablesAndTheTwoFluidModel) {
+  const LoadedCase lc = load_case_text(
+      "case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nrheology = \"inviscid\"\n[[inlet.jet]]\ncentre = 0.31\n"
+      "[[inlet.jet]]\ncentre = 0.11\nstart = 0.5\nend = 0.6\n",
+      "t.toml");
+  EXPECT_EQ(lc.config.model, Model::Tfm);
+  EXPECT_EQ(lc.config.tfm.rheology, tfm::SolidsRheology::Inviscid);
+  ASSERT_EQ(lc.config.gas.boundary.jets.size(), 2u);
+  EXPECT_DOUBLE_EQ(lc.config.gas.boundary.jets[1].t_start, 0.5);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.boundary.jets[1].x_centre, 0.11);
+  EXPECT_NE(error_of("case.name = \"x\"\ncase.model = \"tfm\"\n[contact]\nstiffness = 1\n").find("unknown key 'contact.stiffness'"),
+            std::string::npos);
+}
+
+TEST(CaseLoader, NonAsciiIsRejectedWithItsPosition) {
+  EXPECT_NE(error_of("case.name = \"x\"\n# caf\xc3\xa9\n").find("t.toml:2:6: non-ASCII character"), std::string::npos);
+}
+
+TEST(CaseLoader, KeysTableListsEveryKeyOnce) {
+  const std::string md = case_keys_markdown();
+  for (const char* key : {"`case.name`", "`dem.time_step`", "`gas.viscosity`", "`inlet.jet[].centre`", "`tfm.eps_star`",
+                          "`coupling.voidage`", "`bubble.threshold`", "`output.interval`"}) {
+    const auto first = md.find(key);
+    ASSERT_NE(first, std::string::npos) << key;
+    EXPECT_EQ(md.find(key, first + 1), std::string::npos) << key << " listed twice";
+  }
+}
+
+TEST(CaseLoader, EditDistance) {
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+  EXPECT_EQ(edit_distance("", "abc"), 3u);
+  EXPECT_EQ(edit_distance("dem.time_step", "dem.time_step"), 0u);
+}
+
+}  // namespace
+}  // namespace fluidbed
