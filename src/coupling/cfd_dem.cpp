@@ -18,10 +18,14 @@ CfdDemSimulation::CfdDemSimulation(DemSolver dem, std::optional<GasSolver> gas, 
   }
 }
 
+void CfdDemSimulation::clip_voidage() {
+  for (std::size_t c = 0; c < eps_.v.size(); ++c) eps_gas_.v[c] = std::clamp(eps_.v[c], coupling_.eps_min, 1.0);
+}
+
 void CfdDemSimulation::deposit() {
   const Grid2& g = gas_->grid();
   compute_voidage(dem_.particles(), g, coupling_.voidage, depth_, eps_);
-  for (std::size_t c = 0; c < g.cells(); ++c) eps_gas_.v[c] = std::clamp(eps_.v[c], coupling_.eps_min, 1.0);
+  clip_voidage();
   cell_solids_velocity(dem_.particles(), g, coupling_.voidage, us_, vs_);
 
   // Interphase coefficient of each cell as the gas sees it: the particles' drag coefficients K_p = V_p beta /
@@ -137,7 +141,7 @@ void CfdDemSimulation::restore(Field2 eps, std::uint64_t gas_steps) {
   if (!gas_) return;
   eps_ = std::move(eps);
   const Grid2& g = gas_->grid();
-  for (std::size_t c = 0; c < g.cells(); ++c) eps_gas_.v[c] = std::clamp(eps_.v[c], coupling_.eps_min, 1.0);
+  clip_voidage();
   cell_solids_velocity(dem_.particles(), g, coupling_.voidage, us_, vs_);
   gas_->cell_velocity(ug_, vg_);
 }

@@ -49,6 +49,8 @@ class CfdDemSimulation {
   void restore(Field2 eps, std::uint64_t gas_steps);
 
  private:
+  /// The voidage the gas and the drag see: the counted one clipped to [eps_min, 1].
+  void clip_voidage();
   void deposit();
   void update_particle_forces();
 
