@@ -54,6 +54,25 @@ TEST(DemContactLaw, NormalForceIsSpringPlusDashpot) {
   EXPECT_NEAR(f.f.x, -0.08 + 1.0, 1e-15);
 }
 
+TEST(DemContactLaw, DashpotOfAContactStartingOrEndingInsideTheStep) {
+  const double dt = 1e-4;
+  // Deep in the contact (overlap >= |vn| dt) the dashpot sees the normal velocity itself.
+  EXPECT_EQ(normal_dashpot_velocity(1e-4, 0.5, dt), 0.5);
+  EXPECT_EQ(normal_dashpot_velocity(1e-4, -0.5, dt), -0.5);
+  EXPECT_EQ(normal_dashpot_velocity(0.0, 0.0, dt), 0.0);
+  // Touched 0.2e-4 / 0.5 = 0.4 dt ago: the missed 0.4 dt of dashpot is added to this step.
+  EXPECT_NEAR(normal_dashpot_velocity(0.2e-4, 0.5, dt), 0.5 * 1.4, 1e-15);
+  // Separates 0.4 dt into the step: the dashpot pulls for that fraction only.
+  EXPECT_NEAR(normal_dashpot_velocity(0.2e-4, -0.5, dt), -0.5 * 0.4, 1e-15);
+  // The same values from both partners (vn is the same for both), so the law stays antisymmetric.
+  ContactParams p{800.0, 800.0, 2.0, 2.0, 0.3};
+  Vec2 xi_a{}, xi_b{};
+  const ContactForce a = linear_spring_dashpot(p, {{0.6, 0.8}, 0.2e-5, {-0.3, -0.4}}, dt, xi_a);
+  const ContactForce b = linear_spring_dashpot(p, {{-0.6, -0.8}, 0.2e-5, {0.3, 0.4}}, dt, xi_b);
+  EXPECT_EQ(a.f.x, -b.f.x);
+  EXPECT_EQ(a.f.y, -b.f.y);
+}
+
 TEST(DemContactLaw, TangentialSpringBelowAndAtTheCoulombLimit) {
   const Vec2 n{0.0, 1.0};
   const double dt = 1e-3;
