@@ -30,14 +30,18 @@ TEST(MinimumFluidisation, PressureDropLevelsOffAtBedWeight) {
   const double g = -gas.gravity.y;
   const double u_ergun = ergun_minimum_fluidisation_velocity(bed.eps_interior, sp.diameter, sp.density, gas.rho_g,
                                                              gas.mu_g, g);
-  // Four packed levels: the gas is quasi-steady and the bed static, so 0.06 s (300 steps) is steady; two
-  // fluidised levels, long enough to average over several bubbles/slugs.
-  const std::vector<double> fraction{0.3, 0.6, 0.8, 0.95, 1.3, 1.6};
-  const double hold_f = 0.8;  // s
+  // Four packed levels: the gas is quasi-steady and the bed static, so 0.06 s (300 steps) is steady. Then
+  // fluidised levels held 2 s each, averaged over the last 1.8 s (the first 0.2 s is the bed's expansion): the
+  // bed's momentum swings by about M x 0.1 m/s from slug to slug, so a window T leaves a term of order
+  // 0.1 / (g T) of W in the mean (1.7% at T = 0.6 s, 0.6% at 1.8 s). The plateau is the mean of the levels
+  // 1.1-1.3 U_Ergun; 1.6 U_Ergun, where this 25-particle-wide column slugs hard, is checked on its own.
+  const std::vector<double> fraction{0.3, 0.6, 0.8, 0.95, 1.1, 1.2, 1.3, 1.6};
+  const double hold_f = 2.0;  // s
+  const auto in_plateau = [](double f) { return f > 1.0 && f < 1.5; };
   std::vector<double> hold, window;
   for (double f : fraction) {
     hold.push_back(f < 1.0 ? 0.06 : hold_f);
-    window.push_back(f < 1.0 ? 0.03 : hold_f - 0.2);  // the first 0.2 s of a fluidised level is expansion
+    window.push_back(f < 1.0 ? 0.03 : hold_f - 0.2);
   }
   std::vector<double> t_start;
   double t = 0.0;
@@ -116,7 +120,7 @@ TEST(MinimumFluidisation, PressureDropLevelsOffAtBedWeight) {
       s22 += u * u * u * u;
       r1 += u * y;
       r2 += u * u * y;
-    } else {
+    } else if (in_plateau(fraction[k])) {
       plateau += levels[k].dp;
       ++n_fl;
     }
@@ -136,21 +140,25 @@ TEST(MinimumFluidisation, PressureDropLevelsOffAtBedWeight) {
     }
   }
   EXPECT_LT(levels[3].dp, 0.9 * dp_weight);
-  // Plateau: the gas carries the part of the bed the distributor does not. A 2D bed of these Geldart D
-  // particles slugs, and between slugs particles rest on (and rain onto) the solid distributor, which then
-  // carries ~3% of the weight on average (measured directly as the sum of all contact forces, in which the
-  // pair forces cancel). The raw ratio dP/(W/A) is printed and NOT asserted at 3% (it is ~0.95-0.96); see
-  // docs/verification-coupling.md. Tolerance 3%: the remaining difference is the bed's momentum change over a
-  // finite window (1-2% of W in 0.6 s, printed as dMom/dt/W).
+  // Plateau (acceptance 3 of the gas issue): the pressure drop levels off at the bed's
+  // weight per area within 3%. What the gas does not carry is measured and printed: the distributor's support
+  // (particles resting on, and raining onto, the solid distributor between slugs: 1-2% of W) and the bed's
+  // momentum change over the window (under 1% of W at 1.8 s). The same balance net of the distributor's
+  // support is also asserted, to the momentum term's 1%.
   double plateau_walls = 0.0;
   for (std::size_t k = 0; k < levels.size(); ++k) {
-    if (fraction[k] >= 1.0) plateau_walls += levels[k].walls;
+    if (in_plateau(fraction[k])) plateau_walls += levels[k].walls;
   }
   plateau_walls /= n_fl;
   const double dp_carried = (weight - plateau_walls + gas_weight) / area;
-  std::printf("[ U_mf     ] plateau: exact (W - distributor support)/A %.2f Pa  computed %.2f Pa  rel. error %.2e "
-              "(raw dP/(W/A) %.4f)\n", dp_carried, plateau, plateau / dp_carried - 1.0, plateau / dp_weight);
-  EXPECT_NEAR(plateau / dp_carried, 1.0, 0.03);
+  std::printf("[ U_mf     ] plateau (1.1-1.3 U_Ergun): W/A + gas column %.2f Pa  computed %.2f Pa  rel. error %.2e; "
+              "net of the distributor's support %.2f Pa, rel. error %.2e\n", dp_weight, plateau,
+              plateau / dp_weight - 1.0, dp_carried, plateau / dp_carried - 1.0);
+  EXPECT_NEAR(plateau / dp_weight, 1.0, 0.03);
+  EXPECT_NEAR(plateau / dp_carried, 1.0, 0.01);
+  // Hard slugging at 1.6 U_Ergun: the distributor carries more (about 2% of W); the pressure drop stays within
+  // 5% of the weight and the balance below still closes.
+  EXPECT_NEAR(levels.back().dp / dp_weight, 1.0, 0.05);
   EXPECT_LT(plateau_walls, 0.05 * weight);  // the bed is fluidised: the distributor carries little of it
   // Momentum closure in the fluidised levels: the pressure drop carries what neither the walls nor the
   // particles' acceleration take, dP A - gas weight = W - F_walls + dMom/dt; same 2% as the packed bed of
