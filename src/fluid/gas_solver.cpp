@@ -419,7 +419,8 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
       for (int i = 0; i < nx; ++i) s.ay(i, j) = cfg.rho_g * s.epsy(i, j) * g.dx * s.mom_v.d(i, j);
     for (std::size_t k = 0; k < s.imbalance.size(); ++k) s.imbalance.v[k] = -s.imbalance.v[k];
     s.p_corr.fill(0.0);
-    s.pressure.solve(s.ax, s.ay, s.imbalance, s.p_corr);
+    // Factorised at the first SIMPLE iteration of each step only (the same in a restarted run).
+    s.pressure.solve(s.ax, s.ay, s.imbalance, s.p_corr, it > 1);
     const Field2& pc = s.p_corr;
     for (std::size_t k = 0; k < s.f.p.size(); ++k) s.f.p.v[k] += cfg.relax_pressure * pc.v[k];
     for (int j = 0; j < ny; ++j)

@@ -9,6 +9,32 @@
 
 namespace fluidbed {
 
+namespace {
+
+/// An Eigen preconditioner that applies a factorisation computed earlier for a nearby matrix.
+class StaleLdltPreconditioner {
+ public:
+  using Ldlt = Eigen::SimplicialLDLT<StencilMatrix::Matrix>;
+  StaleLdltPreconditioner() = default;
+  template <typename M>
+  explicit StaleLdltPreconditioner(const M&) {}
+  void use(const Ldlt* ldlt) { ldlt_ = ldlt; }
+  template <typename M>
+  StaleLdltPreconditioner& analyzePattern(const M&) { return *this; }
+  template <typename M>
+  StaleLdltPreconditioner& factorize(const M&) { return *this; }
+  template <typename M>
+  StaleLdltPreconditioner& compute(const M&) { return *this; }
+  template <typename Rhs>
+  auto solve(const Eigen::MatrixBase<Rhs>& b) const { return ldlt_->solve(b); }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+ private:
+  const Ldlt* ldlt_ = nullptr;
+};
+
+}  // namespace
+
 struct PressureCorrectionSolver::Impl {
   Grid2 grid;
   PressureSolverKind kind;
@@ -17,7 +43,9 @@ struct PressureCorrectionSolver::Impl {
   Eigen::ConjugateGradient<StencilMatrix::Matrix, Eigen::Lower | Eigen::Upper,
                            Eigen::IncompleteCholesky<double>>
       cg;
+  Eigen::ConjugateGradient<StencilMatrix::Matrix, Eigen::Lower | Eigen::Upper, StaleLdltPreconditioner> pcg;
   bool analysed = false;
+  bool factorised = false;
   Eigen::VectorXd b;
   Eigen::VectorXd x;
 };
@@ -37,6 +65,7 @@ PressureCorrectionSolver::PressureCorrectionSolver(const Grid2& grid, PressureSo
     }
   impl_->a.build(nx * ny, nb);
   impl_->cg.setTolerance(cg_tolerance);
+  impl_->pcg.setTolerance(1e-12);
   impl_->b.resize(nx * ny);
   impl_->x.resize(nx * ny);
 }
@@ -45,7 +74,8 @@ PressureCorrectionSolver::~PressureCorrectionSolver() = default;
 PressureCorrectionSolver::PressureCorrectionSolver(PressureCorrectionSolver&&) noexcept = default;
 PressureCorrectionSolver& PressureCorrectionSolver::operator=(PressureCorrectionSolver&&) noexcept = default;
 
-void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x) {
+void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x,
+                                     bool reuse_factorisation) {
   Impl& s = *impl_;
   const int nx = s.grid.nx;
   const int ny = s.grid.ny;
@@ -81,13 +111,23 @@ void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const F
       s.b[r] = b;
       s.x[r] = x(i, j);
     }
-  if (s.kind == PressureSolverKind::Direct) {
+  if (s.kind == PressureSolverKind::Direct && reuse_factorisation && s.factorised) {
+    s.pcg.compute(s.a.matrix());
+    s.pcg.preconditioner().use(&s.ldlt);
+    s.x = s.pcg.solveWithGuess(s.b, s.x);
+    if (s.pcg.info() != Eigen::Success) {
+      throw_simulation_error("gas pressure correction: conjugate gradient with the last factorisation did not "
+                             "converge (error " + std::to_string(s.pcg.error()) + " after " +
+                             std::to_string(s.pcg.iterations()) + " iterations)");
+    }
+  } else if (s.kind == PressureSolverKind::Direct) {
     if (!s.analysed) {
       s.ldlt.analyzePattern(s.a.matrix());
       s.analysed = true;
     }
     s.ldlt.factorize(s.a.matrix());
     if (s.ldlt.info() != Eigen::Success) throw_simulation_error("gas pressure correction: LDLT factorisation failed");
+    s.factorised = true;
     s.x = s.ldlt.solve(s.b);
   } else {
     s.cg.compute(s.a.matrix());

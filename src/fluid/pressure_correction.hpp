@@ -25,7 +25,12 @@ class PressureCorrectionSolver {
   /// face; a coefficient on a boundary face couples to p' = 0 outside (a fixed-pressure boundary); zero there means
   /// an impermeable face. If no boundary face has a coefficient the system is singular and cell (0, 0) is pinned
   /// to p' = 0. x is the initial guess on entry (used by ConjugateGradient). Throws a simulation error on failure.
-  void solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x);
+  ///
+  /// With `reuse_factorisation` (Direct kind, after a first solve) the matrix is not factorised again: the system
+  /// is solved by conjugate gradients preconditioned with the last factorisation, to a relative residual of
+  /// 1e-12. Within one SIMPLE step the coefficients change little between iterations, so a few CG iterations
+  /// (one triangular solve each) replace a factorisation.
+  void solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x, bool reuse_factorisation = false);
 
  private:
   struct Impl;
