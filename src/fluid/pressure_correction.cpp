@@ -111,15 +111,16 @@ void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const F
       s.b[r] = b;
       s.x[r] = x(i, j);
     }
+  bool solved = false;
   if (s.kind == PressureSolverKind::Direct && reuse_factorisation && s.factorised) {
     s.pcg.compute(s.a.matrix());
     s.pcg.preconditioner().use(&s.ldlt);
-    s.x = s.pcg.solveWithGuess(s.b, s.x);
-    if (s.pcg.info() != Eigen::Success) {
-      throw_simulation_error("gas pressure correction: conjugate gradient with the last factorisation did not "
-                             "converge (error " + std::to_string(s.pcg.error()) + " after " +
-                             std::to_string(s.pcg.iterations()) + " iterations)");
-    }
+    const Eigen::VectorXd guess = s.x;
+    s.x = s.pcg.solveWithGuess(s.b, guess);
+    solved = s.pcg.info() == Eigen::Success;
+    if (!solved) s.x = guess;  // the matrix moved too far from the factorised one: factorise it below
+  }
+  if (solved) {
   } else if (s.kind == PressureSolverKind::Direct) {
     if (!s.analysed) {
       s.ldlt.analyzePattern(s.a.matrix());
