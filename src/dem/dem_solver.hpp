@@ -60,6 +60,19 @@ class DemSolver {
     bool need_rebuild = true;
   };
   State state() const;
+  /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
+  struct StateView {
+    const ParticleStore& particles;
+    const NeighborList& neighbors;
+    const std::vector<std::array<Vec2, 4>>& wall_xi;
+    const std::vector<double>& x_build;
+    const std::vector<double>& y_build;
+    double time;
+    std::uint64_t steps;
+    std::uint64_t rebuilds;
+    bool need_rebuild;
+  };
+  StateView view() const { return {p_, nbr_, wall_xi_, x_build_, y_build_, time_, steps_, rebuilds_, need_rebuild_}; }
   void restore(State s);
   const NeighborList& neighbors() const { return nbr_; }
 

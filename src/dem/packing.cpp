@@ -56,6 +56,7 @@ ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
     for (; k < cfg.count; ++k) species[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(cfg.species_fraction.size() - 1);
   }
   ParticleStore p;
+  p.reserve(static_cast<std::size_t>(cfg.count));
   for (std::int64_t k = 0; k < cfg.count; ++k) {
     const std::int64_t s = site_index[static_cast<std::size_t>(k)];
     const Species& sp = dem.species[static_cast<std::size_t>(species[static_cast<std::size_t>(k)])];

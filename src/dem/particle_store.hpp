@@ -42,6 +42,17 @@ struct ParticleStore {
 
   std::size_t size() const { return id.size(); }
 
+  /// Room for n particles in every array (a placement that knows its count avoids push_back's slack).
+  void reserve(std::size_t n) {
+    id.reserve(n);
+    species.reserve(n);
+    layer.reserve(n);
+    for (std::vector<double>* a : {&x, &y, &vx, &vy, &omega, &radius, &mass, &inv_mass, &inv_inertia, &fx, &fy, &torque,
+                                   &fx_ext, &fy_ext, &drag_k, &ugx, &ugy}) {
+      a->reserve(n);
+    }
+  }
+
   void add(std::int64_t id_, std::int32_t species_, const Species& s, Vec2 pos, Vec2 vel = {}, double w = 0.0,
            std::int32_t layer_ = 0) {
     id.push_back(id_);

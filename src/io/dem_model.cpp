@@ -20,6 +20,7 @@ namespace fluidbed {
 ParticleStore particles_from_csv(const std::string& path, const DemConfig& dem) {
   const std::vector<ParticleCsvRow> rows = read_particles_csv(path);
   ParticleStore p;
+  p.reserve(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const ParticleCsvRow& row = rows[r];
     if (row.species < 0 || static_cast<std::size_t>(row.species) >= dem.n_species()) {
@@ -50,7 +51,9 @@ std::vector<double> wall_xi_flat(const std::vector<std::array<Vec2, 4>>& w) {
   return out;
 }
 
-void save_dem(Hdf5File& f, const DemSolver::State& s) {
+// Writes from the solver's own arrays; the list is converted one array at a time, so a checkpoint needs at most
+// one list-sized temporary on top of the solver (docs/performance.md, memory).
+void save_dem(Hdf5File& f, const DemSolver::StateView& s) {
     const ParticleStore& p = s.particles;
     f.create_group("dem");
     f.write("dem/id", p.id);
@@ -62,17 +65,15 @@ void save_dem(Hdf5File& f, const DemSolver::State& s) {
              {"x_build", &s.x_build}, {"y_build", &s.y_build}}) {
       f.write(std::string("dem/") + name, *a);
     }
-    std::vector<std::int64_t> offset(s.neighbors.offset.begin(), s.neighbors.offset.end());
-    std::vector<std::int64_t> partner(s.neighbors.partner.begin(), s.neighbors.partner.end());
-    std::vector<double> hx, hy;
-    for (const Vec2& h : s.neighbors.history) {
-      hx.push_back(h.x);
-      hy.push_back(h.y);
+    f.write("dem/nbr_offset", std::vector<std::int64_t>(s.neighbors.offset.begin(), s.neighbors.offset.end()));
+    f.write("dem/nbr_partner", std::vector<std::int64_t>(s.neighbors.partner.begin(), s.neighbors.partner.end()));
+    {
+      std::vector<double> h(s.neighbors.history.size());
+      for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k].x;
+      f.write("dem/nbr_xi_x", h);
+      for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k].y;
+      f.write("dem/nbr_xi_y", h);
     }
-    f.write("dem/nbr_offset", offset);
-    f.write("dem/nbr_partner", partner);
-    f.write("dem/nbr_xi_x", hx);
-    f.write("dem/nbr_xi_y", hy);
     f.write("dem/wall_xi", wall_xi_flat(s.wall_xi));
     f.set_attribute("dem", "time", s.time);
     f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
@@ -89,6 +90,7 @@ DemSolver::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
       throw_input_error(fmt::format("{}: inconsistent particle arrays", f.path().string()));
     }
     ParticleStore& p = s.particles;
+    p.reserve(id.size());
     for (std::size_t i = 0; i < id.size(); ++i) {
       if (species[i] < 0 || static_cast<std::size_t>(species[i]) >= config_.dem.n_species()) {
         throw_input_error(fmt::format("{}: particle {} has species {} which the case does not define",
@@ -221,7 +223,7 @@ class DemModel final : public ModelRun {
   const ParticleStore* particles() const override { return &sim_.dem().particles(); }
 
   void save(Hdf5File& f) const override {
-    save_dem(f, sim_.dem().state());
+    save_dem(f, sim_.dem().view());
     f.set_attribute("dem", "gas_steps", static_cast<std::int64_t>(sim_.gas_steps()));
     if (sim_.has_gas()) {
       const StaggeredFields& g = sim_.gas().fields();
@@ -315,12 +317,12 @@ class DemModel final : public ModelRun {
   /// particle and wall. Runs only on the failure path.
   std::string deepest_contact() const {
     const ParticleStore& p = sim_.dem().particles();
-    const DemSolver::State s = sim_.dem().state();
+    const NeighborList& nbr = sim_.dem().neighbors();
     double worst = -1.0;
     std::string where;
     for (std::size_t i = 0; i < p.size(); ++i) {
-      for (std::size_t k = s.neighbors.offset[i]; k < s.neighbors.offset[i + 1]; ++k) {
-        const std::size_t j = s.neighbors.partner[k];
+      for (std::size_t k = nbr.offset[i]; k < nbr.offset[i + 1]; ++k) {
+        const std::size_t j = nbr.partner[k];
         const double ov = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
         if (ov > worst) {
           worst = ov;
