@@ -27,6 +27,7 @@ SettleResult settle_bed(DemSolver& dem, double energy_per_particle, double max_t
     }
   }
   r.time = static_cast<double>(k) * dt;
+  r.steps = k;
   r.kinetic_energy_per_particle = dem.kinetic_energy() / n;
   std::fill(p.vx.begin(), p.vx.end(), 0.0);
   std::fill(p.vy.begin(), p.vy.end(), 0.0);

@@ -1,11 +1,14 @@
 #pragma once
 // The paper's initial condition: particles placed at random fall under gravity in vacuum until settled.
+#include <cstdint>
+
 #include "dem/dem_solver.hpp"
 
 namespace fluidbed {
 
 struct SettleResult {
   double time = 0.0;                        ///< simulated settling time, s
+  std::uint64_t steps = 0;                  ///< DEM steps taken
   double kinetic_energy_per_particle = 0.0; ///< at the end, J
   bool converged = false;
 };

@@ -297,7 +297,7 @@ class DemModel final : public ModelRun {
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         p = settler.particles();
         log.info("settled in vacuum for {:.3f} s ({} steps, {:.1f} s wall): kinetic energy {:.3g} J per particle{}",
-                 r.time, settler.step_count(), wall, r.kinetic_energy_per_particle,
+                 r.time, r.steps, wall, r.kinetic_energy_per_particle,
                  r.converged ? "" : " (max_time reached before the threshold)");
         write_particles_csv(fs::path(out_dir) / "settled.csv", p);
         if (!c.settle.cache.empty()) {
