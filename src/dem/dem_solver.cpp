@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -97,10 +98,38 @@ void DemSolver::rebuild() {
       }
     }
   }
+  link_mirrors();
   x_build_ = p_.x;
   y_build_ = p_.y;
   need_rebuild_ = false;
   ++rebuilds_;
+}
+
+void DemSolver::link_mirrors() {
+  const std::size_t n = p_.size();
+  if (nbr_.entries() > std::numeric_limits<std::uint32_t>::max()) {
+    throw_simulation_error("neighbour list too long for 32-bit entry links");
+  }
+  mirror_.resize(nbr_.entries());
+  int missing = 0;
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static) reduction(max : missing)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+      const std::size_t j = nbr_.partner[k];
+      bool found = false;
+      for (std::size_t q = nbr_.offset[j]; q < nbr_.offset[j + 1]; ++q) {
+        if (nbr_.partner[q] == i) {
+          mirror_[k] = static_cast<std::uint32_t>(q);
+          found = true;
+          break;
+        }
+      }
+      if (!found) missing = 1;
+    }
+  }
+  if (missing != 0) throw_simulation_error("neighbour list is not symmetric (internal error)");
 }
 
 double DemSolver::compute_forces() {
@@ -110,24 +139,35 @@ double DemSolver::compute_forces() {
   const double H = config_.height;
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
+  if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
+  entry_force_.resize(nbr_.entries());
+  entry_torque_.resize(nbr_.entries());
   double max_ov = 0.0;
   const auto sn = static_cast<std::ptrdiff_t>(n);
+  // Pass 1: every pair once, from its lower slot. The law is antisymmetric bit for bit, so writing -f and -xi to
+  // the partner's entry gives exactly what the partner would have computed itself; no two pairs share an entry,
+  // so threads never write the same memory.
 #pragma omp parallel for schedule(static) reduction(max : max_ov)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double xi = p_.x[i], yi = p_.y[i], ri = p_.radius[i], wi = p_.omega[i];
     const Vec2 vi{p_.vx[i], p_.vy[i]};
     const std::size_t si = static_cast<std::size_t>(p_.species[i]);
-    Vec2 f{};
-    double torque = 0.0;
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       const std::size_t j = nbr_.partner[k];
+      if (j < i) continue;  // evaluated by j
+      const std::size_t km = mirror_[k];
       const double dx = p_.x[j] - xi;
       const double dy = p_.y[j] - yi;
       const double d2 = dx * dx + dy * dy;
       const double rsum = ri + p_.radius[j];
       if (d2 >= rsum * rsum) {
         nbr_.history[k] = Vec2{};  // contact ended: the spring is released
+        nbr_.history[km] = Vec2{};
+        entry_force_[k] = Vec2{};
+        entry_force_[km] = Vec2{};
+        entry_torque_[k] = 0.0;
+        entry_torque_[km] = 0.0;
         continue;
       }
       const double d = std::sqrt(d2);
@@ -138,9 +178,28 @@ double DemSolver::compute_forces() {
       const Vec2 v_rel = (vi - p_.vel(j)) + cross(wi * ri + p_.omega[j] * p_.radius[j], nrm);
       const ContactForce cf = linear_spring_dashpot(pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])],
                                                     ContactKinematics{nrm, overlap, v_rel}, dt, nbr_.history[k]);
-      f += cf.f;
-      torque += ri * cross(nrm, cf.f_t);  // Eq. 9: torque of the tangential force at the contact point
+      nbr_.history[km] = -nbr_.history[k];
+      entry_force_[k] = cf.f;
+      entry_force_[km] = -cf.f;
+      // Eq. 9: the torque of the tangential force, r (n x f_t), equal for both partners ((-n) x (-f_t) = n x f_t).
+      const double tq = cross(nrm, cf.f_t);
+      entry_torque_[k] = tq;
+      entry_torque_[km] = tq;
       max_ov = std::max(max_ov, overlap);
+    }
+  }
+  // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
+#pragma omp parallel for schedule(static) reduction(max : max_ov)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const double xi = p_.x[i], yi = p_.y[i], ri = p_.radius[i], wi = p_.omega[i];
+    const Vec2 vi{p_.vx[i], p_.vy[i]};
+    const std::size_t si = static_cast<std::size_t>(p_.species[i]);
+    Vec2 f{};
+    double torque = 0.0;
+    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+      f += entry_force_[k];
+      torque += ri * entry_torque_[k];
     }
     // Plane walls: the same law against a fixed body of infinite mass.
     const ContactParams& wp = wall_params_[si];
@@ -264,6 +323,7 @@ void DemSolver::restore(State s) {
   steps_ = s.steps;
   rebuilds_ = s.rebuilds;
   need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
+  mirror_.clear();  // linked again at the next force evaluation
   if (wall_xi_.size() != p_.size()) wall_xi_.assign(p_.size(), {});
 }
 

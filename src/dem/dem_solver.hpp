@@ -81,6 +81,7 @@ class DemSolver {
 
  private:
   void rebuild();
+  void link_mirrors();
   static constexpr std::uint64_t kSortEvery = 16;
   void check_particles() const;
 
@@ -95,6 +96,11 @@ class DemSolver {
   std::vector<std::size_t> old_offset_;
   std::vector<std::uint32_t> old_partner_;
   std::vector<Vec2> old_history_;
+  // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
+  // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.
+  std::vector<std::uint32_t> mirror_;
+  std::vector<Vec2> entry_force_;
+  std::vector<double> entry_torque_;  ///< n x f_t of the pair, the same for both partners (times own radius)
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double time_ = 0.0;
