@@ -213,6 +213,10 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   t.cfl = r.number("tfm.cfl", 0.5, "", "Courant number of the adaptive time step", R::Range{0.0, 1.0, true, false});
   t.dt_max = r.number("tfm.dt_max", 1e-3, "s", "largest time step", R::positive());
   t.dt_min = r.number("tfm.dt_min", 1e-8, "s", "the run fails below this time step", R::positive());
+  t.max_compaction = r.number("tfm.max_compaction", tfm::default_max_compaction(t.rheology), "",
+                              "compaction below eps* that the packing limiter allows, eps >= eps* - max_compaction "
+                              "exactly (default 0.015 with kinetic_theory, 0.03 with the Eq. 20 rheologies)",
+                              R::Range{0.0, t.eps_star, false, true});
   t.solids_no_slip_walls = r.boolean("tfm.solids_no_slip_walls", false, "solids stick to the side walls");
   try {
     tfm::validate(t);

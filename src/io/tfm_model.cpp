@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <utility>
 
 #include "core/error.hpp"
 #include "io/hdf5_file.hpp"
@@ -73,7 +74,12 @@ class TfmModel final : public ModelRun {
     f.set_attribute("tfm", "last_dt", last_dt_);
   }
   void load(const Hdf5File& f) override {
-    std::vector<tfm::NamedArray> arrays = solver_.save_state();  // the names and shapes this grid needs
+    std::vector<tfm::NamedArray> wanted = solver_.save_state();  // the names and shapes this grid needs
+    std::vector<tfm::NamedArray> arrays;
+    for (tfm::NamedArray& a : wanted) {
+      // An array the file lacks is left out: restore_state names it if it is required.
+      if (f.has("tfm/" + a.name)) arrays.push_back(std::move(a));
+    }
     for (tfm::NamedArray& a : arrays) {
       a.values = f.read_double("tfm/" + a.name);
       a.nx = static_cast<int>(f.attribute_int64("tfm/" + a.name, "nx"));

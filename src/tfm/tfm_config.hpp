@@ -1,5 +1,6 @@
 #pragma once
 // Configuration of the two-fluid model (paper section 2.2, Table 1 TFM column); defaults are the paper's case.
+#include <optional>
 #include <vector>
 
 #include "core/vec2.hpp"
@@ -44,9 +45,14 @@ struct TfmConfig {
   Limiter limiter = Limiter::Superbee;
   double cfl = 0.5;            ///< dt = cfl * cell / max(velocity, solids-pressure wave speed); 0.5 keeps TVD
   double dt_max = 1e-3;        ///< [s]
-  /// Largest compaction below eps* (voidage decrease) allowed per step: a step that compacts far past eps*
-  /// lands where the solids pressure is orders of magnitude stiffer than its linearisation.
-  double max_dense_change = 0.002;
+  /// Largest voidage decrease per step of a cell that ends below eps* (steers dt): far past eps* the solids
+  /// pressure is much stiffer than its linearisation in the E' correction. With the packing limiter as the hard
+  /// floor 0.03 is stable (0.05 lets the sedimentation column's packed layer break up; docs/model-tfm.md).
+  double max_dense_change = 0.03;
+  /// Largest compaction below eps* the packing limiter allows: eps >= eps* - max_compaction in every cell, exactly
+  /// (fluxes into a cell that would pass it are cut; docs/model-tfm.md). Unset: the rheology's default
+  /// (default_max_compaction).
+  std::optional<double> max_compaction;
   double dt_min = 1e-8;        ///< [s]; below this the run fails
   int mass_corrections = 2;    ///< deferred-correction passes of the implicit solids continuity
   /// Gas boundaries, shared with the gas solver: distributor inflow and jets, side walls, top outlet or lid
@@ -54,6 +60,20 @@ struct TfmConfig {
   GasBoundaryConfig boundary;
   bool solids_no_slip_walls = false;  ///< solids tangential condition on the side walls (default free slip)
 };
+
+/// The limiter is a backstop below the working range of the solids pressure, not a substitute for it (it stops
+/// solids but transmits no force): its default bound lies just below the voidage at which the rheology's solids
+/// pressure carries the paper's bed (twice its buoyant weight, 8 kPa): 0.419 with Eqs. 21-22, hence 0.015
+/// (eps >= 0.415); 0.403 with the Eq. 20 modulus, hence 0.03 (eps >= 0.40). A bound above that voidage leaves
+/// the whole bed resting on the limiter, and the jet no longer blows a bubble (docs/model-tfm.md).
+constexpr double default_max_compaction(SolidsRheology r) {
+  return r == SolidsRheology::KineticTheory ? 0.015 : 0.03;
+}
+
+/// max_compaction if set, else default_max_compaction(rheology).
+inline double packing_allowance(const TfmConfig& c) {
+  return c.max_compaction.value_or(default_max_compaction(c.rheology));
+}
 
 /// Throws an input error naming the offending setting.
 void validate(const TfmConfig& config);

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_boundary.hpp"
+#include "tfm/packing_limiter.hpp"
 #include "tfm/tvd_convection.hpp"
 
 namespace fluidbed::tfm {
@@ -107,6 +108,7 @@ void validate(const TfmConfig& c) {
   need(c.modulus.a > 0.0 && c.modulus.b > 0.0, "modulus a and b must be positive");
   need(c.cfl > 0.0 && c.cfl <= 1.0, "cfl must lie in (0, 1]");
   need(c.max_dense_change > 0.0 && c.max_dense_change < 0.1, "max_dense_change must lie in (0, 0.1)");
+  need(packing_allowance(c) >= 0.0 && packing_allowance(c) < c.eps_star, "max_compaction must lie in [0, eps_star)");
   need(c.dt_max > 0.0 && c.dt_min > 0.0 && c.dt_min < c.dt_max, "need 0 < dt_min < dt_max");
   need(c.mass_corrections >= 0 && c.mass_corrections <= 10, "mass_corrections must lie in [0, 10]");
   for (const InletJet& j : c.boundary.jets) {
@@ -578,9 +580,58 @@ double TfmSolver::step(double t_stop) {
   }
   correct_pressure();
 
-  // Eq. 16, fully implicit with the limiter by deferred correction; eps = 1 - eps_s closes Eq. 15.
-  const Field2 eps_s_new =
-      advance_scalar_implicit(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, dt, c.mass_corrections);
+  // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
+  FaceFluxes fs;
+  advance_scalar_implicit(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, dt, c.mass_corrections, fs);
+  const FaceFluxes fs_unlimited = fs;
+  // Packing limit (docs/model-tfm.md): eps >= eps* - max_compaction exactly. The solids pressure stiffens the bed
+  // only through a linearisation, so the bound is kept on the fluxes: inflows into a cell that would pass it are
+  // scaled down (Zalesak-type one-sided limiter).
+  packing_sweeps_ = limit_packing(grid_, eps_s, dt, 1.0 - (c.eps_star - packing_allowance(c)), fs).sweeps;
+  const Field2 eps_s_new = conservative_update(grid_, eps_s, fs, dt);
+  // Face velocities follow the fluxes the continuity used, so momentum sees what the continuity did: a limited
+  // solids face is slowed by its factor; the gas carries the mixture flux that the pressure correction made
+  // divergence-free (with its face fractions eg, es) minus the solids flux actually moved, so Eq. 15 with
+  // eps = 1 - eps_s closes on every cell (the gas takes up the difference between the face fractions of the
+  // correction and of the implicit continuity as well as the volume the limiter held back).
+  FaceFluxes fs_corr{Field2(nx + 1, ny), Field2(nx, ny + 1)}, fg_shift{Field2(nx + 1, ny), Field2(nx, ny + 1)};
+  for (std::size_t k = 0; k < fs.x.size(); ++k) fs_corr.x.v[k] = es_x.v[k] * s_.us.v[k];
+  for (std::size_t k = 0; k < fs.y.size(); ++k) fs_corr.y.v[k] = es_y.v[k] * s_.vs.v[k];
+  transfer_to_gas(fs_corr, fs, fg_shift);
+  auto follow = [](double& us, double& ug, double f_old, double f_new, double shift, double eg) {
+    if (f_new != f_old && f_old != 0.0) us *= f_new / f_old;
+    if (shift != 0.0) ug += shift / eg;
+  };
+  for (std::size_t k = 0; k < fs.x.size(); ++k) {
+    follow(s_.us.v[k], s_.ug.v[k], fs_unlimited.x.v[k], fs.x.v[k], fg_shift.x.v[k], eg_x.v[k]);
+  }
+  for (std::size_t k = 0; k < fs.y.size(); ++k) {
+    follow(s_.vs.v[k], s_.vg.v[k], fs_unlimited.y.v[k], fs.y.v[k], fg_shift.y.v[k], eg_y.v[k]);
+  }
+
+  // Gas continuity residual of this step (Eq. 15 with the face voidages of the step), before eps is replaced.
+  {
+    double sum = 0.0;
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        const double accumulation = dx * dy * ((1.0 - eps_s_new(i, j)) - eps(i, j)) / dt;
+        const double out = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
+                           dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j));
+        sum += std::abs(accumulation + out);
+      }
+    }
+    // Normalised as the gas solver's mass residual (src/fluid/gas_solver.cpp), in volume rather than mass:
+    // by the largest of the inlet flow, the largest gas face speed times the width, and a round-off floor.
+    double inflow = 0.0, speed = 0.0;
+    for (int i = 0; i < nx; ++i) inflow += dx * s_.vg(i, 0);
+    for (double x : s_.ug.v) speed = std::max(speed, std::abs(x));
+    for (double x : s_.vg.v) speed = std::max(speed, std::abs(x));
+    const double width = grid_.width();
+    const double v_floor = std::max(1e-12, 1e-6 * std::sqrt(std::hypot(gx, gy) * grid_.height()));
+    s_.gas_residual = sum / std::max({std::abs(inflow), speed * width, v_floor * width});
+  }
+
+  // eps = 1 - eps_s closes Eq. 15.
   double dense_change = 0.0;
   for (std::size_t k = 0; k < eps_s_new.size(); ++k) {
     const double eps_new = 1.0 - eps_s_new.v[k];
@@ -651,21 +702,6 @@ double TfmSolver::max_solids_speed() const {
 
 double TfmSolver::min_voidage() const { return *std::min_element(s_.eps.v.begin(), s_.eps.v.end()); }
 
-double TfmSolver::gas_volume_residual() const {
-  const int nx = grid_.nx, ny = grid_.ny;
-  Field2 eg_x, eg_y;
-  tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity{s_.ug, s_.vg, false}, eg_x, eg_y);
-  for (int i = 0; i < nx; ++i) eg_y(i, 0) = 1.0;
-  double sum = 0.0;
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      sum += std::abs(grid_.dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
-                      grid_.dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j)));
-    }
-  }
-  return sum;
-}
-
 void TfmSolver::gas_velocity_cells(Field2& u, Field2& v) const {
   u = Field2(grid_.nx, grid_.ny);
   v = Field2(grid_.nx, grid_.ny);
@@ -700,7 +736,8 @@ std::vector<NamedArray> TfmSolver::save_state() const {
           NamedArray{"time", 1, 1, {s_.time}},
           NamedArray{"dt", 1, 1, {s_.dt}},
           NamedArray{"steps", 1, 1, {static_cast<double>(s_.steps)}},
-          NamedArray{"dense_change", 1, 1, {s_.dense_change}}};
+          NamedArray{"dense_change", 1, 1, {s_.dense_change}},
+          NamedArray{"gas_residual", 1, 1, {s_.gas_residual}}};
 }
 
 void TfmSolver::restore_state(const std::vector<NamedArray>& arrays) {
@@ -727,6 +764,11 @@ void TfmSolver::restore_state(const std::vector<NamedArray>& arrays) {
   next.dt = find("dt", 1, 1).values[0];
   next.steps = static_cast<long>(find("steps", 1, 1).values[0]);
   next.dense_change = find("dense_change", 1, 1).values[0];
+  // Monitor only, and absent from checkpoints written before it existed: optional.
+  next.gas_residual = 0.0;
+  for (const NamedArray& a : arrays) {
+    if (a.name == "gas_residual" && a.values.size() == 1) next.gas_residual = a.values[0];
+  }
   s_ = std::move(next);
 }
 

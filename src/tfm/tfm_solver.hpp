@@ -33,6 +33,8 @@ struct TfmState {
   long steps = 0;
   /// Largest compaction (voidage decrease) of a cell below eps* in the last full step; steers the next dt.
   double dense_change = 0.0;
+  /// Gas continuity residual of the last step, normalised (see TfmSolver::gas_volume_residual); monitor only.
+  double gas_residual = 0.0;
 };
 
 class TfmSolver {
@@ -61,8 +63,13 @@ class TfmSolver {
   double max_solids_speed() const;
   /// Smallest voidage in the domain.
   double min_voidage() const;
-  /// Sum over cells of |net gas volume outflow| per unit depth [m^2/s]: the gas continuity residual.
-  double gas_volume_residual() const;
+  /// Gas continuity residual (Eq. 15) of the last step: sum over cells of |V (eps_new - eps_old)/dt + net gas
+  /// volume outflow| with the face voidages of the step, over the largest of the inlet volume flow, the largest
+  /// gas face speed times the width and a round-off floor (the gas solver's normalisation); 0 before a step.
+  double gas_volume_residual() const { return s_.gas_residual; }
+
+  /// Sweeps the packing limiter needed in the last step (1: nothing to limit); diagnostics, not state.
+  int packing_sweeps() const { return packing_sweeps_; }
 
   /// Solids pressure [Pa] and solids shear viscosity [Pa s] of the last step, cells.
   const Field2& solids_pressure() const { return p_s_; }
@@ -88,6 +95,7 @@ class TfmSolver {
   TfmState s_;
   // Work arrays (derived each step, not state).
   Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
+  int packing_sweeps_ = 0;
   PressureCorrectionSolver pressure_solver_;  // shared with the gas solver (src/fluid)
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::DiagonalPreconditioner<double>> solids_solver_;
 };

@@ -77,8 +77,25 @@ void convective_divergence(const Grid2& g, Limiter limiter, const Field2& phi, c
   divergence_from_faces(g, vel, phi_x, phi_y, out);
 }
 
+Field2 conservative_update(const Grid2& g, const Field2& phi_old, const FaceFluxes& f, double dt) {
+  Field2 out(g.nx, g.ny);
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      const double fe = f.x(i + 1, j), fw = f.x(i, j), fn = f.y(i, j + 1), fs = f.y(i, j);
+      out(i, j) = conservative_cell_update(phi_old(i, j), fe, fw, fn, fs, dt, g.dx, g.dy);
+    }
+  }
+  return out;
+}
+
 Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
                                double dt, int corrections) {
+  FaceFluxes flux;
+  return advance_scalar_implicit(g, limiter, phi_old, vel, dt, corrections, flux);
+}
+
+Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
+                               double dt, int corrections, FaceFluxes& flux) {
   const int n = g.nx * g.ny;
   const bool per = vel.periodic_x;
   auto id = [&](int i, int j) {
@@ -141,11 +158,16 @@ Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& ph
     for (int p = 0; p < n; ++p) phi.v[static_cast<std::size_t>(p)] = x[p];
     if (limiter == Limiter::Upwind && pass == 0) break;
   }
-  Field2 div;
-  convective_divergence(g, limiter, phi, vel, div);
-  Field2 out = phi_old;
-  for (std::size_t k = 0; k < out.size(); ++k) out.v[k] = phi_old.v[k] - dt * div.v[k];
-  return out;
+  // Final face fluxes from the limited face values of the converged phi; with periodic_x face nx repeats face 0.
+  Field2 phi_x, phi_y;
+  tvd_face_values(g, limiter, phi, vel, phi_x, phi_y);
+  flux.x = Field2(g.nx + 1, g.ny);
+  flux.y = Field2(g.nx, g.ny + 1);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i <= g.nx; ++i) flux.x(i, j) = face_u(vel, i, j) * phi_x(i, j);
+  for (int j = 0; j <= g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) flux.y(i, j) = vel.v(i, j) * phi_y(i, j);
+  return conservative_update(g, phi_old, flux, dt);
 }
 
 }  // namespace fluidbed::tfm

@@ -25,10 +25,30 @@ void tvd_face_values(const Grid2& grid, Limiter limiter, const Field2& phi, cons
 void convective_divergence(const Grid2& grid, Limiter limiter, const Field2& phi, const FaceVelocity& vel,
                            Field2& out);
 
+/// Conservative face fluxes of a scalar per unit face area (face value times face velocity): x on vertical
+/// faces ((nx+1) x ny), y on horizontal faces (nx x (ny+1)), positive in +x / +y.
+struct FaceFluxes {
+  Field2 x, y;
+};
+
+/// One cell of conservative_update, from its east, west, north and south face fluxes.
+inline double conservative_cell_update(double phi_old, double fe, double fw, double fn, double fs, double dt, double dx,
+                                       double dy) {
+  return phi_old - dt * ((fe - fw) / dx + (fn - fs) / dy);
+}
+
+/// phi_old - dt div(F) in every cell, div(F) = (F_e - F_w)/dx + (F_n - F_s)/dy: sum(phi * volume) changes only
+/// by the boundary fluxes (to rounding).
+Field2 conservative_update(const Grid2& grid, const Field2& phi_old, const FaceFluxes& flux, double dt);
+
 /// One backward-Euler step of d(phi)/dt + div(U phi) = 0. The upwind part is implicit; the limiter
 /// correction is deferred and refreshed `corrections` times. The result is finally formed from
 /// conservative face fluxes, so sum(phi * volume) is conserved to rounding whatever the solver tolerance.
 Field2 advance_scalar_implicit(const Grid2& grid, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
                                double dt, int corrections = 2);
+
+/// The same step, returning the final face fluxes too: the result equals conservative_update(phi_old, flux, dt).
+Field2 advance_scalar_implicit(const Grid2& grid, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
+                               double dt, int corrections, FaceFluxes& flux);
 
 }  // namespace fluidbed::tfm

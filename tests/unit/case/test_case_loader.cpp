@@ -54,11 +54,16 @@ TEST(CaseLoader, UnknownKeysNameTheNearestKnownOne) {
 
 TEST(CaseLoader, ArraysOfTablesAndTheTwoFluidModel) {
   const LoadedCase lc = load_case_text(
-      "case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nrheology = \"inviscid\"\n[[inlet.jet]]\ncentre = 0.31\n"
+      "case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nrheology = \"inviscid\"\nmax_compaction = 0.01\n"
+      "[[inlet.jet]]\ncentre = 0.31\n"
       "[[inlet.jet]]\ncentre = 0.11\nstart = 0.5\nend = 0.6\n",
       "t.toml");
   EXPECT_EQ(lc.config.model, Model::Tfm);
   EXPECT_EQ(lc.config.tfm.rheology, tfm::SolidsRheology::Inviscid);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.max_compaction.value_or(-1.0), 0.01);
+  // The packing limiter's allowance must leave a positive voidage: [0, eps*).
+  EXPECT_NE(error_of("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nmax_compaction = 0.43\n").find("tfm.max_compaction"),
+            std::string::npos);
   ASSERT_EQ(lc.config.gas.boundary.jets.size(), 2u);
   EXPECT_DOUBLE_EQ(lc.config.gas.boundary.jets[1].t_start, 0.5);
   EXPECT_DOUBLE_EQ(lc.config.tfm.boundary.jets[1].x_centre, 0.11);

@@ -37,6 +37,14 @@ TEST(TfmConfig, PaperDefaultsAreValid) {
   EXPECT_DOUBLE_EQ(c.boundary.jets[0].velocity, 30.0);
   EXPECT_DOUBLE_EQ(c.boundary.jets[0].t_end, 0.4);
   EXPECT_DOUBLE_EQ(c.boundary.inlet_velocity, 1.8);
+  // Packing limiter: by default just below where the rheology's solids pressure carries the bed.
+  EXPECT_FALSE(c.max_compaction.has_value());
+  EXPECT_DOUBLE_EQ(packing_allowance(c), 0.015);
+  TfmConfig eq20 = c;
+  eq20.rheology = SolidsRheology::Inviscid;
+  EXPECT_DOUBLE_EQ(packing_allowance(eq20), 0.03);
+  eq20.max_compaction = 0.005;
+  EXPECT_DOUBLE_EQ(packing_allowance(eq20), 0.005);
 }
 
 TEST(TfmConfig, BadSettingsAreNamed) {
@@ -47,6 +55,8 @@ TEST(TfmConfig, BadSettingsAreNamed) {
   expect_rejected([](TfmConfig& c) { c.packed_height = 2.0; }, "packed_height");
   expect_rejected([](TfmConfig& c) { c.rho_s = 1.0; }, "rho_s");
   expect_rejected([](TfmConfig& c) { c.boundary.jets[0].width = 0.0; }, "jet");
+  expect_rejected([](TfmConfig& c) { c.max_compaction = -0.001; }, "max_compaction");
+  expect_rejected([](TfmConfig& c) { c.max_compaction = c.eps_star; }, "max_compaction");
   expect_rejected(
       [](TfmConfig& c) {
         c.boundary.top = TopBoundary::Wall;
