@@ -130,6 +130,9 @@ void DemSolver::link_mirrors() {
     }
   }
   if (missing != 0) throw_simulation_error("neighbour list is not symmetric (internal error)");
+  // A new list: no entry has a force yet (compute_forces relies on zeros in the entries not in contact).
+  entry_force_.assign(nbr_.entries(), Vec2{});
+  entry_torque_.assign(nbr_.entries(), 0.0);
 }
 
 double DemSolver::compute_forces() {
@@ -140,8 +143,6 @@ double DemSolver::compute_forces() {
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
   if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
-  entry_force_.resize(nbr_.entries());
-  entry_torque_.resize(nbr_.entries());
   double max_ov = 0.0;
   const auto sn = static_cast<std::ptrdiff_t>(n);
   // Pass 1: every pair once, from its lower slot. The law is antisymmetric bit for bit, so writing -f and -xi to
@@ -162,12 +163,17 @@ double DemSolver::compute_forces() {
       const double d2 = dx * dx + dy * dy;
       const double rsum = ri + p_.radius[j];
       if (d2 >= rsum * rsum) {
-        nbr_.history[k] = Vec2{};  // contact ended: the spring is released
-        nbr_.history[km] = Vec2{};
-        entry_force_[k] = Vec2{};
-        entry_force_[km] = Vec2{};
-        entry_torque_[k] = 0.0;
-        entry_torque_[km] = 0.0;
+        // Not touching: entries hold zeros unless this contact just ended (spring released, force cleared);
+        // testing first spares the scattered writes to the partner's entry for the many pairs that only pass by.
+        const Vec2 fk = entry_force_[k], hk = nbr_.history[k];
+        if (fk.x != 0.0 || fk.y != 0.0 || hk.x != 0.0 || hk.y != 0.0) {
+          nbr_.history[k] = Vec2{};
+          nbr_.history[km] = Vec2{};
+          entry_force_[k] = Vec2{};
+          entry_force_[km] = Vec2{};
+          entry_torque_[k] = 0.0;
+          entry_torque_[km] = 0.0;
+        }
         continue;
       }
       const double d = std::sqrt(d2);
