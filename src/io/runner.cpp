@@ -286,6 +286,7 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
   Progress progress(options.quiet, t_restart, cfg.run.end_time);
   const double dt = model->macro_dt();
   std::uint64_t steps_here = 0;
+  const std::uint64_t model_steps_before = model->cost().time_steps;  // DEM steps (several per gas step) or TFM steps
   std::string stop_reason;
 
   auto observe = [&](double t) {
@@ -365,9 +366,11 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
                                 "\"simulated_s\": {:.9g}, \"threads\": {}, \"wall_per_simulated_s\": {:.6g}}}\n",
                                 cost.particles, cost.cells, cost.time_steps, wall_before, simulated, threads,
                                 simulated > 0 ? wall_before / simulated : 0.0));
+  const double particle_steps = static_cast<double>(cost.time_steps - model_steps_before) * static_cast<double>(cost.particles);
   log.info("{} steps in {:.2f} s wall ({:.0f} steps/s{}); checkpoint {}", steps_here, wall_here,
            steps_here / std::max(wall_here, 1e-9),
-           cost.particles ? fmt::format(", {:.3g} particle-steps/s", steps_here * static_cast<double>(cost.particles) / std::max(wall_here, 1e-9)) : "",
+           cost.particles ? fmt::format(", {} DEM steps, {:.3g} particle-steps/s", cost.time_steps - model_steps_before,
+                                        particle_steps / std::max(wall_here, 1e-9)) : "",
            final_path.string());
   if (!stop_reason.empty()) {
     log.warn("{}: stopped at t = {:.6g} s; continue with: fluidbed run {} --out {} --restart {}", stop_reason,
