@@ -522,11 +522,13 @@ double TfmSolver::step(double t_stop) {
     for (int i = 0; i < nx; ++i) a_y(i, ny) = 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy;
   }
   Eigen::VectorXd out_g, out_s;
-  auto correct_pressure = [&]() {
+  // The second call has the same coefficients: it reuses the first call's factorisation (one preconditioned CG
+  // iteration with the exact factors) instead of factorising the same matrix again.
+  auto correct_pressure = [&](bool same_matrix) {
     outflow(out_g, out_s);
     for (int k = 0; k < n; ++k) rhs_p.v[static_cast<std::size_t>(k)] = -(out_g[k] + out_s[k]);
     p_corr.fill(0.0);
-    pressure_solver_.solve(a_x, a_y, rhs_p, p_corr);
+    pressure_solver_.solve(a_x, a_y, rhs_p, p_corr, same_matrix);
     const std::vector<double>& pc = p_corr.v;
     for (int j = 0; j < ny; ++j) {
       for (int i = 1; i < nx; ++i) {
@@ -546,7 +548,7 @@ double TfmSolver::step(double t_stop) {
     }
     for (std::size_t k = 0; k < pc.size(); ++k) s_.p.v[k] += pc[k];
   };
-  correct_pressure();
+  correct_pressure(false);
 
   // Solids volume fraction correction: (V/dt) E' - sum_faces es ss K grad E' = -(solids outflow). The matrix
   // is the Laplacian of the solids-pressure response times diag(K), plus V/dt; solved for W = K E' would be
@@ -578,7 +580,7 @@ double TfmSolver::step(double t_stop) {
       s_.vs(i, j) -= ssv(i, j) * g;
     }
   }
-  correct_pressure();
+  correct_pressure(true);
 
   // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
   FaceFluxes fs;
