@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
   // Each time step allocates and frees the same temporaries (sparse matrices, fields). By default glibc serves
   // blocks over 128 KiB with mmap and trims the heap top, so every step page-faults them in again: 16% of the
   // CPU time of the paper's TFM case went to page faults. Keep freed memory in the process for reuse instead.
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  mallopt(M_MMAP_THRESHOLD, 4 << 20);  // particle arrays of large beds (8 MB per million) still use mmap
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
 #endif
   CLI::App app{"fluidbed: gas-fluidized beds by CFD-DEM and the two-fluid model"};
   app.require_subcommand(1);
