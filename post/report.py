@@ -421,8 +421,12 @@ def first_time_where(cols, column, value):
     return None
 
 
-def cell(token):
-    return token if token not in (None, "") else "–"
+def cell(token, fmt=".2f"):
+    """A bubble.csv value as a table cell, rounded for reading ('–' where empty). Velocities and ratios are given
+    to 0.01 (m/s), times to 1 ms: finer digits are below what the 0.02 m grid and 0.01 s sampling resolve."""
+    if token in (None, ""):
+        return "–"
+    return format(float(token), fmt)
 
 
 def table2(runs):
@@ -447,7 +451,8 @@ def table2(runs):
                 line += " – | – | – |"
                 continue
             get = lambda c: r.bubble.get(c, [""] * (k + 1))[k]  # noqa: E731
-            line += (f" {cell(get('nose_gas_velocity_m_s'))} [{get('time_s')}] | {cell(get('rise_velocity_m_s'))} |"
+            line += (f" {cell(get('nose_gas_velocity_m_s'))} [{cell(get('time_s'), '.3f')}] |"
+                     f" {cell(get('rise_velocity_m_s'))} |"
                      f" {cell(get('throughflow_ratio'))} |")
         lines.append(line)
     return lines
@@ -521,8 +526,10 @@ def write_report(folders, out):
         if r.bubble is None:
             md.append(f"| {r.label()} | no bubble.csv | no bubble.csv |")
             continue
-        md.append(f"| {r.label()} | {cell(detachment_time(r.bubble)) if detachment_time(r.bubble) else 'none'} | "
-                  f"{first_time_where(r.bubble, 'erupted', '1') or 'none'} |")
+        t_det = detachment_time(r.bubble)
+        t_eru = first_time_where(r.bubble, 'erupted', '1')
+        md.append(f"| {r.label()} | {cell(t_det, '.3f') if t_det else 'none'} | "
+                  f"{cell(t_eru, '.3f') if t_eru else 'none'} |")
     md.append("")
     md.append("Detachment: the first bubble.csv row with attached = 0 after a row with attached = 1.")
     md += ["", "## Cost", ""]

@@ -189,7 +189,8 @@ def main():
                         fail(f"no-bubble run has values in Table 2: {got}")
                     continue
                 k = int(np.argmin([abs(float(row[0]) - t) for row in rows]))
-                want = [f"{rows[k][3]} [{rows[k][0]}]", rows[k][2], rows[k][4]]
+                want = [f"{float(rows[k][3]):.2f} [{float(rows[k][0]):.3f}]", f"{float(rows[k][2]):.2f}",
+                            f"{float(rows[k][4]):.2f}"]
                 if got != want:
                     fail(f"Table 2 at t = {t}, run {r}: {got} != {want}")
                 checked += 1
@@ -198,7 +199,7 @@ def main():
         # Detachment: the first row with attached = 0 after attached = 1.
         for name, rows in [("gera-dem", dem_rows), ("gera-tfm", tfm_rows)]:
             t_det = next(rows[k][0] for k in range(1, len(rows)) if rows[k][6] == "0" and rows[k - 1][6] == "1")
-            if f"| {name} ({name[5:]}) | {t_det} |" not in summary:
+            if f"| {name} ({name[5:]}) | {float(t_det):.3f} |" not in summary:
                 fail(f"detachment time {t_det} of {name} not in summary.md")
         if "no fields.pvd frames" not in summary:
             fail("the run without fields is not noted in summary.md")

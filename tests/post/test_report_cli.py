@@ -62,7 +62,8 @@ def main():
                     if not all(g.startswith("–") for g in got):
                         fail(f"Table 2 at t = {t}, run {r}: {got} but bubble.csv has no bubble")
                 else:
-                    want = [f"{rows[k][3]} [{rows[k][0]}]", rows[k][2], rows[k][4]]
+                    want = [f"{float(rows[k][3]):.2f} [{float(rows[k][0]):.3f}]", f"{float(rows[k][2]):.2f}",
+                            f"{float(rows[k][4]):.2f}"]
                     if got != want:
                         fail(f"Table 2 at t = {t}, run {r}: {got} != {want}")
                 checked += 1
