@@ -24,9 +24,12 @@ void CfdDemSimulation::clip_voidage() {
 
 void CfdDemSimulation::deposit() {
   const Grid2& g = gas_->grid();
-  compute_voidage(dem_.particles(), g, coupling_.voidage, depth_, eps_);
+  // One set of kernel weights per gas step serves the deposition here and the interpolation to the particles in
+  // update_particle_forces (the particles do not move in between).
+  particle_cell_weights(dem_.particles(), g, coupling_.voidage, weights_);
+  compute_voidage(dem_.particles(), weights_, g, depth_, eps_);
   clip_voidage();
-  cell_solids_velocity(dem_.particles(), g, coupling_.voidage, us_, vs_);
+  cell_solids_velocity(dem_.particles(), weights_, g, us_, vs_);
 
   // Interphase coefficient of each cell as the gas sees it: the particles' drag coefficients K_p = V_p beta /
   // (1 - eps) summed with the deposition kernel, per unit cell volume (Eq. 12's beta), and the K-weighted mean
@@ -34,7 +37,7 @@ void CfdDemSimulation::deposit() {
   const ParticleStore& p = dem_.particles();
   std::vector<double> k_sum(g.cells(), 0.0), ku(g.cells(), 0.0), kv(g.cells(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const CellWeights cw = cell_weights(g, coupling_.voidage, p.x[i], p.y[i]);
+    const CellWeights& cw = weights_[i];
     for (int k = 0; k < cw.count; ++k) {
       const std::size_t c = cw.cell[static_cast<std::size_t>(k)];
       const double w = cw.w[static_cast<std::size_t>(k)] * p.drag_k[i];
@@ -57,10 +60,11 @@ void CfdDemSimulation::update_particle_forces() {
   ParticleStore& p = dem_.particles();
   const auto n = static_cast<std::ptrdiff_t>(p.size());
   const bool pressure_force = coupling_.pressure_gradient_force;
+  if (weights_.size() != p.size()) particle_cell_weights(p, g, coupling_.voidage, weights_);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const CellWeights cw = cell_weights(g, coupling_.voidage, p.x[i], p.y[i]);
+    const CellWeights& cw = weights_[i];
     const double eps = std::min(gather(eps_gas_, cw), 1.0 - 1e-9);
     const Vec2 ug = gas_->velocity_at({p.x[i], p.y[i]});
     const double r = p.radius[i];
@@ -140,6 +144,7 @@ void CfdDemSimulation::restore(Field2 eps, std::uint64_t gas_steps) {
   gas_steps_ = gas_steps;
   if (!gas_) return;
   eps_ = std::move(eps);
+  weights_.clear();  // the particles were replaced: the next deposit computes them
   const Grid2& g = gas_->grid();
   clip_voidage();
   cell_solids_velocity(dem_.particles(), g, coupling_.voidage, us_, vs_);

@@ -2,9 +2,11 @@
 // Two-way CFD-DEM (paper section 2.1): DEM sub-steps with frozen gas, then voidage and interphase momentum
 // deposited on the grid, then one gas step (Eqs. 11-12), then the new fluid force on every particle.
 #include <optional>
+#include <vector>
 
 #include "core/field2.hpp"
 #include "coupling/coupling_config.hpp"
+#include "coupling/voidage.hpp"
 #include "dem/dem_solver.hpp"
 #include "fluid/gas_solver.hpp"
 
@@ -60,6 +62,7 @@ class CfdDemSimulation {
   double depth_ = 0.0;
   // us_, vs_: volume-weighted mean particle velocity (observers); us_gas_, vs_gas_: drag-weighted (the gas).
   Field2 eps_, eps_gas_old_, eps_gas_, beta_, us_, vs_, us_gas_, vs_gas_, ug_, vg_;
+  std::vector<CellWeights> weights_;  ///< kernel weights of the particles at the last deposit
   GasStepReport report_{};
   std::uint64_t gas_steps_ = 0;
 };

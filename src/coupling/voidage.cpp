@@ -34,27 +34,46 @@ double gather(const Field2& f, const CellWeights& cw) {
   return s;
 }
 
+void particle_cell_weights(const ParticleStore& p, const Grid2& g, VoidageMethod method,
+                           std::vector<CellWeights>& out) {
+  out.resize(p.size());
+  const auto n = static_cast<std::ptrdiff_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    out[i] = cell_weights(g, method, p.x[i], p.y[i]);
+  }
+}
+
 // The scatters below run serially in storage order: a fixed order makes the sums independent of the thread
 // count, and they cost little next to the contact forces.
-void compute_voidage(const ParticleStore& p, const Grid2& g, VoidageMethod method, double depth, Field2& eps) {
+void compute_voidage(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& g, double depth,
+                     Field2& eps) {
   if (eps.nx != g.nx || eps.ny != g.ny) eps = Field2(g.nx, g.ny);
   std::vector<double> vol(g.cells(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double vp = 4.0 / 3.0 * M_PI * p.radius[i] * p.radius[i] * p.radius[i];
-    const CellWeights cw = cell_weights(g, method, p.x[i], p.y[i]);
+    const CellWeights& cw = weights[i];
     for (int k = 0; k < cw.count; ++k) vol[cw.cell[static_cast<std::size_t>(k)]] += cw.w[static_cast<std::size_t>(k)] * vp;
   }
   const double vcell = g.dx * g.dy * depth;
   for (std::size_t c = 0; c < g.cells(); ++c) eps.v[c] = 1.0 - vol[c] / vcell;
 }
 
-void cell_solids_velocity(const ParticleStore& p, const Grid2& g, VoidageMethod method, Field2& us, Field2& vs) {
+void compute_voidage(const ParticleStore& p, const Grid2& g, VoidageMethod method, double depth, Field2& eps) {
+  std::vector<CellWeights> w;
+  particle_cell_weights(p, g, method, w);
+  compute_voidage(p, w, g, depth, eps);
+}
+
+void cell_solids_velocity(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& g,
+                          Field2& us, Field2& vs) {
   if (us.nx != g.nx || us.ny != g.ny) us = Field2(g.nx, g.ny);
   if (vs.nx != g.nx || vs.ny != g.ny) vs = Field2(g.nx, g.ny);
   std::vector<double> vol(g.cells(), 0.0), mu(g.cells(), 0.0), mv(g.cells(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double vp = p.radius[i] * p.radius[i] * p.radius[i];  // constant factor cancels
-    const CellWeights cw = cell_weights(g, method, p.x[i], p.y[i]);
+    const CellWeights& cw = weights[i];
     for (int k = 0; k < cw.count; ++k) {
       const std::size_t c = cw.cell[static_cast<std::size_t>(k)];
       const double w = cw.w[static_cast<std::size_t>(k)] * vp;
@@ -67,6 +86,12 @@ void cell_solids_velocity(const ParticleStore& p, const Grid2& g, VoidageMethod 
     us.v[c] = vol[c] > 0.0 ? mu[c] / vol[c] : 0.0;
     vs.v[c] = vol[c] > 0.0 ? mv[c] / vol[c] : 0.0;
   }
+}
+
+void cell_solids_velocity(const ParticleStore& p, const Grid2& g, VoidageMethod method, Field2& us, Field2& vs) {
+  std::vector<CellWeights> w;
+  particle_cell_weights(p, g, method, w);
+  cell_solids_velocity(p, w, g, us, vs);
 }
 
 }  // namespace fluidbed

@@ -2,6 +2,7 @@
 // Particle -> grid: voidage and mean solids velocity per gas cell; grid -> particle: the same kernel.
 #include <array>
 #include <cstddef>
+#include <vector>
 
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
@@ -20,11 +21,20 @@ struct CellWeights {
 
 CellWeights cell_weights(const Grid2& grid, VoidageMethod method, double x, double y);
 
+/// The kernel weights of every particle (computed in parallel; one entry per particle, in storage order).
+void particle_cell_weights(const ParticleStore& p, const Grid2& grid, VoidageMethod method,
+                           std::vector<CellWeights>& out);
+
 /// Voidage of every cell: eps = 1 - (particle volume in the cell) / (dx dy depth), not clipped.
 void compute_voidage(const ParticleStore& p, const Grid2& grid, VoidageMethod method, double depth, Field2& eps);
+/// The same from weights already computed by particle_cell_weights.
+void compute_voidage(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& grid, double depth,
+                     Field2& eps);
 
 /// Volume-weighted mean particle velocity of every cell (0 where a cell holds no particle).
 void cell_solids_velocity(const ParticleStore& p, const Grid2& grid, VoidageMethod method, Field2& us, Field2& vs);
+void cell_solids_velocity(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& grid,
+                          Field2& us, Field2& vs);
 
 /// The value of a cell-centred field at a point with the same kernel as the deposition.
 double gather(const Field2& f, const CellWeights& cw);
