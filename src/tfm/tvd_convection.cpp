@@ -140,10 +140,28 @@ Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& ph
     // Deferred correction: the limited part of the face flux, lagged, moves to the right-hand side.
     Field2 corr_div(g.nx, g.ny);
     if (limiter != Limiter::Upwind && pass > 0) {
-      Field2 full, upw;
-      convective_divergence(g, limiter, phi, vel, full);
-      convective_divergence(g, Limiter::Upwind, phi, vel, upw);
-      for (std::size_t k = 0; k < full.size(); ++k) corr_div.v[k] = full.v[k] - upw.v[k];
+      // Limited face values less their upwind part: only the limiter's correction remains on each face.
+      Field2 phi_x, phi_y;
+      tvd_face_values(g, limiter, phi, vel, phi_x, phi_y);
+      for (int j = 0; j < g.ny; ++j) {
+        for (int i = 0; i <= g.nx; ++i) {
+          if (!per && (i == 0 || i == g.nx)) {
+            phi_x(i, j) = 0.0;  // boundary faces carry the adjacent cell value in both schemes
+            continue;
+          }
+          phi_x(i, j) -= face_u(vel, i, j) >= 0.0 ? cell(phi, i - 1, j, per) : cell(phi, i, j, per);
+        }
+      }
+      for (int j = 0; j <= g.ny; ++j) {
+        for (int i = 0; i < g.nx; ++i) {
+          if (j == 0 || j == g.ny) {
+            phi_y(i, j) = 0.0;
+            continue;
+          }
+          phi_y(i, j) -= vel.v(i, j) >= 0.0 ? cell(phi, i, j - 1, per) : cell(phi, i, j, per);
+        }
+      }
+      divergence_from_faces(g, vel, phi_x, phi_y, corr_div);
     }
     for (int j = 0; j < g.ny; ++j) {
       for (int i = 0; i < g.nx; ++i) {
