@@ -45,8 +45,13 @@ std::string describe_case(const CaseConfig& c) {
     const double rho_g = c.gas.rho_g, mu_g = c.gas.mu_g;
     line("terminal velocity in air (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(sp.diameter, sp.density, rho_g, mu_g, g)));
     line("Ergun U_mf at eps_mf = 0.43", fmt::format("{:.3f} m/s", ergun_minimum_fluidisation_velocity(0.43, sp.diameter, sp.density, rho_g, mu_g, g)));
-    const double bytes_per_particle = 21 * 8 + 8 + 4 * 2 + 8 * (4 + 16) + 64;
-    line("memory estimate", fmt::format("{:.1f} MB", static_cast<double>(n) * bytes_per_particle / 1e6));
+    // The solver's data per particle (docs/performance.md, section 4) with E = 6 list entries (a packed bed):
+    // store 152, last-rebuild positions and wall springs 80, list and its previous copy 2 x (8 + 20 E), per-entry
+    // mirror, force and torque 28 E. The program and its libraries add about 25 MB.
+    constexpr double entries = 6.0;
+    const double bytes_per_particle = 152.0 + 80.0 + 2.0 * (8.0 + 20.0 * entries) + 28.0 * entries;
+    line("memory estimate", fmt::format("{:.1f} MB for the particles (plus about 25 MB for the program)",
+                                        static_cast<double>(n) * bytes_per_particle / 1e6));
   }
   if (c.model == Model::Tfm || c.gas_enabled) {
     line("gas grid", fmt::format("{} x {} cells of {} x {} m", c.grid.nx, c.grid.ny, c.grid.dx, c.grid.dy));
