@@ -77,13 +77,13 @@ void commit_temp_file(const std::filesystem::path& temp, const std::filesystem::
   sync_directory(target.parent_path());
 }
 
-void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
+void write_file_atomic(const std::filesystem::path& path, std::string_view content, Sync sync) {
   if (path.empty()) fail(path, "empty file name");
   const std::filesystem::path temp = temp_path_for(path);
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) fail(path, errno_text(errno));
   write_all(fd, content, path, temp);
-  if (::fsync(fd) != 0) {
+  if (sync == Sync::Durable && ::fsync(fd) != 0) {
     const int err = errno;
     ::close(fd);
     ::unlink(temp.c_str());
@@ -100,15 +100,16 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
     ::unlink(temp.c_str());
     fail(path, errno_text(err));
   }
-  sync_directory(path.parent_path());
+  if (sync == Sync::Durable) sync_directory(path.parent_path());
 }
 
-void write_file_atomic(const std::filesystem::path& path, const std::function<void(std::ostream&)>& writer) {
+void write_file_atomic(const std::filesystem::path& path, const std::function<void(std::ostream&)>& writer,
+                       Sync sync) {
   // Buffer in memory so that a throwing writer leaves no trace on disk; output files are a few MB at most.
   std::ostringstream buffer;
   writer(buffer);
   if (!buffer) fail(path, "the content could not be formatted");
-  write_file_atomic(path, buffer.view());
+  write_file_atomic(path, buffer.view(), sync);
 }
 
 void ensure_directory(const std::filesystem::path& dir) {

@@ -202,14 +202,14 @@ std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
   return order;
 }
 
-void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles) {
+void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles, Sync sync) {
   std::string out = std::string(particle_csv_header) + "\n";
   out.reserve(out.size() + particles.size() * 140);
   for (const std::size_t p : order_by_id(particles)) {
     out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", particles.id[p], particles.x[p],
                        particles.y[p], particles.vx[p], particles.vy[p], particles.omega[p], particles.species[p]);
   }
-  write_file_atomic(path, out);
+  write_file_atomic(path, out, sync);
 }
 
 std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dem/particle_store.hpp"
+#include "io/atomic_file.hpp"
 
 namespace fluidbed {
 
@@ -66,7 +67,8 @@ inline constexpr const char* particle_csv_header = "id,x,y,vx,vy,omega,species";
 std::vector<std::size_t> order_by_id(const ParticleStore& particles);
 
 /// Write `particles` sorted by id at full precision, atomically. Throws Error(BadInput) when it cannot write.
-void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles);
+void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles,
+                         Sync sync = Sync::Durable);
 
 /// Read and validate a particle CSV file (rows in file order). Throws Error(BadInput,
 /// "<file>: row R, column C: ...") on the first problem, R being the line number (the header is row 1):

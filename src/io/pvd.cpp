@@ -169,7 +169,7 @@ void PvdCollection::write() const {
                        xml_escape(e.file));
   }
   out += "  </Collection>\n</VTKFile>\n";
-  write_file_atomic(path_, out);
+  write_file_atomic(path_, out, Sync::Atomic);
 }
 
 }  // namespace fluidbed

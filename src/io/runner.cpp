@@ -250,9 +250,13 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
         write_vtu(out / rel, t, *p);
         particles_pvd.add(t, rel);
       }
-      if (cfg.output.particles_csv) write_particles_csv(out / frame_file_name("particles", index, "csv"), *p);
+      if (cfg.output.particles_csv) {
+        write_particles_csv(out / frame_file_name("particles", index, "csv"), *p, Sync::Atomic);
+      }
     }
-    if (tracers) write_file_atomic(out / frame_file_name("tracers", index, "csv"), tracer_csv(*tracers));
+    if (tracers) {
+      write_file_atomic(out / frame_file_name("tracers", index, "csv"), tracer_csv(*tracers), Sync::Atomic);
+    }
   };
 
   auto write_checkpoint = [&](const std::string& tag, double wall_total) {

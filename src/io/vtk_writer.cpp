@@ -103,7 +103,7 @@ void write_vti(const std::filesystem::path& path, const Grid2& grid, double time
   }
   file.xml += "      </CellData>\n";
   file.xml += "    </Piece>\n  </ImageData>\n";
-  write_file_atomic(path, file.finish("ImageData"));
+  write_file_atomic(path, file.finish("ImageData"), Sync::Atomic);
 }
 
 void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles) {
@@ -149,7 +149,7 @@ void write_vtu(const std::filesystem::path& path, double time, const ParticleSto
   file.data_array("Float64", "angular_velocity", 1, spin);
   file.data_array("Int32", "layer", 1, layer);
   file.xml += "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n";
-  write_file_atomic(path, file.finish("UnstructuredGrid"));
+  write_file_atomic(path, file.finish("UnstructuredGrid"), Sync::Atomic);
 }
 
 namespace {

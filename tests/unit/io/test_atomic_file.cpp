@@ -24,6 +24,18 @@ TEST(AtomicFile, WritesStringAndLeavesNoTemporary) {
   EXPECT_EQ(temp_files_in(dir), 0);
 }
 
+TEST(AtomicFile, AtomicOnlyWriteReplacesTheFileWholeToo) {
+  // Sync::Atomic skips the fsyncs (output frames) but keeps the temporary-and-rename protocol.
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
+  const auto path = dir / "frame.vti";
+  write_file_atomic(path, std::string("frame 1\n"), Sync::Atomic);
+  EXPECT_EQ(slurp(path), "frame 1\n");
+  write_file_atomic(path, [](std::ostream& out) { out << "frame " << 2 << '\n'; }, Sync::Atomic);
+  EXPECT_EQ(slurp(path), "frame 2\n");
+  EXPECT_EQ(temp_files_in(dir), 0);
+}
+
 TEST(AtomicFile, WritesThroughStreamCallback) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
