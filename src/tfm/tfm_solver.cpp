@@ -129,6 +129,17 @@ Grid2 validated_grid(const TfmConfig& c) {
 TfmSolver::TfmSolver(const TfmConfig& config)
     : config_(config), grid_(validated_grid(config)), pressure_solver_(grid_) {
   const int nx = grid_.nx, ny = grid_.ny;
+  std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int r = static_cast<int>(grid_.index(i, j));
+      nb[static_cast<std::size_t>(r)] = {i > 0 ? static_cast<int>(grid_.index(i - 1, j)) : -1,
+                                         i + 1 < nx ? static_cast<int>(grid_.index(i + 1, j)) : -1,
+                                         j > 0 ? static_cast<int>(grid_.index(i, j - 1)) : -1,
+                                         j + 1 < ny ? static_cast<int>(grid_.index(i, j + 1)) : -1};
+    }
+  }
+  e_matrix_.build(nx * ny, nb);
   s_.eps = Field2(nx, ny, 1.0);
   for (int j = 0; j < ny; ++j) {
     // Partly filled cells get the volume-weighted voidage, so the initial mass matches packed_height exactly.
@@ -472,43 +483,6 @@ double TfmSolver::step(double t_stop) {
       }
     }
   };
-  // Laplacian-type matrix of one correction; coef(face) is area / distance times the flux response.
-  auto assemble = [&](auto coef_x, auto coef_y, bool pressure) {
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(static_cast<std::size_t>(n) * 5);
-    Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
-    double scale = 0.0;
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        const int pc = id(i, j);
-        if (i + 1 < nx) {
-          const double a = coef_x(i + 1, j);
-          diag[pc] += a;
-          diag[id(i + 1, j)] += a;
-          trip.emplace_back(pc, id(i + 1, j), -a);
-          trip.emplace_back(id(i + 1, j), pc, -a);
-          scale = std::max(scale, a);
-        }
-        if (j + 1 < ny) {
-          const double a = coef_y(i, j + 1);
-          diag[pc] += a;
-          diag[id(i, j + 1)] += a;
-          trip.emplace_back(pc, id(i, j + 1), -a);
-          trip.emplace_back(id(i, j + 1), pc, -a);
-          scale = std::max(scale, a);
-        } else if (pressure && top_open) {
-          // P' = 0 on the outlet face, half a cell above the centre.
-          diag[pc] += 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy;
-        }
-      }
-    }
-    // A closed box fixes the pressure only up to a constant: pin the top-left cell (its row sums to zero anyway).
-    if (pressure && !top_open) diag[id(0, ny - 1)] += scale;
-    for (int k = 0; k < n; ++k) trip.emplace_back(k, k, diag[k]);
-    Eigen::SparseMatrix<double> m(n, n);
-    m.setFromTriplets(trip.begin(), trip.end());
-    return m;
-  };
   // Face coefficients of the P' equation for the shared pressure-correction solver (src/fluid): interior faces
   // couple neighbours; the open top couples to P' = 0 on the outlet face, half a cell above the centre.
   Field2 a_x(nx + 1, ny), a_y(nx, ny + 1), rhs_p(nx, ny), p_corr(nx, ny);
@@ -553,16 +527,24 @@ double TfmSolver::step(double t_stop) {
   // Solids volume fraction correction: (V/dt) E' - sum_faces es ss K grad E' = -(solids outflow). The matrix
   // is the Laplacian of the solids-pressure response times diag(K), plus V/dt; solved for W = K E' would be
   // symmetric, but K vanishes in dilute cells, so E' is the unknown.
-  const Eigen::SparseMatrix<double> lap_s = assemble(
-      [&](int i, int j) { return dy / dx * es_x(i, j) * ssu(i, j); },
-      [&](int i, int j) { return dx / dy * es_y(i, j) * ssv(i, j); }, false);
-  const Eigen::Map<const Eigen::VectorXd> k_cells(dps_deps_.v.data(), n);
-  Eigen::SparseMatrix<double> a_e = lap_s * k_cells.asDiagonal();
+  // Row of cell P: (V/dt + K_P sum_f a_f) E'_P - sum_f a_f K_nb E'_nb, with a_f the face's area / distance times
+  // its solids flux response; written in place into the fixed five-point pattern.
   const double vol = dx * dy;
-  for (int k = 0; k < n; ++k) a_e.coeffRef(k, k) += vol / dt;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double aw = i > 0 ? dy / dx * es_x(i, j) * ssu(i, j) : 0.0;
+      const double ae = i + 1 < nx ? dy / dx * es_x(i + 1, j) * ssu(i + 1, j) : 0.0;
+      const double as = j > 0 ? dx / dy * es_y(i, j) * ssv(i, j) : 0.0;
+      const double an = j + 1 < ny ? dx / dy * es_y(i, j + 1) * ssv(i, j + 1) : 0.0;
+      const double kw = i > 0 ? dps_deps_(i - 1, j) : 0.0, ke = i + 1 < nx ? dps_deps_(i + 1, j) : 0.0;
+      const double ks = j > 0 ? dps_deps_(i, j - 1) : 0.0, kn = j + 1 < ny ? dps_deps_(i, j + 1) : 0.0;
+      e_matrix_.set_row(id(i, j), vol / dt + dps_deps_(i, j) * (aw + ae + as + an),
+                        {-aw * kw, -ae * ke, -as * ks, -an * kn});
+    }
+  }
   outflow(out_g, out_s);
   solids_solver_.setTolerance(1e-12);
-  solids_solver_.compute(a_e);
+  solids_solver_.compute(e_matrix_.matrix());
   const Eigen::VectorXd e_corr = solids_solver_.solve(-out_s);
   if (solids_solver_.info() != Eigen::Success) throw_simulation_error("tfm: solids-fraction correction did not converge");
   auto w = [&](int i, int j) { return dps_deps_(i, j) * e_corr[id(i, j)]; };

@@ -9,6 +9,7 @@
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
 #include "fluid/pressure_correction.hpp"
+#include "fluid/stencil_matrix.hpp"
 #include "tfm/tfm_config.hpp"
 
 namespace fluidbed::tfm {
@@ -97,7 +98,8 @@ class TfmSolver {
   Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
   int packing_sweeps_ = 0;
   PressureCorrectionSolver pressure_solver_;  // shared with the gas solver (src/fluid)
-  Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::DiagonalPreconditioner<double>> solids_solver_;
+  StencilMatrix e_matrix_;  ///< solids-fraction correction, five-point pattern fixed at construction
+  Eigen::BiCGSTAB<StencilMatrix::Matrix, Eigen::DiagonalPreconditioner<double>> solids_solver_;
 };
 
 }  // namespace fluidbed::tfm
