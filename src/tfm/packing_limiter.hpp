@@ -22,8 +22,8 @@ struct PackingLimitResult {
 /// expression of conservative_update); after max_sweeps the run fails (simulation error). Where cut cells form
 /// a loop of flow, each cut returns to the cell that started it, so the sweeps converge geometrically: a whole
 /// bed resting on the bound needs 20-40 sweeps on the paper's grid and up to 56 on a twice finer one (a backstop
-/// that only catches overshoots, 3-7); the default cap leaves a wide margin. Cells are visited in a fixed order, so the result is deterministic. Non-periodic
-/// grids only (face 0 and face nx are distinct faces).
+/// that only catches overshoots, 3-7); the default cap leaves a wide margin. Cells are visited in a fixed order,
+/// so the result is deterministic. Non-periodic grids only (face 0 and face nx are distinct faces).
 PackingLimitResult limit_packing(const Grid2& grid, const Field2& phi_old, double dt, double phi_max,
                                  FaceFluxes& flux, int max_sweeps = 1000);
 
