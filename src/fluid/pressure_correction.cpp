@@ -56,14 +56,7 @@ PressureCorrectionSolver::PressureCorrectionSolver(const Grid2& grid, PressureSo
   impl_->kind = kind;
   const int nx = grid.nx;
   const int ny = grid.ny;
-  std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const int r = j * nx + i;
-      nb[static_cast<std::size_t>(r)] = {i > 0 ? r - 1 : -1, i < nx - 1 ? r + 1 : -1, j > 0 ? r - nx : -1,
-                                         j < ny - 1 ? r + nx : -1};
-    }
-  impl_->a.build(nx * ny, nb);
+  impl_->a.build_cells(nx, ny);
   impl_->cg.setTolerance(cg_tolerance);
   impl_->pcg.setTolerance(1e-12);
   impl_->b.resize(nx * ny);

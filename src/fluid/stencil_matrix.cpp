@@ -30,4 +30,15 @@ void StencilMatrix::build(int n, const std::vector<std::array<int, 4>>& neighbou
   }
 }
 
+void StencilMatrix::build_cells(int nx, int ny) {
+  std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int r = j * nx + i;
+      nb[static_cast<std::size_t>(r)] = {i > 0 ? r - 1 : -1, i < nx - 1 ? r + 1 : -1, j > 0 ? r - nx : -1,
+                                         j < ny - 1 ? r + nx : -1};
+    }
+  build(nx * ny, nb);
+}
+
 }  // namespace fluidbed

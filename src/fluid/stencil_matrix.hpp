@@ -18,6 +18,9 @@ class StencilMatrix {
 
   /// neighbours[row] lists up to four column indices; -1 where there is none.
   void build(int n, const std::vector<std::array<int, 4>>& neighbours);
+  /// The cell-centred five-point pattern of an nx x ny grid, rows numbered i fastest (Grid2::index), neighbours
+  /// in the order W, E, S, N.
+  void build_cells(int nx, int ny);
 
   int rows() const { return static_cast<int>(offset_.size() / kSlots); }
   /// Writes one row: diagonal and the four neighbour coefficients (ignored where the neighbour is -1).

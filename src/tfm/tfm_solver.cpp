@@ -129,17 +129,7 @@ Grid2 validated_grid(const TfmConfig& c) {
 TfmSolver::TfmSolver(const TfmConfig& config)
     : config_(config), grid_(validated_grid(config)), pressure_solver_(grid_) {
   const int nx = grid_.nx, ny = grid_.ny;
-  std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const int r = static_cast<int>(grid_.index(i, j));
-      nb[static_cast<std::size_t>(r)] = {i > 0 ? static_cast<int>(grid_.index(i - 1, j)) : -1,
-                                         i + 1 < nx ? static_cast<int>(grid_.index(i + 1, j)) : -1,
-                                         j > 0 ? static_cast<int>(grid_.index(i, j - 1)) : -1,
-                                         j + 1 < ny ? static_cast<int>(grid_.index(i, j + 1)) : -1};
-    }
-  }
-  e_matrix_.build(nx * ny, nb);
+  e_matrix_.build_cells(nx, ny);
   s_.eps = Field2(nx, ny, 1.0);
   for (int j = 0; j < ny; ++j) {
     // Partly filled cells get the volume-weighted voidage, so the initial mass matches packed_height exactly.
