@@ -144,10 +144,10 @@ void CfdDemSimulation::restore(Field2 eps, std::uint64_t gas_steps) {
   gas_steps_ = gas_steps;
   if (!gas_) return;
   eps_ = std::move(eps);
-  weights_.clear();  // the particles were replaced: the next deposit computes them
   const Grid2& g = gas_->grid();
   clip_voidage();
-  cell_solids_velocity(dem_.particles(), g, coupling_.voidage, us_, vs_);
+  particle_cell_weights(dem_.particles(), g, coupling_.voidage, weights_);  // of the restored particles
+  cell_solids_velocity(dem_.particles(), weights_, g, us_, vs_);
   gas_->cell_velocity(ug_, vg_);
 }
 
