@@ -164,7 +164,8 @@ class DemModel final : public ModelRun {
   }
 
   double time() const override { return sim_.time(); }
-  void advance() override {
+  void advance(double t_end) override {
+    (void)t_end;  // fixed steps for now
     sim_.advance();
     const double ov = sim_.dem().max_overlap();
     if (ov > overlap_limit_) {

@@ -35,8 +35,9 @@ class ModelRun {
  public:
   virtual ~ModelRun() = default;
   virtual double time() const = 0;
-  /// One macro step: a gas step with its DEM sub-steps, a DEM step alone, or a TFM step.
-  virtual void advance() = 0;
+  /// One macro step: a gas step with its DEM sub-steps, a DEM step alone, or a TFM step. The step never goes
+  /// past `t_end` (the run's end time): a model shortens its last step to land on it.
+  virtual void advance(double t_end) = 0;
   /// Time step of advance(), s: half of it is the slack of output scheduling; 0 for a model whose adaptive steps
   /// land on the output times themselves.
   virtual double macro_dt() const = 0;

@@ -317,7 +317,7 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
     if (!restart) observe(model->time());
     while (model->time() < cfg.run.end_time - 0.5 * dt) {
       const double t_before = model->time();
-      model->advance();
+      model->advance(cfg.run.end_time);
       ++steps_here;
       const double t = model->time();
       if (tracers) {

@@ -21,11 +21,11 @@ class TfmModel final : public ModelRun {
   }
 
   double time() const override { return solver_.time(); }
-  void advance() override {
+  void advance(double t_end) override {
     // Land exactly on every scheduled output time (monitor rows, frames, checkpoints), so that each is written
     // at its instant and a restarted run schedules the same steps.
     const double t = solver_.time();
-    double t_stop = config_.run.end_time;
+    double t_stop = t_end;
     for (double interval : {config_.output.monitor_interval, config_.output.interval, config_.output.checkpoint_interval}) {
       if (interval > 0.0) t_stop = std::min(t_stop, (std::floor(t / interval + 1e-9) + 1.0) * interval);
     }
