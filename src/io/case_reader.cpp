@@ -1,6 +1,7 @@
 #include "io/case_reader.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <filesystem>
@@ -166,6 +167,22 @@ CaseReader::CaseReader(const std::string& text, const std::string& name) : name_
   }
 }
 
+namespace {
+
+std::string kind_of(const toml::node& n) {
+  if (const auto* a = n.as_array()) return a->is_array_of_tables() && !a->empty() ? "an array of tables" : "an array";
+  return node_type_name(n);
+}
+
+// "a.b[2].c" from the first `count` parts of split_path.
+std::string join_parts(const std::vector<std::string>& parts, std::size_t count) {
+  std::string s;
+  for (std::size_t k = 0; k < count; ++k) s += (k && parts[k].front() != '[' ? "." : "") + parts[k];
+  return s;
+}
+
+}  // namespace
+
 void CaseReader::set_override(const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) {
@@ -175,9 +192,13 @@ void CaseReader::set_override(const std::string& assignment) {
   std::string key = assignment.substr(0, eq);
   std::string value = assignment.substr(eq + 1);
   key.erase(std::remove_if(key.begin(), key.end(), [](unsigned char c) { return std::isspace(c); }), key.end());
-  static const std::regex key_re(R"([A-Za-z_][A-Za-z0-9_]*(\[[0-9]+\])?(\.[A-Za-z_][A-Za-z0-9_]*(\[[0-9]+\])?)*)");
+  static const std::regex key_re(R"([A-Za-z_][A-Za-z0-9_]*(\[[0-9]+\])*(\.[A-Za-z_][A-Za-z0-9_]*(\[[0-9]+\])*)*)");
   if (!std::regex_match(key, key_re)) {
-    throw_input_error(fmt::format("--set {}: '{}' is not a valid key path (SECTION.KEY)", assignment, key));
+    throw_input_error(fmt::format("--set {}: '{}' is not a valid key path (SECTION.KEY, or SECTION.ARRAY[INDEX].KEY)",
+                                  assignment, key));
+  }
+  if (std::all_of(value.begin(), value.end(), [](unsigned char c) { return std::isspace(c); })) {
+    throw_input_error(fmt::format("--set {}: no value after '='", assignment));
   }
   toml::table parsed;
   try {
@@ -185,19 +206,79 @@ void CaseReader::set_override(const std::string& assignment) {
   } catch (const toml::parse_error&) {
     parsed = toml::table{{"v", value}};  // a bare word is taken as a string
   }
-  const toml::node* v = parsed.get("v");
-  // Arrays of tables must already exist for an indexed override.
-  try {
-    if (const auto* d = v->as_floating_point()) insert_at(table_, key, d->get());
-    else if (const auto* i = v->as_integer()) insert_at(table_, key, i->get());
-    else if (const auto* b = v->as_boolean()) insert_at(table_, key, b->get());
-    else if (const auto* s = v->as_string()) insert_at(table_, key, s->get());
-    else if (const auto* a = v->as_array()) insert_at(table_, key, *a);
-    else throw_input_error(fmt::format("--set {}: unsupported value", assignment));
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception&) {
-    throw_input_error(fmt::format("--set {}: '{}' does not name a key that can be set", assignment, key));
+  const toml::node& v = *parsed.get("v");
+  const auto bad = [&](const std::string& why) { throw_input_error(fmt::format("--set {}: {}", assignment, why)); };
+
+  // Walk the case's own tree. An override changes what the file holds; it never creates an entry of an array
+  // (that would silently add a species or a jet): arrays are extended in the file or given whole.
+  const auto parts = split_path(key);
+  // The node reached by parts[0..k) must take parts[k]: a key needs a table, an index an array.
+  const auto require_kind = [&](const toml::node& n, std::size_t k) {
+    const std::string here = join_parts(parts, k);
+    const std::string& next = parts[k];
+    if (next.front() == '[' && !n.is_array()) {
+      bad(fmt::format("'{}' is {}, not an array: it takes no index {}", here, kind_of(n), next));
+    }
+    if (next.front() != '[' && !n.is_table()) {
+      if (n.is_array()) bad(fmt::format("'{}' is {}: name one entry, as in {}[0].{}", here, kind_of(n), here, next));
+      bad(fmt::format("'{}' is {}, not a section: it has no key '{}'", here, kind_of(n), next));
+    }
+  };
+  toml::node* cur = &table_;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const bool last = k + 1 == parts.size();
+    const std::string& part = parts[k];
+    const std::string here = join_parts(parts, k + 1);
+    if (part.front() == '[') {
+      toml::array& arr = *cur->as_array();  // require_kind made sure
+      const std::string digits = part.substr(1, part.size() - 2);
+      const std::string owner = join_parts(parts, k);
+      std::size_t idx = 0;
+      const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), idx);
+      if (ec != std::errc{} || end != digits.data() + digits.size() || idx >= arr.size()) {
+        bad(fmt::format("'{}' has {} entr{} ({}); --set changes existing entries only: add the entry to the case "
+                        "file, or give the whole array (--set '{}=[...]')",
+                        owner, arr.size(), arr.size() == 1 ? "y" : "ies",
+                        arr.empty()       ? std::string("none")
+                        : arr.size() == 1 ? owner + "[0]"
+                                          : fmt::format("{}[0] to {}[{}]", owner, owner, arr.size() - 1),
+                        owner));
+      }
+      if (last) {
+        if (arr.get(idx)->is_table() && !v.is_table()) {
+          bad(fmt::format("'{}' is a table; set one of its keys ({}.KEY=VALUE) or give a table ({}={{KEY = VALUE}})",
+                          here, here, here));
+        }
+        arr.replace(arr.cbegin() + static_cast<std::ptrdiff_t>(idx), v);
+        break;
+      }
+      cur = arr.get(idx);
+      require_kind(*cur, k + 1);
+      continue;
+    }
+    toml::table& tbl = *cur->as_table();  // require_kind made sure
+    toml::node* existing = tbl.get(part);
+    if (last) {
+      if (existing && existing->is_table() && !v.is_table()) {
+        bad(fmt::format("'{}' is a section (a table of keys); set one of its keys: {}.KEY=VALUE", here, here));
+      }
+      if (existing && existing->is_array_of_tables() && !existing->as_array()->empty() && !v.is_array()) {
+        bad(fmt::format("'{}' is an array of tables; set a key of one entry ({}[0].KEY=VALUE) or give the whole "
+                        "array ({}=[{{KEY = VALUE}}, ...])", here, here, here));
+      }
+      tbl.insert_or_assign(part, v);
+      break;
+    }
+    if (!existing) {
+      if (parts[k + 1].front() == '[') {
+        bad(fmt::format("the case has no '{}', so there is no {}{} to change; add it to the case file, or give the "
+                        "whole array (--set '{}=[...]')", here, here, parts[k + 1], here));
+      }
+      tbl.insert(part, toml::table{});
+      existing = tbl.get(part);
+    }
+    require_kind(*existing, k + 1);
+    cur = existing;
   }
   overrides_[key] = "--set " + assignment;
 }
@@ -209,12 +290,35 @@ const toml::node* CaseReader::find(const std::string& path) const {
 bool CaseReader::has(const std::string& path) const { return find(path) != nullptr; }
 
 std::string CaseReader::where(const std::string& path) const {
-  if (auto it = overrides_.find(path); it != overrides_.end()) return it->second;
+  // The override that set this key, or a section or array above it (--set 'species=[{diameter = 0.003}]').
+  for (const auto& [key, origin] : overrides_) {
+    if (path.compare(0, key.size(), key) == 0 &&
+        (path.size() == key.size() || path[key.size()] == '.' || path[key.size()] == '[')) {
+      return origin;
+    }
+  }
+  if (auto it = moved_.find(path); it != moved_.end()) return it->second;
   const toml::node* n = find(path);
   if (n && n->source().begin.line > 0) {
     return fmt::format("{}:{}:{}", name_, n->source().begin.line, n->source().begin.column);
   }
   return name_;
+}
+
+void CaseReader::describe_default(const std::string& path, const std::string& text) {
+  if (auto it = key_index_.find(strip_indices(path)); it != key_index_.end()) keys_[it->second].default_text = text;
+}
+
+void CaseReader::alias(const std::string& old_path, const std::string& new_path) {
+  const toml::node* old_node = find(old_path);
+  if (!old_node) return;
+  if (find(new_path)) fail(old_path, fmt::format("is the old name of {}; give only {}", new_path, new_path));
+  const std::string origin = fmt::format("{} ({})", where(old_path), old_path);
+  insert_at(table_, new_path, *old_node);
+  const auto dot = old_path.rfind('.');
+  toml::table* parent = dot == std::string::npos ? &table_ : table_.at_path(old_path.substr(0, dot)).as_table();
+  parent->erase(old_path.substr(dot == std::string::npos ? 0 : dot + 1));
+  moved_[new_path] = origin;
 }
 
 void CaseReader::fail(const std::string& path, const std::string& message) const {

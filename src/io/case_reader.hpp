@@ -37,6 +37,9 @@ class CaseReader {
   CaseReader(const std::string& text, const std::string& name);
 
   /// Apply `section.key=value` from the command line: value parsed as TOML, or as a string if it is not TOML.
+  /// SECTION.ARRAY[i].KEY changes an entry the case already has; a whole array is given as a TOML array
+  /// (`species=[{diameter = 0.003}]`). Anything else (an index past the end, a key under a value, a value for a
+  /// section) is a bad-input error naming the override.
   void set_override(const std::string& assignment);
 
   using Range = KeyRange;
@@ -57,6 +60,11 @@ class CaseReader {
   /// Number of tables in an array of tables (e.g. [[species]]); its keys are read as "name[i].key".
   std::size_t table_count(const std::string& path, const std::string& doc);
   bool has(const std::string& path) const;
+
+  /// The default of `path` as the key table shows it, for a default derived from other keys ("t_c / 20").
+  void describe_default(const std::string& path, const std::string& text);
+  /// Read a key given under its old name `old_path` as `new_path` (both plain dotted paths); both given is an error.
+  void alias(const std::string& old_path, const std::string& new_path);
 
   /// A bad-input error at `path`, naming file and line.
   [[noreturn]] void fail(const std::string& path, const std::string& message) const;
@@ -82,6 +90,7 @@ class CaseReader {
   std::vector<KeyInfo> keys_;
   std::map<std::string, std::size_t> key_index_;
   std::map<std::string, std::string> overrides_;  // path -> where it came from
+  std::map<std::string, std::string> moved_;      // new path -> where the old name was given
   std::set<std::string> read_;                    // indexed paths that were read
 };
 

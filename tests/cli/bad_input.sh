@@ -75,6 +75,24 @@ expect 2 "--set nosuchkey: expected SECTION.KEY=VALUE" "--set without =" "$FLUID
 expect 2 "unknown key 'contact.stifness'; did you mean 'contact.stiffness'" "--set unknown key" \
   "$FLUIDBED" check "$WORK/ok.toml" --set contact.stifness=100
 expect 2 "threads" "--threads 0" "$FLUIDBED" run "$WORK/ok.toml" --threads 0
+# --set through arrays of tables and values (issue 11, item 1): exit 2 with one line, never a crash, never a new entry.
+set_bad() {  # set_bad NAME REGEX ASSIGNMENT: --set on the paper's case (one species, one jet)
+  local literal
+  literal=$(sed 's/[][().*^$+?{}|\\]/\\&/g' <<<"$3")
+  expect 2 "^fluidbed: --set $literal: $2" "$1" "$FLUIDBED" check "$ROOT/cases/gera1998/dem.toml" --set "$3"
+  local lines
+  lines=$("$FLUIDBED" check "$ROOT/cases/gera1998/dem.toml" --set "$3" 2>&1 | wc -l)
+  expect 0 "" "$1: one line" test "$lines" -eq 1
+}
+set_bad set_array_key "'species' is an array of tables: name one entry, as in species\[0\].diameter" species.diameter=0.003
+set_bad set_jet_key "'inlet.jet' is an array of tables: name one entry" inlet.jet.velocity=20
+set_bad set_under_value "'case.name' is a string, not a section" case.name.x=1
+set_bad set_index_on_table "'case' is a table, not an array" 'case[0].name=1'
+set_bad set_huge_index "'species' has 1 entry \(species\[0\]\); --set changes existing entries only" 'species[100000].diameter=0.003'
+set_bad set_new_species "'species' has 1 entry" 'species[1].diameter=0.003'
+set_bad set_section_value "'case' is a section" case=1
+expect 0 "OK" "--set a whole species array" "$FLUIDBED" check "$ROOT/cases/gera1998/dem.toml" \
+  --set 'species=[{diameter = 0.004}, {diameter = 0.004, density = 2500.0}]'
 
 # A particle CSV with a bad row names the file, the row and the column.
 printf 'id,x,y,vx,vy,omega,species\n0,0.1,0.1,0,0,0,0\n1,0.2,abc,0,0,0,0\n' > "$WORK/bad.csv"
