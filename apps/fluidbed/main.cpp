@@ -81,7 +81,11 @@ int main(int argc, char** argv) {
   run->add_option("--end-time", end_time, "simulated end time, s (overrides case.end_time)")->check(CLI::PositiveNumber);
   run->add_option("--threads", ro.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
   run->add_option("--set", sets, "override a case key: SECTION.KEY=VALUE (repeatable)");
-  run->add_option("--restart", ro.restart, "continue from this HDF5 checkpoint");
+  run->add_option("--restart", ro.restart,
+                  "continue from this HDF5 checkpoint, or 'latest': the newest valid one of the output folder");
+  run->add_flag("--overwrite", ro.overwrite, "a new run may replace the results already in the output folder");
+  run->add_option("--allow-changed", ro.allow_changed,
+                  "with --restart: accept this case key (or section) differing from the checkpoint's (repeatable)");
   run->add_option("--max-wall-time", max_wall, "stop with a checkpoint after this wall time, s")->check(CLI::PositiveNumber);
   run->add_flag("--quiet", ro.quiet, "no progress or log on the terminal (log.txt is still written)");
 
@@ -108,7 +112,11 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) {
-      if (end_time > 0) sets.push_back(fmt::format("case.end_time={}", end_time));
+      ro.sets = sets;  // as given, for the command that continues an interrupted run
+      if (end_time > 0) {
+        ro.end_time = end_time;
+        sets.push_back(fmt::format("case.end_time={}", end_time));
+      }
       if (max_wall > 0) ro.max_wall_time = max_wall;
       const fluidbed::LoadedCase lc = fluidbed::load_case(case_file, sets);
       return fluidbed::run_case(lc, ro);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -34,6 +35,21 @@ CellTracers::CellTracers(const Grid2& grid, double bed_height, int n_layers) : g
       x.push_back(grid.xc(i));
       y.push_back(grid.yc(j));
       layer.push_back(layer_of(grid.yc(j), grid.y0, bed_height, n_layers));
+    }
+  }
+}
+
+CellTracers::CellTracers(const Grid2& grid, std::vector<std::int64_t> ids, std::vector<double> xs,
+                         std::vector<double> ys, std::vector<std::int32_t> layers)
+    : id(std::move(ids)), x(std::move(xs)), y(std::move(ys)), layer(std::move(layers)), grid_(grid) {
+  if (x.size() != id.size() || y.size() != id.size() || layer.size() != id.size()) {
+    throw_input_error(fmt::format("cell tracers: {} ids, {} x, {} y and {} layers", id.size(), x.size(), y.size(),
+                                  layer.size()));
+  }
+  const double x_hi = grid_.x0 + grid_.width(), y_hi = grid_.y0 + grid_.height();
+  for (std::size_t k = 0; k < id.size(); ++k) {
+    if (!(x[k] >= grid_.x0 && x[k] <= x_hi && y[k] >= grid_.y0 && y[k] <= y_hi)) {
+      throw_input_error(fmt::format("cell tracers: ball {} at ({}, {}) m lies outside the grid", id[k], x[k], y[k]));
     }
   }
 }

@@ -23,6 +23,11 @@ class CellTracers {
  public:
   /// bed_height: initial bed height above grid.y0, m (e.g. bed_surface_height() of the initial voidage).
   CellTracers(const Grid2& grid, double bed_height, int n_layers);
+  /// The balls of a checkpoint: ids, positions and initial layers as saved (a restart must not recolour them
+  /// from the bed it restarts in). Throws Error(BadInput) when the arrays differ in length or a ball lies
+  /// outside the grid.
+  CellTracers(const Grid2& grid, std::vector<std::int64_t> ids, std::vector<double> xs, std::vector<double> ys,
+              std::vector<std::int32_t> layers);
 
   /// x += us dt, y += vs dt with the velocity of the cell holding the ball (piecewise constant, no collisions, as
   /// the paper); the centre is then clamped to the domain [x0, x0 + width] x [y0, y0 + height].

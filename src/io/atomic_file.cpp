@@ -1,10 +1,12 @@
 #include "io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <fmt/format.h>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -15,10 +17,18 @@ namespace fluidbed {
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& reason) {
-  throw Error(ErrorKind::BadInput, "cannot write " + path.string() + ": " + reason);
+  throw WriteError(path, "cannot write " + path.string() + ": " + reason);
 }
 
 std::string errno_text(int err) { return std::strerror(err); }
+
+// A failed system call on `path` while writing `bytes` bytes: the reason, and the space note when it is a full disk.
+[[noreturn]] void fail_errno(const std::filesystem::path& path, int err, std::uintmax_t bytes) {
+  throw WriteError(path, "cannot write " + path.string() + ": " + errno_text(err) + disk_space_note(path, bytes, err),
+                   err);
+}
+
+std::string megabytes(std::uintmax_t bytes) { return fmt::format("{:.3g} MB", static_cast<double>(bytes) / 1e6); }
 
 // Best effort: the rename is already atomic; syncing the folder makes it survive a power loss.
 void sync_directory(const std::filesystem::path& dir) {
@@ -40,7 +50,7 @@ void write_all(int fd, std::string_view content, const std::filesystem::path& ta
       const int err = errno;
       ::close(fd);
       ::unlink(temp.c_str());
-      fail(target, errno_text(err));
+      fail_errno(target, err, content.size());
     }
     p += n;
     left -= static_cast<std::size_t>(n);
@@ -49,6 +59,16 @@ void write_all(int fd, std::string_view content, const std::filesystem::path& ta
 
 }  // namespace
 
+std::string disk_space_note(const std::filesystem::path& path, std::uintmax_t bytes_needed, int error_number) {
+  if (error_number != ENOSPC && error_number != EDQUOT) return {};
+  const std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  struct statvfs fs {};
+  if (::statvfs(dir.c_str(), &fs) != 0) return fmt::format("; the file needs about {}", megabytes(bytes_needed));
+  const std::uintmax_t free_bytes = static_cast<std::uintmax_t>(fs.f_bavail) * fs.f_frsize;
+  return fmt::format("; the file needs about {} and {} are free on {}", megabytes(bytes_needed), megabytes(free_bytes),
+                     dir.string());
+}
+
 std::filesystem::path temp_path_for(const std::filesystem::path& path) {
   std::filesystem::path temp = path;
   temp += ".tmp." + std::to_string(static_cast<long long>(::getpid()));
@@ -56,23 +76,25 @@ std::filesystem::path temp_path_for(const std::filesystem::path& path) {
 }
 
 void commit_temp_file(const std::filesystem::path& temp, const std::filesystem::path& target) {
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(temp, ec);
   const int fd = ::open(temp.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     const int err = errno;
     ::unlink(temp.c_str());
-    fail(target, errno_text(err));
+    fail_errno(target, err, ec ? 0 : bytes);
   }
   if (::fsync(fd) != 0) {
     const int err = errno;
     ::close(fd);
     ::unlink(temp.c_str());
-    fail(target, errno_text(err));
+    fail_errno(target, err, ec ? 0 : bytes);
   }
   ::close(fd);
   if (::rename(temp.c_str(), target.c_str()) != 0) {
     const int err = errno;
     ::unlink(temp.c_str());
-    fail(target, errno_text(err));
+    fail_errno(target, err, ec ? 0 : bytes);
   }
   sync_directory(target.parent_path());
 }
@@ -81,24 +103,24 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
   if (path.empty()) fail(path, "empty file name");
   const std::filesystem::path temp = temp_path_for(path);
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail(path, errno_text(errno));
+  if (fd < 0) fail_errno(path, errno, content.size());
   write_all(fd, content, path, temp);
   if (sync == Sync::Durable && ::fsync(fd) != 0) {
     const int err = errno;
     ::close(fd);
     ::unlink(temp.c_str());
-    fail(path, errno_text(err));
+    fail_errno(path, err, content.size());
   }
   // close() reports deferred write errors on some file systems (NFS).
   if (::close(fd) != 0) {
     const int err = errno;
     ::unlink(temp.c_str());
-    fail(path, errno_text(err));
+    fail_errno(path, err, content.size());
   }
   if (::rename(temp.c_str(), path.c_str()) != 0) {
     const int err = errno;
     ::unlink(temp.c_str());
-    fail(path, errno_text(err));
+    fail_errno(path, err, content.size());
   }
   if (sync == Sync::Durable) sync_directory(path.parent_path());
 }

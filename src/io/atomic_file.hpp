@@ -1,12 +1,35 @@
 #pragma once
 // Whole-file atomic writes: a reader (ParaView, a post script, a restart) never sees a half-written file,
 // and a run killed mid-write leaves the previous version in place.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <string>
 #include <string_view>
 
+#include "core/error.hpp"
+
 namespace fluidbed {
+
+/// A file that could not be written (disk full, quota, I/O error). Its kind is BadInput, as for an unwritable
+/// output folder named on the command line; the run driver turns one that happens during a run into a
+/// simulation failure (exit 3) with its diagnosis. The message is "cannot write <path>: <reason>[; space note]".
+class WriteError : public Error {
+ public:
+  WriteError(std::filesystem::path path, const std::string& message, int error_number = 0)
+      : Error(ErrorKind::BadInput, message), path_(std::move(path)), errno_(error_number) {}
+  const std::filesystem::path& path() const { return path_; }
+  int error_number() const { return errno_; }  ///< errno of the failed call, 0 when not from a system call
+
+ private:
+  std::filesystem::path path_;
+  int errno_;
+};
+
+/// "; the file needs about 1.2 MB and 0.3 MB are free on <folder>" for a write that failed with ENOSPC or
+/// EDQUOT (empty for other errors): what a user needs to size the space to free.
+std::string disk_space_note(const std::filesystem::path& path, std::uintmax_t bytes_needed, int error_number);
 
 /// Temporary name used while `path` is being written: `path.tmp.<pid>` in the same folder (same file system,
 /// so the final rename is atomic).
@@ -19,8 +42,8 @@ std::filesystem::path temp_path_for(const std::filesystem::path& path);
 enum class Sync { Durable, Atomic };
 
 /// Write `content` to `path` atomically: temporary file, (fsync), rename over the target, (fsync of the folder).
-/// Throws Error(BadInput, "cannot write <path>: <reason>"); on failure the target is untouched and no
-/// temporary file is left behind.
+/// Throws WriteError("cannot write <path>: <reason>"); on failure the target is untouched and no temporary file
+/// is left behind.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content, Sync sync = Sync::Durable);
 
 /// As above, with the content produced by `writer` into a stream. If `writer` throws, its exception propagates

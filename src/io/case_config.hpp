@@ -36,6 +36,7 @@ struct OutputConfig {
   double interval = 0.01;          ///< fields, particles, bubble samples, s
   double monitor_interval = 0.001; ///< monitor.csv rows, s
   double checkpoint_interval = 0.25;  ///< s (0: only at the end)
+  int checkpoint_keep = 3;            ///< periodic checkpoints kept (the newest ones)
   bool fields = true;
   bool particles = true;
   bool particles_csv = false;

@@ -328,6 +328,9 @@ void read_output(CaseReader& r, CaseConfig& c) {
   c.output.checkpoint_interval = r.number("output.checkpoint_interval", 0.25, "s",
                                           "interval of HDF5 checkpoints (one is always written at the end); 0 = end only",
                                           R::non_negative());
+  c.output.checkpoint_keep = static_cast<int>(r.integer(
+      "output.checkpoint_keep", 3, "periodic checkpoints kept, the newest ones (an older one is deleted only after a "
+      "newer one is complete)", R::between(1, 1000000)));
   c.output.fields = r.boolean("output.fields", true, "write fields.pvd and fields/*.vti");
   c.output.particles = r.boolean("output.particles", true, "write particles.pvd and particles/*.vtu (DEM)");
   c.output.particles_csv = r.boolean("output.particles_csv", false, "also write particles/*.csv at full precision (DEM)");

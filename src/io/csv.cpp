@@ -1,6 +1,7 @@
 #include "io/csv.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -26,7 +27,7 @@ namespace fluidbed {
 namespace {
 
 [[noreturn]] void cannot_write(const std::filesystem::path& path, const std::string& reason) {
-  throw Error(ErrorKind::BadInput, "cannot write " + path.string() + ": " + reason);
+  throw WriteError(path, "cannot write " + path.string() + ": " + reason);
 }
 
 std::string join(const std::vector<std::string>& cells) {
@@ -178,6 +179,10 @@ void CsvWriter::row(std::span<const std::optional<double>> values) {
   }
   if (fd_ < 0) cannot_write(path_, "the file is not open");
   const std::string line = format_row(values);
+  // Where the file ends now: a write that fails part-way (disk full) is cut back to here, so the file keeps
+  // whole rows only.
+  struct stat before {};
+  if (::fstat(fd_, &before) != 0) cannot_write(path_, std::strerror(errno));
   // One write() per line on an O_APPEND descriptor: the kernel's buffer receives whole lines, which is what a
   // killed process leaves on disk.
   std::size_t done = 0;
@@ -185,7 +190,13 @@ void CsvWriter::row(std::span<const std::optional<double>> values) {
     const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      cannot_write(path_, std::strerror(errno));
+      const int err = errno;
+      if (done > 0 && ::ftruncate(fd_, before.st_size) != 0) {
+        throw WriteError(path_, fmt::format("cannot write {}: {}, and the partial row could not be removed: {}",
+                                            path_.string(), std::strerror(err), std::strerror(errno)), err);
+      }
+      throw WriteError(path_, "cannot write " + path_.string() + ": " + std::strerror(err) +
+                                  disk_space_note(path_, line.size(), err), err);
     }
     done += static_cast<std::size_t>(n);
   }

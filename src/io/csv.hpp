@@ -35,7 +35,8 @@ class CsvWriter {
   ~CsvWriter();
 
   /// Append one row: values at full precision ({:.17g}), an empty cell for std::nullopt. The count must match
-  /// the header (std::invalid_argument otherwise). Throws Error(BadInput) when the write fails.
+  /// the header (std::invalid_argument otherwise). Throws WriteError when the write fails (disk full); a row
+  /// that fails part-way is cut off again, so the file holds whole rows only.
   void row(std::span<const std::optional<double>> values);
   void row(std::initializer_list<std::optional<double>> values) { row(std::span(values.begin(), values.size())); }
 

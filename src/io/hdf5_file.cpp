@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <functional>
 #include <system_error>
 #include <type_traits>
@@ -48,6 +49,23 @@ std::string hdf5_reason() {
   H5Eclear2(H5E_DEFAULT);
   return reason.empty() ? std::string("HDF5 error") : "HDF5: " + reason;
 }
+
+// The errno HDF5's POSIX driver reports in its message ("..., errno = 28, error message = ..."), or 0.
+int errno_in(const std::string& reason) {
+  const std::size_t at = reason.find("errno = ");
+  return at == std::string::npos ? 0 : std::atoi(reason.c_str() + at + 8);
+}
+
+// The 1.10 file format: checksums on the superblock, object headers (and so attributes) and chunk indexes.
+hid_t file_access_plist() {
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  if (fapl >= 0) H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+  return fapl;
+}
+
+// Elements per chunk: one chunk for a checkpoint's arrays (a million particles is 8 MB per array), several
+// beyond, each with its own Fletcher32 checksum.
+constexpr hsize_t kChunkElements = hsize_t{1} << 20;
 
 std::string object_path(const std::string& object) { return object.empty() ? std::string("/") : object; }
 
@@ -108,7 +126,16 @@ void write_dataset(hid_t file, const std::string& name, const std::vector<T>& da
   Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose);
   if (!space.valid()) fail("cannot create the dataspace of '" + name + "'");
   Handle lcpl(link_creation_plist(), H5Pclose);
-  Handle set(H5Dcreate2(file, name.c_str(), Hdf5Type<T>::file(), space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+  // Chunked with a Fletcher32 checksum per chunk, which H5Dread checks; an empty dataset has no chunk to check.
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (!dcpl.valid()) fail("cannot create the properties of dataset '" + name + "'");
+  if (!data.empty()) {
+    const hsize_t chunk[1] = {std::min(dims[0], kChunkElements)};
+    if (H5Pset_chunk(dcpl.get(), 1, chunk) < 0 || H5Pset_fletcher32(dcpl.get()) < 0) {
+      fail("cannot set the checksum of dataset '" + name + "'");
+    }
+  }
+  Handle set(H5Dcreate2(file, name.c_str(), Hdf5Type<T>::file(), space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
              H5Dclose);
   if (!set.valid()) fail("cannot create dataset '" + name + "'");
   if (!data.empty() &&
@@ -132,12 +159,14 @@ Hdf5File Hdf5File::create(const std::filesystem::path& path) {
   Hdf5File f;
   f.path_ = path;
   f.temp_ = temp_path_for(path);
-  f.file_ = H5Fcreate(f.temp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  Handle fapl(file_access_plist(), H5Pclose);
+  f.file_ = H5Fcreate(f.temp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
   if (f.file_ < 0) {
     const std::string reason = hdf5_reason();
     ::unlink(f.temp_.c_str());
     f.temp_.clear();
-    throw Error(ErrorKind::BadInput, "cannot write " + path.string() + ": " + reason);
+    throw WriteError(path, "cannot write " + path.string() + ": " + reason + disk_space_note(path, 0, errno_in(reason)),
+                     errno_in(reason));
   }
   return f;
 }
@@ -160,7 +189,7 @@ Hdf5File Hdf5File::open(const std::filesystem::path& path) {
 }
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
-    : path_(std::move(other.path_)), temp_(std::move(other.temp_)), file_(other.file_) {
+    : path_(std::move(other.path_)), temp_(std::move(other.temp_)), file_(other.file_), bytes_(other.bytes_) {
   other.file_ = -1;
   other.temp_.clear();
 }
@@ -171,6 +200,7 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
     path_ = std::move(other.path_);
     temp_ = std::move(other.temp_);
     file_ = other.file_;
+    bytes_ = other.bytes_;
     other.file_ = -1;
     other.temp_.clear();
   }
@@ -190,7 +220,11 @@ void Hdf5File::close() noexcept {
 
 void Hdf5File::fail(const std::string& what) const {
   const std::string reason = hdf5_reason();
-  if (!temp_.empty()) throw Error(ErrorKind::BadInput, "cannot write " + path_.string() + ": " + what + " (" + reason + ")");
+  if (!temp_.empty()) {
+    const int err = errno_in(reason);
+    throw WriteError(path_, "cannot write " + path_.string() + ": " + what + " (" + reason + ")" +
+                                disk_space_note(path_, bytes_, err), err);
+  }
   throw Error(ErrorKind::BadInput, path_.string() + ": " + what + " (" + reason + ")");
 }
 
@@ -207,7 +241,8 @@ void Hdf5File::commit() {
     const std::string reason = hdf5_reason();
     ::unlink(temp_.c_str());
     temp_.clear();
-    throw Error(ErrorKind::BadInput, "cannot write " + path_.string() + ": " + reason);
+    const int err = errno_in(reason);
+    throw WriteError(path_, "cannot write " + path_.string() + ": " + reason + disk_space_note(path_, bytes_, err), err);
   }
   const std::filesystem::path temp = temp_;
   temp_.clear();
@@ -240,12 +275,15 @@ bool Hdf5File::has(const std::string& name) const {
 }
 
 void Hdf5File::write(const std::string& name, const std::vector<double>& data) {
+  bytes_ += data.size() * sizeof(double);
   write_dataset(checked_file(), name, data, [this](const std::string& w) { fail(w); });
 }
 void Hdf5File::write(const std::string& name, const std::vector<std::int64_t>& data) {
+  bytes_ += data.size() * sizeof(std::int64_t);
   write_dataset(checked_file(), name, data, [this](const std::string& w) { fail(w); });
 }
 void Hdf5File::write(const std::string& name, const std::vector<std::int32_t>& data) {
+  bytes_ += data.size() * sizeof(std::int32_t);
   write_dataset(checked_file(), name, data, [this](const std::string& w) { fail(w); });
 }
 
@@ -269,7 +307,8 @@ std::vector<T> read_dataset(hid_t file, const std::filesystem::path& path, const
   H5Sget_simple_extent_dims(space.get(), dims, nullptr);
   std::vector<T> data(static_cast<std::size_t>(dims[0]));
   if (!data.empty() && H5Dread(set.get(), Hdf5Type<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0) {
-    bad("cannot be read");
+    const std::string reason = hdf5_reason();
+    bad("cannot be read (corrupt: " + reason + ")");
   }
   return data;
 }
@@ -404,6 +443,85 @@ std::string Hdf5File::attribute_string(const std::string& object, const std::str
   }
   while (!value.empty() && value.back() == '\0') value.pop_back();
   return value;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Integrity
+
+namespace {
+
+struct VerifyState {
+  std::string problem;  ///< first failure, "" while all is well
+};
+
+// Reads every attribute of `object` in its stored type: HDF5 checks the checksum of the header holding it.
+herr_t verify_attribute(hid_t object, const char* name, const H5A_info_t* /*info*/, void* data) {
+  auto& st = *static_cast<VerifyState*>(data);
+  Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  Handle type(attr.valid() ? H5Aget_type(attr.get()) : -1, H5Tclose);
+  Handle space(attr.valid() ? H5Aget_space(attr.get()) : -1, H5Sclose);
+  const hssize_t n = space.valid() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+  bool ok = attr.valid() && type.valid() && n >= 0 && H5Tis_variable_str(type.get()) <= 0;
+  if (ok) {
+    std::vector<unsigned char> buffer(static_cast<std::size_t>(n) * H5Tget_size(type.get()) + 1);
+    ok = H5Aread(attr.get(), type.get(), buffer.data()) >= 0;
+  }
+  if (!ok) {
+    st.problem = std::string("attribute '") + name + "' cannot be read (" + hdf5_reason() + ")";
+    return 1;
+  }
+  return 0;
+}
+
+herr_t verify_object(hid_t root, const char* name, const H5O_info_t* info, void* data) {
+  auto& st = *static_cast<VerifyState*>(data);
+  const std::string where = std::string(name) == "." ? std::string("/") : std::string(name);
+  Handle object(H5Oopen(root, name, H5P_DEFAULT), H5Oclose);
+  if (!object.valid()) {
+    st.problem = "object '" + where + "' cannot be opened (" + hdf5_reason() + ")";
+    return 1;
+  }
+  hsize_t index = 0;
+  if (H5Aiterate2(object.get(), H5_INDEX_NAME, H5_ITER_NATIVE, &index, verify_attribute, &st) != 0) {
+    if (st.problem.empty()) st.problem = "the attributes of '" + where + "' cannot be read (" + hdf5_reason() + ")";
+    st.problem += " on '" + where + "'";
+    return 1;
+  }
+  if (info->type != H5O_TYPE_DATASET) return 0;
+  const std::string what = "dataset '" + where + "'";
+  Handle type(H5Dget_type(object.get()), H5Tclose);
+  Handle space(H5Dget_space(object.get()), H5Sclose);
+  Handle dcpl(H5Dget_create_plist(object.get()), H5Pclose);
+  const hssize_t n = space.valid() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+  if (!type.valid() || n < 0 || !dcpl.valid()) {
+    st.problem = what + " cannot be opened (" + hdf5_reason() + ")";
+    return 1;
+  }
+  if (n == 0) return 0;
+  unsigned flags = 0;
+  if (H5Pget_filter_by_id2(dcpl.get(), H5Z_FILTER_FLETCHER32, &flags, nullptr, nullptr, 0, nullptr, nullptr) < 0) {
+    H5Eclear2(H5E_DEFAULT);
+    st.problem = what + " has no checksum (not a checkpoint of this fluidbed version)";
+    return 1;
+  }
+  std::vector<unsigned char> buffer(static_cast<std::size_t>(n) * H5Tget_size(type.get()));
+  if (H5Dread(object.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0) {
+    st.problem = what + " fails its checksum (" + hdf5_reason() + ")";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void Hdf5File::verify() const {
+  VerifyState st;
+  const herr_t rc = H5Ovisit2(checked_file(), H5_INDEX_NAME, H5_ITER_NATIVE, verify_object, &st, H5O_INFO_BASIC);
+  if (rc != 0 || !st.problem.empty()) {
+    if (st.problem.empty()) st.problem = "its objects cannot be listed (" + hdf5_reason() + ")";
+    H5Eclear2(H5E_DEFAULT);
+    throw Error(ErrorKind::BadInput, path_.string() + ": corrupt: " + st.problem);
+  }
 }
 
 }  // namespace fluidbed

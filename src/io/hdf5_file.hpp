@@ -2,6 +2,9 @@
 // Thin RAII wrapper over the HDF5 C API for checkpoints: 1D datasets of double/int64/int32, scalar attributes,
 // groups. Data are stored in the file's native little-endian IEEE/two's-complement types and read back without
 // conversion, so every bit (denormals, signed zeros) survives a round trip. <hdf5.h> stays out of this header.
+// Integrity: files use the HDF5 1.10 format, whose metadata (superblock, object headers with their attributes,
+// group and chunk indexes) carry checksums, and every non-empty dataset is chunked with the Fletcher32 filter,
+// so verify() detects a changed byte anywhere that matters.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -12,7 +15,7 @@ namespace fluidbed {
 class Hdf5File {
  public:
   /// Start a new file. It is written as temp_path_for(path) and appears at `path` only on commit().
-  /// Throws Error(BadInput, "cannot write <path>: ...").
+  /// Throws WriteError("cannot write <path>: ..."), as do the writing calls below.
   static Hdf5File create(const std::filesystem::path& path);
   /// Open an existing file read-only. Throws Error(BadInput, "<file>: ...") if it is missing or not HDF5.
   static Hdf5File open(const std::filesystem::path& path);
@@ -26,6 +29,11 @@ class Hdf5File {
 
   /// Close, fsync and rename the temporary file over the target. The object is closed afterwards.
   void commit();
+
+  /// Read every dataset and attribute of an opened file, checking the checksums. Throws Error(BadInput,
+  /// "<file>: corrupt: dataset 'dem/x' fails its checksum (...)") naming the first object that fails, or one
+  /// written without a checksum (not a checkpoint of this format).
+  void verify() const;
 
   /// Create a group ("particles", or nested "a/b" with its parents).
   void create_group(const std::string& group);
@@ -67,6 +75,7 @@ class Hdf5File {
   std::filesystem::path path_;
   std::filesystem::path temp_;  ///< non-empty while a created file is uncommitted
   std::int64_t file_ = -1;      ///< hid_t
+  std::uintmax_t bytes_ = 0;    ///< payload written so far, for the disk-space note of a failed write
 
   Hdf5File() = default;
   void close() noexcept;

@@ -19,6 +19,7 @@
 #include "analysis/layer_tracers.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/checkpoint_set.hpp"
 #include "io/csv.hpp"
 #include "io/dem_model.hpp"
 #include "io/tfm_model.hpp"
@@ -86,6 +87,10 @@ std::shared_ptr<spdlog::logger> make_logger(const fs::path& out, bool quiet, boo
   return log;
 }
 
+// An output stamped k * interval stands for the model time t when they agree to this fraction of the interval:
+// far below any time step, far above the rounding a sum of steps accumulates (1e-12 relative after 10^4 steps).
+constexpr double kStampTolerance = 1e-6;
+
 /// Scheduled output: the k-th event is due at k * interval.
 struct Schedule {
   double interval = 0.0;
@@ -95,6 +100,13 @@ struct Schedule {
     while (interval > 0.0 && t >= next * interval - slack(dt)) ++next;
   }
   double slack(double dt) const { return std::max(0.5 * dt, 1e-9 * interval); }
+  /// The time written for the event due at model time t: exactly k * interval when t is that instant up to
+  /// rounding (a sum of steps gives 0.19001999999995264 for 0.19), else t itself (a step that does not divide
+  /// the interval).
+  double stamp(double t) const {
+    const double scheduled = static_cast<double>(next) * interval;
+    return std::abs(t - scheduled) <= kStampTolerance * interval ? scheduled : t;
+  }
 };
 
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
@@ -127,113 +139,365 @@ BubbleTracker::State load_bubble_state(const Hdf5File& f) {
   return s;
 }
 
-}  // namespace
+void save_tracers(Hdf5File& f, const CellTracers& t) {
+  f.create_group("tracers");
+  f.write("tracers/id", t.id);
+  f.write("tracers/x", t.x);
+  f.write("tracers/y", t.y);
+  f.write("tracers/layer", t.layer);
+}
 
-int run_case(const LoadedCase& loaded, const RunOptions& options) {
-  CaseConfig cfg = loaded.config;
-  if (options.end_time) cfg.run.end_time = *options.end_time;
-  if (options.max_wall_time) cfg.run.max_wall_time = *options.max_wall_time;
-  const fs::path out = options.out_dir.empty() ? fs::path("out") / cfg.name : fs::path(options.out_dir);
-  const bool restart = !options.restart.empty();
-
-  ensure_directory(out);
-  if (!restart) {
-    for (const char* sub : {"fields", "particles", "tracers", "checkpoints"}) fs::remove_all(out / sub);
-    for (const char* file : {"fields.pvd", "particles.pvd", "monitor.csv", "bubble.csv", "cost.json"}) fs::remove(out / file);
-  }
-  for (const char* sub : {"fields", "particles", "tracers", "checkpoints"}) ensure_directory(out / sub);
-  auto log_ptr = make_logger(out, options.quiet, restart);
-  spdlog::logger& log = *log_ptr;
-  if (options.threads > 0) omp_set_num_threads(options.threads);
-  const int threads = omp_get_max_threads();
-
-  // The resolved case (with command-line overrides) makes any run repeatable.
-  write_file_atomic(out / "case.toml", loaded.resolved_toml);
-  log.info("fluidbed run {} -> {}{}", cfg.source_path, out.string(), restart ? " (restart from " + options.restart + ")" : "");
-
-  std::unique_ptr<ModelRun> model;
-  std::optional<Hdf5File> restart_file;
-  if (restart) {
-    if (!fs::exists(options.restart)) throw_input_error(fmt::format("{}: restart file not found", options.restart));
-    restart_file.emplace(Hdf5File::open(options.restart));
-    const std::string name = restart_file->attribute_string("/", "case_name");
-    const std::string model_name = restart_file->attribute_string("/", "model");
-    const std::string want_model = cfg.model == Model::Tfm ? "tfm" : "dem";
-    if (name != cfg.name || model_name != want_model) {
-      throw_input_error(fmt::format("{}: the checkpoint is of case '{}' ({}), not of '{}' ({})", options.restart, name,
-                                    model_name, cfg.name, want_model));
-    }
-  }
+CellTracers load_tracers(const Hdf5File& f, const Grid2& grid) {
   try {
-    if (cfg.model == Model::Tfm) {
-      model = make_tfm_model(cfg);
-    } else {
-      model = make_dem_model(cfg, out.string(), !restart, log);
-    }
+    return CellTracers(grid, f.read_int64("tracers/id"), f.read_double("tracers/x"), f.read_double("tracers/y"),
+                       f.read_int32("tracers/layer"));
   } catch (const Error& e) {
-    // The initial gas solve runs here: its failure belongs in log.txt like any other.
-    if (e.kind() == ErrorKind::SimulationFailed) log.error("the simulation failed before the first step: {}", e.what());
-    throw;
+    throw_input_error(fmt::format("{}: {}", f.path().string(), e.what()));
   }
+}
 
-  // Observers.
-  Schedule frames{cfg.output.interval}, monitors{cfg.output.monitor_interval}, checkpoints{cfg.output.checkpoint_interval};
-  double wall_before = 0.0;
-  std::optional<CellTracers> tracers;
-  std::optional<BubbleTracker> bubbles;
-  if (restart) {
-    model->load(*restart_file);
-    frames.next = restart_file->attribute_int64("/", "next_frame");
-    monitors.next = restart_file->attribute_int64("/", "next_monitor");
-    checkpoints.next = restart_file->attribute_int64("/", "next_checkpoint");
-    wall_before = restart_file->attribute_double("/", "wall_s");
-  } else {
-    checkpoints.next = 1;  // none at t = 0
-  }
-  const FieldView fv0 = model->fields();
-  if (fv0.grid && cfg.output.tracers) {
-    // Balls of the paper's Fig. 4b/c over the initial bed.
-    const double h = fv0.eps ? bed_surface_height(*fv0.grid, *fv0.eps).value_or(0.0) : 0.0;
-    if (h > 0.0) tracers.emplace(*fv0.grid, h, cfg.particles.layers);
-  }
-  if (restart && tracers && restart_file->has("tracers/x")) {
-    tracers->x = restart_file->read_double("tracers/x");
-    tracers->y = restart_file->read_double("tracers/y");
-  }
-  if (fv0.grid && fv0.eps && fv0.ug && fv0.vg) {
-    bubbles.emplace(cfg.bubble);
-    if (restart && restart_file->has("bubble/tracked")) bubbles->restore(load_bubble_state(*restart_file));
-  }
-  restart_file.reset();
+const char* model_key(Model m) { return m == Model::Tfm ? "tfm" : "dem"; }
+std::string model_words(const std::string& key) {
+  return key == "tfm" ? "the two-fluid model (TFM)" : key == "dem" ? "the discrete-particle model (CFD-DEM)" : "model '" + key + "'";
+}
 
-  const double t_restart = model->time();
-  std::vector<std::string> monitor_cols{"time_s"};
-  for (auto& c : model->monitor_columns()) monitor_cols.push_back(c);
-  monitor_cols.push_back("wall_s");
-  CsvWriter monitor = restart ? CsvWriter::resume(out / "monitor.csv", monitor_cols, t_restart)
-                              : CsvWriter(out / "monitor.csv", monitor_cols);
-  std::optional<CsvWriter> bubble_csv;
-  if (bubbles) {
-    std::vector<std::string> cols;
-    std::string header = bubble_csv_header();
-    for (std::size_t a = 0, b; a <= header.size(); a = b + 1) {
-      b = header.find(',', a);
-      if (b == std::string::npos) b = header.size();
-      cols.push_back(header.substr(a, b - a));
+// A word as the shell reads it: quoted only when it holds more than letters, digits and path punctuation.
+std::string shell_word(const std::string& s) {
+  const bool plain = !s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                       "0123456789_-+=.,/:@%") == std::string::npos;
+  if (plain) return s;
+  std::string q = "'";
+  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// What in `out` is the result of an earlier run, for the refusal to overwrite it.
+std::vector<std::string> earlier_results(const fs::path& out) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const char* file : {"monitor.csv", "fields.pvd", "particles.pvd", "bubble.csv", "cost.json"}) {
+    if (fs::exists(out / file, ec)) found.push_back(file);
+  }
+  for (const char* sub : {"checkpoints", "fields", "particles", "tracers"}) {
+    if (fs::is_directory(out / sub, ec) && !fs::is_empty(out / sub, ec)) found.push_back(std::string(sub) + "/");
+  }
+  return found;
+}
+
+/// Temporaries NAME.tmp.<pid> of a process that no longer runs (a run killed while writing): never data.
+int remove_stale_temporaries(const fs::path& out) {
+  int removed = 0;
+  std::error_code ec;
+  for (const fs::path& dir : {out, out / "checkpoints", out / "fields", out / "particles", out / "tracers"}) {
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      const std::size_t at = name.rfind(".tmp.");
+      if (at == std::string::npos) continue;
+      const long pid = std::strtol(name.c_str() + at + 5, nullptr, 10);
+      if (pid <= 0 || (pid != static_cast<long>(::getpid()) && ::kill(static_cast<pid_t>(pid), 0) == 0)) continue;
+      if (fs::remove(e.path(), ec)) ++removed;
     }
-    bubble_csv.emplace(restart ? CsvWriter::resume(out / "bubble.csv", cols, t_restart) : CsvWriter(out / "bubble.csv", cols));
   }
-  PvdCollection fields_pvd = restart ? PvdCollection::resume(out / "fields.pvd", t_restart) : PvdCollection(out / "fields.pvd");
-  PvdCollection particles_pvd =
-      restart ? PvdCollection::resume(out / "particles.pvd", t_restart) : PvdCollection(out / "particles.pvd");
+  return removed;
+}
 
-  log.info("{}; {} thread{}; t = {:.6g} s to {:.6g} s", model->describe(), threads, threads == 1 ? "" : "s", t_restart,
-           cfg.run.end_time);
+/// The run: stages in the order they happen (execute()), the observers that write outputs, and the checkpoint.
+class Run {
+ public:
+  Run(const LoadedCase& loaded, const RunOptions& options)
+      : loaded_(loaded), options_(options), cfg_(loaded.config), restart_(!options.restart.empty()) {
+    if (options_.max_wall_time) cfg_.run.max_wall_time = *options_.max_wall_time;
+    if (options_.end_time) cfg_.run.end_time = *options_.end_time;
+    out_ = options_.out_dir.empty() ? fs::path("out") / cfg_.name : fs::path(options_.out_dir);
+  }
 
-  auto write_frame = [&](double t) {
-    const FieldView fv = model->fields();
-    const std::size_t index = static_cast<std::size_t>(frames.next);
-    if (cfg.output.fields && fv.grid) {
+  int execute() {
+    if (restart_) choose_checkpoint();  // before anything in the folder changes: a refused restart leaves it as it was
+    prepare_folder();
+    try {
+      // The resolved case (with command-line overrides) makes any run repeatable.
+      write_file_atomic(out_ / "case.toml", loaded_.resolved_toml);
+      build_model();
+      restore_state();
+      open_series();
+      step_until_end();
+      return finish();
+    } catch (const WriteError& e) {
+      output_failed(e);
+    }
+  }
+
+ private:
+  // ---- stages ------------------------------------------------------------------------------------------------
+
+  /// The checkpoint to continue from (`latest`: the newest valid one), verified and checked against the case.
+  void choose_checkpoint() {
+    if (options_.restart == "latest") {
+      const LatestCheckpoint latest = find_latest_checkpoint(out_ / "checkpoints");
+      skipped_ = latest.skipped;
+      if (latest.path.empty()) {
+        std::string why = skipped_.empty() ? "there is none" : "none passes its check: " + skipped_.front();
+        for (std::size_t k = 1; k < skipped_.size(); ++k) why += "; " + skipped_[k];
+        throw_input_error(fmt::format("--restart latest: no checkpoint to continue from in {} ({})",
+                                      (out_ / "checkpoints").string(), why));
+      }
+      restart_path_ = latest.path;
+    } else {
+      restart_path_ = options_.restart;
+      if (!fs::exists(restart_path_)) throw_input_error(fmt::format("{}: restart file not found", options_.restart));
+    }
+    restart_file_.emplace(Hdf5File::open(restart_path_));
+    restart_file_->verify();
+    check_checkpoint_matches(*restart_file_);
+  }
+
+  void check_checkpoint_matches(const Hdf5File& f) const {
+    const std::string cp = f.path().string();
+    const std::string model = f.attribute_string("/", "model");
+    const std::string want = model_key(cfg_.model);
+    if (model != want) {
+      throw_input_error(fmt::format("{}: a checkpoint of {}, but {} runs {} (case.model = \"{}\")", cp,
+                                    model_words(model), cfg_.source_path, model_words(want), want));
+    }
+    const std::string name = f.attribute_string("/", "case_name");
+    if (name != cfg_.name) {
+      throw_input_error(fmt::format("{}: the checkpoint is of case '{}' ({}), not of '{}' ({})", cp, name, model,
+                                    cfg_.name, want));
+    }
+    std::vector<CaseDifference> refused;
+    for (CaseDifference& d : simulation_differences(f.attribute_string("/", "case_toml"), loaded_.resolved_toml)) {
+      if (!allowed_change(d.key, options_.allow_changed)) refused.push_back(std::move(d));
+    }
+    if (!refused.empty()) {
+      std::string more;
+      for (std::size_t k = 1; k < refused.size(); ++k) more += (k == 1 ? "" : ", ") + refused[k].key;
+      throw_input_error(fmt::format(
+          "{}: the case changes {} against the checkpoint ({} there, {} now){}: a restart continues the same "
+          "simulation. Restart with the checkpoint's value, or accept the change with --allow-changed {}",
+          cp, refused[0].key, refused[0].checkpoint, refused[0].current,
+          more.empty() ? "" : fmt::format(" and {} more key{} ({})", refused.size() - 1, refused.size() > 2 ? "s" : "", more),
+          refused.size() == 1 ? refused[0].key : refused[0].key + " (once per key, or a whole section)"));
+    }
+    const double t = f.attribute_double("/", "time");
+    if (landed(t)) {
+      throw_input_error(fmt::format("{}: the checkpoint is at t = {:.9g} s, at or past the end time {:.9g} s: "
+                                    "nothing to run; give a later --end-time", cp, t, cfg_.run.end_time));
+    }
+  }
+
+  /// Folders, the log and case.toml. A new run does not replace the results of an earlier one unless asked.
+  void prepare_folder() {
+    ensure_directory(out_);
+    std::vector<std::string> replaced;
+    if (!restart_) {
+      replaced = earlier_results(out_);
+      if (!replaced.empty() && !options_.overwrite) {
+        std::string list;
+        for (const auto& r : replaced) list += (list.empty() ? "" : ", ") + r;
+        throw_input_error(fmt::format("{} holds the results of an earlier run ({}): choose another --out, continue "
+                                      "that run with --restart latest, or replace them with --overwrite",
+                                      out_.string(), list));
+      }
+      for (const char* sub : {"fields", "particles", "tracers", "checkpoints"}) fs::remove_all(out_ / sub);
+      for (const char* file : {"fields.pvd", "particles.pvd", "monitor.csv", "bubble.csv", "cost.json"}) fs::remove(out_ / file);
+    }
+    for (const char* sub : {"fields", "particles", "tracers", "checkpoints"}) ensure_directory(out_ / sub);
+    log_ptr_ = make_logger(out_, options_.quiet, restart_);
+    if (options_.threads > 0) omp_set_num_threads(options_.threads);
+    threads_ = omp_get_max_threads();
+    log().info("fluidbed run {} -> {}{}", cfg_.source_path, out_.string(),
+               restart_ ? " (restart from " + restart_path_.string() + ")" : "");
+    if (!replaced.empty()) log().warn("--overwrite: replaced the earlier results in {}", out_.string());
+    for (const auto& s : skipped_) log().warn("--restart latest: skipped {}", s);
+    if (restart_ && options_.restart == "latest") log().info("--restart latest: took {}", restart_path_.string());
+    // A stop file that was there before this run started is left from an earlier one: it is not a request to
+    // this run.
+    std::error_code ec;
+    if (fs::remove(out_ / "STOP", ec)) log().warn("removed the stop file {} left from an earlier run", (out_ / "STOP").string());
+    if (const int n = remove_stale_temporaries(out_)) {
+      log().info("removed {} temporary file{} of a run killed while writing", n, n == 1 ? "" : "s");
+    }
+  }
+
+  void build_model() {
+    try {
+      if (cfg_.model == Model::Tfm) {
+        model_ = make_tfm_model(cfg_);
+      } else {
+        model_ = make_dem_model(cfg_, out_.string(), !restart_, log());
+      }
+    } catch (const Error& e) {
+      // The initial gas solve runs here: its failure belongs in log.txt like any other.
+      if (e.kind() == ErrorKind::SimulationFailed) log().error("the simulation failed before the first step: {}", e.what());
+      throw;
+    }
+  }
+
+  /// The model, the output schedules and the observers' state: from the checkpoint, or fresh.
+  void restore_state() {
+    frames_.interval = cfg_.output.interval;
+    monitors_.interval = cfg_.output.monitor_interval;
+    checkpoints_.interval = cfg_.output.checkpoint_interval;
+    if (restart_) {
+      const Hdf5File& f = *restart_file_;
+      model_->load(f);
+      frames_.next = f.attribute_int64("/", "next_frame");
+      monitors_.next = f.attribute_int64("/", "next_monitor");
+      checkpoints_.next = f.attribute_int64("/", "next_checkpoint");
+      wall_before_ = f.attribute_double("/", "wall_s");
+      last_checkpoint_ = restart_path_;
+    } else {
+      checkpoints_.next = 1;  // none at t = 0
+    }
+    const FieldView fv = model_->fields();
+    if (fv.grid && restart_) {
+      // The balls and their colours as saved: recolouring them from the bed at the restart time would move them
+      // to other layers.
+      if (restart_file_->has("tracers/id")) {
+        tracers_.emplace(load_tracers(*restart_file_, *fv.grid));
+      } else if (cfg_.output.tracers) {
+        log().warn("the checkpoint holds no cell tracers: no tracers/*.csv from this restart");
+      }
+    } else if (fv.grid && cfg_.output.tracers) {
+      // Balls of the paper's Fig. 4b/c over the initial bed.
+      const double h = fv.eps ? bed_surface_height(*fv.grid, *fv.eps).value_or(0.0) : 0.0;
+      if (h > 0.0) tracers_.emplace(*fv.grid, h, cfg_.particles.layers);
+    }
+    if (fv.grid && fv.eps && fv.ug && fv.vg) {
+      bubbles_.emplace(cfg_.bubble);
+      if (restart_ && restart_file_->has("bubble/tracked")) bubbles_->restore(load_bubble_state(*restart_file_));
+    }
+    restart_file_.reset();
+  }
+
+  /// monitor.csv, bubble.csv and the .pvd collections: new, or cut at the restart time and continued.
+  void open_series() {
+    t_start_ = model_->time();
+    // Rows stamped k * interval may lie a rounding above the model time they were written at.
+    const double t_cut = t_start_ + kStampTolerance * std::max({cfg_.output.interval, cfg_.output.monitor_interval, 0.0});
+    std::vector<std::string> monitor_cols{"time_s"};
+    for (auto& c : model_->monitor_columns()) monitor_cols.push_back(c);
+    monitor_cols.push_back("wall_s");
+    monitor_.emplace(restart_ ? CsvWriter::resume(out_ / "monitor.csv", monitor_cols, t_cut)
+                              : CsvWriter(out_ / "monitor.csv", monitor_cols));
+    if (bubbles_) {
+      std::vector<std::string> cols;
+      const std::string header = bubble_csv_header();
+      for (std::size_t a = 0, b; a <= header.size(); a = b + 1) {
+        b = header.find(',', a);
+        if (b == std::string::npos) b = header.size();
+        cols.push_back(header.substr(a, b - a));
+      }
+      bubble_csv_.emplace(restart_ ? CsvWriter::resume(out_ / "bubble.csv", cols, t_cut) : CsvWriter(out_ / "bubble.csv", cols));
+    }
+    fields_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "fields.pvd", t_cut) : PvdCollection(out_ / "fields.pvd"));
+    particles_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "particles.pvd", t_cut)
+                                    : PvdCollection(out_ / "particles.pvd"));
+    log().info("{}; {} thread{}; t = {:.6g} s to {:.6g} s", model_->describe(), threads_, threads_ == 1 ? "" : "s",
+               t_start_, cfg_.run.end_time);
+  }
+
+  void step_until_end() {
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    pending_signal.store(0);
+    t0_ = std::chrono::steady_clock::now();
+    Progress progress(options_.quiet, t_start_, cfg_.run.end_time);
+    dt_ = model_->macro_dt();
+    model_steps_before_ = model_->cost().time_steps;  // DEM steps (several per gas step) or TFM steps
+    try {
+      if (!restart_) observe(model_->time());
+      while (!landed(model_->time())) {
+        const double t_before = model_->time();
+        model_->advance(cfg_.run.end_time);
+        ++steps_here_;
+        const double t = model_->time();
+        if (!(t > t_before)) {
+          throw_simulation_error(fmt::format("t = {:.9g} s: the model did not advance (internal error)", t));
+        }
+        if (tracers_) {
+          // The step actually taken: the two-fluid model's step is adaptive.
+          const FieldView fv = model_->fields();
+          if (fv.us && fv.vs) tracers_->advance(*fv.us, *fv.vs, t - t_before);
+        }
+        observe(t);
+        if (checkpoints_.due(t, dt_) && !landed(t)) periodic_checkpoint(t);
+        if (stop_requested()) break;
+        progress.update(t, steps_here_, wall(), log());
+      }
+    } catch (const WriteError&) {
+      progress.finish();
+      throw;
+    } catch (const Error& e) {
+      progress.finish();
+      if (e.kind() == ErrorKind::SimulationFailed) save_failed_state(e);
+      throw;
+    }
+    progress.finish();
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
+
+  int finish() {
+    const double wall_here = wall();
+    const double wall_total = wall_before_ + wall_here;
+    const fs::path final_path = write_checkpoint(stop_reason_.empty() ? "final" : checkpoint_tag(model_->time()), wall_total);
+    last_checkpoint_ = final_path;
+    const CostInfo cost = model_->cost();
+    const double simulated = model_->time();
+    write_file_atomic(out_ / "cost.json",
+                      fmt::format("{{\"particles\": {}, \"cells\": {}, \"time_steps\": {}, \"wall_s\": {:.6g}, "
+                                  "\"simulated_s\": {:.9g}, \"threads\": {}, \"wall_per_simulated_s\": {:.6g}}}\n",
+                                  cost.particles, cost.cells, cost.time_steps, wall_total, simulated, threads_,
+                                  simulated > 0 ? wall_total / simulated : 0.0));
+    const double particle_steps = static_cast<double>(cost.time_steps - model_steps_before_) * static_cast<double>(cost.particles);
+    log().info("{} steps in {:.2f} s wall ({:.0f} steps/s{}); checkpoint {}", steps_here_, wall_here,
+               steps_here_ / std::max(wall_here, 1e-9),
+               cost.particles ? fmt::format(", {} DEM steps, {:.3g} particle-steps/s", cost.time_steps - model_steps_before_,
+                                            particle_steps / std::max(wall_here, 1e-9)) : "",
+               final_path.string());
+    if (!stop_reason_.empty()) {
+      log().warn("{}: stopped at t = {:.6g} s; continue with: {}", stop_reason_, model_->time(),
+                 continue_command(final_path));
+      return 130;
+    }
+    if (bubbles_) {
+      const auto fmt_time = [](std::optional<double> t) { return t ? fmt::format("{:.3f} s", *t) : std::string("none"); };
+      log().info("bubble: detachment {}, eruption {}", fmt_time(bubbles_->detachment_time()),
+                 fmt_time(bubbles_->eruption_time()));
+    }
+    log().info("done: t = {:.6g} s; outputs in {}", model_->time(), out_.string());
+    return 0;
+  }
+
+  // ---- observers ---------------------------------------------------------------------------------------------
+
+  void observe(double t) {
+    if (monitors_.due(t, dt_)) {
+      std::vector<std::optional<double>> row{monitors_.stamp(t)};
+      for (auto& v : model_->monitor_values()) row.push_back(v);
+      row.push_back(wall_before_ + wall());
+      monitor_->row(row);
+      monitors_.advance(t, dt_);
+    }
+    if (frames_.due(t, dt_)) {
+      const double stamp = frames_.stamp(t);
+      if (bubbles_) {
+        const FieldView fv = model_->fields();
+        const BubbleSample b = bubbles_->observe(stamp, *fv.grid, *fv.eps, *fv.ug, *fv.vg);
+        const auto values = bubble_csv_values(b);
+        bubble_csv_->row(std::span<const std::optional<double>>(values.data(), values.size()));
+      }
+      write_frame(stamp);
+      frames_.advance(t, dt_);
+    }
+  }
+
+  /// Field, particle and tracer files of frame frames_.next, at time `t`.
+  void write_frame(double t) {
+    const FieldView fv = model_->fields();
+    const std::size_t index = static_cast<std::size_t>(frames_.next);
+    if (cfg_.output.fields && fv.grid) {
       std::vector<VtiArray> arrays;
       if (fv.eps) arrays.push_back(VtiArray::scalar("voidage", *fv.eps));
       if (fv.p) arrays.push_back(VtiArray::scalar("pressure", *fv.p));
@@ -241,153 +505,150 @@ int run_case(const LoadedCase& loaded, const RunOptions& options) {
       if (fv.us && fv.vs) arrays.push_back(VtiArray::vector("solids_velocity", *fv.us, *fv.vs));
       if (fv.theta) arrays.push_back(VtiArray::scalar("granular_temperature", *fv.theta));
       const std::string rel = frame_file_name("fields", index, "vti");
-      write_vti(out / rel, *fv.grid, t, arrays);
-      fields_pvd.add(t, rel);
+      write_vti(out_ / rel, *fv.grid, t, arrays);
+      fields_pvd_->add(t, rel);
     }
-    if (const ParticleStore* p = model->particles()) {
-      if (cfg.output.particles) {
+    if (const ParticleStore* p = model_->particles()) {
+      if (cfg_.output.particles) {
         const std::string rel = frame_file_name("particles", index, "vtu");
-        write_vtu(out / rel, t, *p);
-        particles_pvd.add(t, rel);
+        write_vtu(out_ / rel, t, *p);
+        particles_pvd_->add(t, rel);
       }
-      if (cfg.output.particles_csv) {
-        write_particles_csv(out / frame_file_name("particles", index, "csv"), *p, Sync::Atomic);
+      if (cfg_.output.particles_csv) {
+        write_particles_csv(out_ / frame_file_name("particles", index, "csv"), *p, Sync::Atomic);
       }
     }
-    if (tracers) {
-      write_file_atomic(out / frame_file_name("tracers", index, "csv"), tracer_csv(*tracers), Sync::Atomic);
+    if (tracers_) {
+      write_file_atomic(out_ / frame_file_name("tracers", index, "csv"), tracer_csv(*tracers_), Sync::Atomic);
     }
-  };
+  }
 
-  auto write_checkpoint = [&](const std::string& tag, double wall_total) {
-    const fs::path path = out / "checkpoints" / fmt::format("{}.h5", tag);
-    Hdf5File f = Hdf5File::create(path);
-    f.set_attribute("/", "case_name", cfg.name);
-    f.set_attribute("/", "model", cfg.model == Model::Tfm ? "tfm" : "dem");
-    f.set_attribute("/", "time", model->time());
-    f.set_attribute("/", "seed", static_cast<std::int64_t>(cfg.seed));
-    f.set_attribute("/", "next_frame", frames.next);
-    f.set_attribute("/", "next_monitor", monitors.next);
-    f.set_attribute("/", "next_checkpoint", checkpoints.next);
-    f.set_attribute("/", "wall_s", wall_total);
-    model->save(f);
-    if (bubbles) save_bubble_state(f, bubbles->state());
-    if (tracers) {
-      f.create_group("tracers");
-      f.write("tracers/x", tracers->x);
-      f.write("tracers/y", tracers->y);
+  static std::string checkpoint_tag(double t) { return fmt::format("t{:.6f}", t); }
+
+  void periodic_checkpoint(double t) {
+    const std::string tag = checkpoint_tag(checkpoints_.stamp(t));
+    checkpoints_.advance(t, dt_);
+    const fs::path path = write_checkpoint(tag, wall_before_ + wall());
+    last_checkpoint_ = path;
+    log().info("checkpoint {}", path.string());
+    // Older ones go only now that the new one is complete on disk.
+    for (const fs::path& old : rotate_checkpoints(out_ / "checkpoints", path, cfg_.output.checkpoint_keep)) {
+      log().info("removed the older checkpoint {} (output.checkpoint_keep = {})", old.string(), cfg_.output.checkpoint_keep);
     }
+  }
+
+  /// The whole state of the run: the model, the output schedules, the observers, and the case it belongs to
+  /// (a restart refuses a case that changes the simulation).
+  fs::path write_checkpoint(const std::string& tag, double wall_total) {
+    const fs::path path = out_ / "checkpoints" / fmt::format("{}.h5", tag);
+    Hdf5File f = Hdf5File::create(path);
+    f.set_attribute("/", "case_name", cfg_.name);
+    f.set_attribute("/", "model", model_key(cfg_.model));
+    f.set_attribute("/", "case_toml", loaded_.resolved_toml);
+    f.set_attribute("/", "time", model_->time());
+    f.set_attribute("/", "seed", static_cast<std::int64_t>(cfg_.seed));
+    f.set_attribute("/", "next_frame", frames_.next);
+    f.set_attribute("/", "next_monitor", monitors_.next);
+    f.set_attribute("/", "next_checkpoint", checkpoints_.next);
+    f.set_attribute("/", "wall_s", wall_total);
+    model_->save(f);
+    if (bubbles_) save_bubble_state(f, bubbles_->state());
+    if (tracers_) save_tracers(f, *tracers_);
     f.commit();
     return path;
-  };
-
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  pending_signal.store(0);
-
-  const auto t0 = std::chrono::steady_clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  Progress progress(options.quiet, t_restart, cfg.run.end_time);
-  const double dt = model->macro_dt();
-  std::uint64_t steps_here = 0;
-  const std::uint64_t model_steps_before = model->cost().time_steps;  // DEM steps (several per gas step) or TFM steps
-  std::string stop_reason;
-
-  auto observe = [&](double t) {
-    if (monitors.due(t, dt)) {
-      std::vector<std::optional<double>> row{t};
-      for (auto& v : model->monitor_values()) row.push_back(v);
-      row.push_back(wall_before + wall());
-      monitor.row(row);
-      monitors.advance(t, dt);
-    }
-    if (frames.due(t, dt)) {
-      if (bubbles) {
-        const FieldView fv = model->fields();
-        const BubbleSample b = bubbles->observe(t, *fv.grid, *fv.eps, *fv.ug, *fv.vg);
-        const auto values = bubble_csv_values(b);
-        bubble_csv->row(std::span<const std::optional<double>>(values.data(), values.size()));
-      }
-      write_frame(t);
-      frames.advance(t, dt);
-    }
-  };
-
-  try {
-    if (!restart) observe(model->time());
-    while (model->time() < cfg.run.end_time - 0.5 * dt) {
-      const double t_before = model->time();
-      model->advance(cfg.run.end_time);
-      ++steps_here;
-      const double t = model->time();
-      if (tracers) {
-        // The step actually taken: the two-fluid model's step is adaptive.
-        const FieldView fv = model->fields();
-        if (fv.us && fv.vs) tracers->advance(*fv.us, *fv.vs, t - t_before);
-      }
-      observe(t);
-      if (checkpoints.due(t, dt) && t < cfg.run.end_time - 0.5 * dt) {
-        checkpoints.advance(t, dt);
-        const auto path = write_checkpoint(fmt::format("t{:.6f}", t), wall_before + wall());
-        log.info("checkpoint {}", path.string());
-      }
-      if (pending_signal.load() != 0) {
-        stop_reason = pending_signal.load() == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)";
-      } else if (steps_here % 64 == 0 && fs::exists(out / "STOP")) {
-        stop_reason = "stop file " + (out / "STOP").string() + " found";
-        fs::remove(out / "STOP");
-      } else if (cfg.run.max_wall_time > 0.0 && wall() > cfg.run.max_wall_time) {
-        stop_reason = fmt::format("wall-time limit of {} s reached", cfg.run.max_wall_time);
-      }
-      if (!stop_reason.empty()) break;
-      progress.update(t, steps_here, wall(), log);
-    }
-  } catch (const Error& e) {
-    progress.finish();
-    if (e.kind() == ErrorKind::SimulationFailed) {
-      try {
-        const auto path = write_checkpoint(fmt::format("failed-t{:.6f}", model->time()), wall_before + wall());
-        log.error("the simulation failed: {}", e.what());
-        log.error("last state saved to {}", path.string());
-      } catch (const std::exception& inner) {
-        log.error("the simulation failed: {} (and the final checkpoint could not be written: {})", e.what(), inner.what());
-      }
-    }
-    throw;
   }
-  progress.finish();
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
 
-  const double wall_here = wall();
-  wall_before += wall_here;
-  const auto final_path =
-      write_checkpoint(stop_reason.empty() ? "final" : fmt::format("t{:.6f}", model->time()), wall_before);
-  const CostInfo cost = model->cost();
-  const double simulated = model->time();
-  write_file_atomic(out / "cost.json",
-                    fmt::format("{{\"particles\": {}, \"cells\": {}, \"time_steps\": {}, \"wall_s\": {:.6g}, "
-                                "\"simulated_s\": {:.9g}, \"threads\": {}, \"wall_per_simulated_s\": {:.6g}}}\n",
-                                cost.particles, cost.cells, cost.time_steps, wall_before, simulated, threads,
-                                simulated > 0 ? wall_before / simulated : 0.0));
-  const double particle_steps = static_cast<double>(cost.time_steps - model_steps_before) * static_cast<double>(cost.particles);
-  log.info("{} steps in {:.2f} s wall ({:.0f} steps/s{}); checkpoint {}", steps_here, wall_here,
-           steps_here / std::max(wall_here, 1e-9),
-           cost.particles ? fmt::format(", {} DEM steps, {:.3g} particle-steps/s", cost.time_steps - model_steps_before,
-                                        particle_steps / std::max(wall_here, 1e-9)) : "",
-           final_path.string());
-  if (!stop_reason.empty()) {
-    log.warn("{}: stopped at t = {:.6g} s; continue with: fluidbed run {} --out {} --restart {}", stop_reason,
-             model->time(), cfg.source_path, out.string(), final_path.string());
-    return 130;
+  /// A failed simulation keeps its last state for inspection (and a restart with changed settings).
+  void save_failed_state(const Error& e) {
+    try {
+      const fs::path path = write_checkpoint(fmt::format("failed-t{:.6f}", model_->time()), wall_before_ + wall());
+      log().error("the simulation failed: {}", e.what());
+      log().error("last state saved to {}", path.string());
+    } catch (const std::exception& inner) {
+      log().error("the simulation failed: {} (and the final checkpoint could not be written: {})", e.what(), inner.what());
+    }
   }
-  if (bubbles) {
-    const auto fmt_time = [](std::optional<double> t) { return t ? fmt::format("{:.3f} s", *t) : std::string("none"); };
-    log.info("bubble: detachment {}, eruption {}", fmt_time(bubbles->detachment_time()),
-             fmt_time(bubbles->eruption_time()));
+
+  /// A write that failed (disk full, quota, I/O error) ends the run as a failure: nothing more is written, the
+  /// last complete checkpoint is the place to continue from.
+  [[noreturn]] void output_failed(const WriteError& e) {
+    const double t = model_ ? model_->time() : 0.0;
+    std::string resume = last_checkpoint_.empty()
+                             ? std::string("no checkpoint was written yet, so the run must start again (a shorter "
+                                           "output.checkpoint_interval loses less)")
+                             : fmt::format("the last complete checkpoint is {}; continue with: {}", last_checkpoint_.string(),
+                                           continue_command(last_checkpoint_));
+    const std::string message =
+        fmt::format("t = {:.6g} s: an output could not be written: {}. Every file under its final name is whole; {}. "
+                    "Likely cause: the disk or quota is full; remedy: free space (or choose another --out) and "
+                    "continue.", t, e.what(), resume);
+    if (log_ptr_) log().error("the simulation failed: {}", message);
+    throw_simulation_error(message);
   }
-  log.info("done: t = {:.6g} s; outputs in {}", model->time(), out.string());
-  return 0;
-}
+
+  // ---- helpers -----------------------------------------------------------------------------------------------
+
+  /// The model is at the end time, up to a rounding far below one step.
+  bool landed(double t) const {
+    const double tol = dt_ > 0.0 ? 1e-3 * dt_ : 1e-12 * std::max(1.0, std::abs(cfg_.run.end_time));
+    return t >= cfg_.run.end_time - tol;
+  }
+
+  bool stop_requested() {
+    if (pending_signal.load() != 0) {
+      stop_reason_ = pending_signal.load() == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)";
+    } else if (steps_here_ % 64 == 0 && fs::exists(out_ / "STOP")) {
+      stop_reason_ = "stop file " + (out_ / "STOP").string() + " found";
+      fs::remove(out_ / "STOP");
+    } else if (cfg_.run.max_wall_time > 0.0 && wall() > cfg_.run.max_wall_time) {
+      stop_reason_ = fmt::format("wall-time limit of {} s reached", cfg_.run.max_wall_time);
+    }
+    return !stop_reason_.empty();
+  }
+
+  /// The command that continues this run exactly: the same case file, folder, end time, overrides and
+  /// options, from `checkpoint`.
+  std::string continue_command(const fs::path& checkpoint) const {
+    std::string cmd = "fluidbed run " + shell_word(cfg_.source_path) + " --out " + shell_word(out_.string());
+    if (options_.end_time) cmd += fmt::format(" --end-time {}", *options_.end_time);
+    for (const std::string& s : options_.sets) cmd += " --set " + shell_word(s);
+    for (const std::string& a : options_.allow_changed) cmd += " --allow-changed " + shell_word(a);
+    if (options_.threads > 0) cmd += fmt::format(" --threads {}", options_.threads);
+    if (options_.max_wall_time) cmd += fmt::format(" --max-wall-time {}", *options_.max_wall_time);
+    if (options_.quiet) cmd += " --quiet";
+    return cmd + " --restart " + shell_word(checkpoint.string());
+  }
+
+  double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+  spdlog::logger& log() { return *log_ptr_; }
+
+  const LoadedCase& loaded_;
+  const RunOptions& options_;
+  CaseConfig cfg_;
+  bool restart_;
+  fs::path out_;
+  fs::path restart_path_;
+  std::optional<Hdf5File> restart_file_;
+  std::vector<std::string> skipped_;
+  std::shared_ptr<spdlog::logger> log_ptr_;
+  int threads_ = 1;
+
+  std::unique_ptr<ModelRun> model_;
+  Schedule frames_, monitors_, checkpoints_;
+  std::optional<CellTracers> tracers_;
+  std::optional<BubbleTracker> bubbles_;
+  std::optional<CsvWriter> monitor_, bubble_csv_;
+  std::optional<PvdCollection> fields_pvd_, particles_pvd_;
+  fs::path last_checkpoint_;
+
+  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+  double wall_before_ = 0.0, t_start_ = 0.0, dt_ = 0.0;
+  std::uint64_t steps_here_ = 0, model_steps_before_ = 0;
+  std::string stop_reason_;
+};
+
+}  // namespace
+
+int run_case(const LoadedCase& loaded, const RunOptions& options) { return Run(loaded, options).execute(); }
 
 }  // namespace fluidbed

@@ -3,6 +3,7 @@
 // stops cleanly on a signal, a stop file or a wall-time limit.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/case_loader.hpp"
 
@@ -10,15 +11,19 @@ namespace fluidbed {
 
 struct RunOptions {
   std::string out_dir;                 ///< default out/<case name>
-  std::optional<double> end_time;      ///< overrides case.end_time
+  std::optional<double> end_time;      ///< --end-time (already applied to the loaded case; kept for the continue command)
   int threads = 0;                     ///< 0: OpenMP default
-  std::string restart;                 ///< checkpoint to continue from
+  std::string restart;                 ///< checkpoint to continue from, or "latest" (the newest valid one of out_dir)
   bool quiet = false;
   std::optional<double> max_wall_time; ///< s; overrides case.max_wall_time
+  std::vector<std::string> sets;       ///< the --set overrides as given (already applied; for the continue command)
+  bool overwrite = false;              ///< a new run may replace the results in out_dir
+  std::vector<std::string> allow_changed;  ///< keys (or sections) a restart may change against its checkpoint
 };
 
 /// Exit codes of the contract: 0 done, 130 interrupted with a checkpoint. Bad input and simulation failures
-/// are thrown as Error (exit 2 and 3); a failed run writes a final checkpoint before it throws.
+/// are thrown as Error (exit 2 and 3); a failed run writes a final checkpoint before it throws, and a failed
+/// write (disk full) is a simulation failure that keeps the last complete checkpoint.
 int run_case(const LoadedCase& loaded, const RunOptions& options);
 
 }  // namespace fluidbed

@@ -72,15 +72,15 @@ pvd_entries() {
 
 # Frame files NNNNNN.csv/.vtu/.vti (not the NAME.tmp.<pid> a hard kill may leave behind).
 frame_count() {
-  find "$1/fields" "$1/particles" -regextype posix-extended -regex '.*/[0-9]{6}\.(csv|vtu|vti)' 2>/dev/null | wc -l
+  find "$1/fields" "$1/particles" "$1/tracers" -regextype posix-extended -regex '.*/[0-9]{6}\.(csv|vtu|vti)' 2>/dev/null | wc -l
 }
 
-# Two run folders hold the same results: particle CSVs, .vti and .vtu frames byte for byte, monitor.csv without
-# wall_s, the same .pvd entries, none twice.
+# Two run folders hold the same results: particle CSVs, .vti and .vtu frames and the cell tracers (ids,
+# positions and layers of the balls) byte for byte, monitor.csv without wall_s, the same .pvd entries, none twice.
 same_results() {  # same_results LABEL DIR_A DIR_B
   local label=$1 a=$2 b=$3 f rel
   local -a frames=()
-  for f in "$a"/particles/*.csv "$a"/particles/*.vtu "$a"/fields/*.vti; do
+  for f in "$a"/particles/*.csv "$a"/particles/*.vtu "$a"/fields/*.vti "$a"/tracers/*.csv; do
     [[ -e $f ]] && frames+=("${f#"$a"/}")
   done
   check "$label: output frames exist" test "${#frames[@]}" -gt 0

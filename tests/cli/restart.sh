@@ -27,7 +27,10 @@ restart_case() {
   fi
 }
 
+# A denser bed than the shared case (0.06 m instead of 0.1 m filled) so that it has a bed surface and with it the
+# cell tracers of Fig. 4b/c.
 write_cfd_case "$WORK/cfd.toml" cfd
+sed -i 's/^particles.fill_height = 0.1$/particles.fill_height = 0.06/' "$WORK/cfd.toml"
 restart_case cfd "$WORK/cfd.toml" 0.02
 
 # A restart from an earlier checkpoint into a folder that already holds later outputs replaces them: the series
@@ -40,10 +43,44 @@ run_ok "cfd: restart from T/2 over the finished run" run "$WORK/cfd.toml" --out 
   --set output.checkpoint_interval=0.01 --restart "$WORK/mid.h5"
 same_results "cfd over a finished run" "$WORK/cfd-split" "$WORK/cfd-full"
 
-# A checkpoint that does not fit the case is bad input (exit 2), never read half-way: another gas grid, or gas
-# fields missing from a DEM-alone checkpoint.
-expect 2 "gas/. has [0-9]+ values, the case's grid needs [0-9]+" "cfd: restart on another grid" \
+# The cell tracers (Fig. 4b/c balls) come back from the checkpoint: same_results above compared tracers/*.csv,
+# which hold each ball's id, position and layer.
+check "cfd: the restarted run wrote tracer frames" test -s "$WORK/cfd-split/tracers/000004.csv"
+
+# A restart continues the same simulation: a case that changes a physical key against its checkpoint is refused
+# with exit 2 naming the key, and accepted when the change is asked for (--allow-changed KEY or its section).
+expect 2 "mid.h5: the case changes contact.stiffness against the checkpoint .*--allow-changed contact.stiffness" \
+  "cfd: restart with another stiffness is refused" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-stiff" --quiet \
+  --set contact.stiffness=900 --restart "$WORK/mid.h5"
+check "cfd: the refused restart wrote nothing" test ! -e "$WORK/cfd-stiff/case.toml"
+expect 2 "mid.h5: the case changes .*species\[0\]\.diameter" \
+  "cfd: restart with another particle diameter is refused" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-d" \
+  --quiet --set 'species=[{diameter = 0.0035}]' --restart "$WORK/mid.h5"
+expect 2 "changes inlet.jet\[0\].velocity" "cfd: restart with another jet is refused" "$FLUIDBED" run \
+  "$WORK/cfd.toml" --out "$WORK/cfd-jet" --quiet --set 'inlet.jet[0].velocity=25' --restart "$WORK/mid.h5"
+expect 2 "changes dem.time_step" "cfd: restart with another time step is refused" "$FLUIDBED" run \
+  "$WORK/cfd.toml" --out "$WORK/cfd-dt" --quiet --set dem.time_step=5e-5 --restart "$WORK/mid.h5"
+expect 0 "" "cfd: --allow-changed contact.stiffness continues anyway" "$FLUIDBED" run "$WORK/cfd.toml" \
+  --out "$WORK/cfd-stiff" --quiet --set contact.stiffness=900 --allow-changed contact.stiffness --restart "$WORK/mid.h5"
+expect 0 "" "cfd: --allow-changed inlet (a whole section)" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-jet" \
+  --quiet --set 'inlet.jet[0].velocity=25' --allow-changed inlet --restart "$WORK/mid.h5"
+# Output, analysis and run-control keys may change freely (the split run above restarted with another
+# checkpoint interval).
+
+# A checkpoint that does not fit the case is bad input (exit 2), never read half-way: another gas grid (refused as
+# a change, and when allowed, by the array sizes), or gas fields missing from a DEM-alone checkpoint.
+expect 2 "mid.h5: the case changes grid.cell_(width|height)" "cfd: restart on another grid" \
   "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-grid" --quiet --set grid.cell_width=0.005 --restart "$WORK/mid.h5"
+expect 2 "gas/. has [0-9]+ values, the case's grid needs [0-9]+" "cfd: restart on another grid, allowed" \
+  "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-grid" --quiet --set grid.cell_width=0.005 --allow-changed grid \
+  --restart "$WORK/mid.h5"
+
+# A checkpoint at or past the end time has nothing to run: refused (exit 2), final.h5 left as it was.
+cp "$WORK/cfd-split/checkpoints/final.h5" "$WORK/final-before.h5"
+expect 2 "final.h5: the checkpoint is at t = 0.02 s, at or past the end time 0.02 s: nothing to run" \
+  "cfd: restart at the end time is refused" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-split" --quiet \
+  --restart "$WORK/cfd-split/checkpoints/final.h5"
+check "cfd: final.h5 not overwritten" cmp "$WORK/final-before.h5" "$WORK/cfd-split/checkpoints/final.h5"
 
 # DEM alone (no gas: no fields, particles only); 400 steps of the default 2e-4 s.
 cat >"$WORK/dem.toml" <<'TOML'
@@ -62,7 +99,7 @@ output.checkpoint_interval = 0.0
 output.particles_csv = true
 TOML
 restart_case dem "$WORK/dem.toml" 0.08
-expect 2 "dem-full/checkpoints/final.h5" "dem: a DEM-alone checkpoint cannot start a run with gas" \
+expect 2 "dem-full/checkpoints/final.h5.*gas.enabled" "dem: a DEM-alone checkpoint cannot start a run with gas" \
   "$FLUIDBED" run "$WORK/dem.toml" --out "$WORK/dem-gas" --quiet --set gas.enabled=true \
   --restart "$WORK/dem-full/checkpoints/final.h5"
 
@@ -72,6 +109,11 @@ if [[ -f $tfm_case ]] && "$FLUIDBED" check "$tfm_case" >/dev/null 2>&1; then
   # Coarse grid, the jet widened to one coarse cell, a few steps only.
   restart_case tfm "$tfm_case" 0.01 --set grid.cell_width=0.05 --set grid.cell_height=0.05 \
     --set 'inlet.jet[0].centre=0.325' --set 'inlet.jet[0].width=0.05' --set output.interval=0.0025
+  check "tfm: the restarted run wrote tracer frames" test -s "$WORK/tfm-split/tracers/000004.csv"
+  # A checkpoint of the other model is named as such.
+  expect 2 "final.h5: a checkpoint of the two-fluid model \(TFM\), but .*cfd.toml runs the discrete-particle model" \
+    "a TFM checkpoint given to a CFD-DEM case" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-tfm" --quiet \
+    --restart "$WORK/tfm-split/checkpoints/final.h5"
 else
   echo "  SKIP  tfm restart: $tfm_case is missing or not accepted by fluidbed check (TFM not wired yet)"
 fi
