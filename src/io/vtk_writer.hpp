@@ -1,6 +1,7 @@
 #pragma once
 // VTK XML writers for ParaView: ImageData (.vti) for cell fields, UnstructuredGrid (.vtu) of vertices for
-// particles. Written without the VTK library: raw appended binary, little-endian, UInt64 block headers.
+// particles. Written without the VTK library: appended binary data, little-endian, UInt64 block headers,
+// zlib-compressed in the block layout of vtkZLibDataCompressor; values keep every bit (full double precision).
 #include <cstddef>
 #include <filesystem>
 #include <optional>

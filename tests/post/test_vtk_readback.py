@@ -3,8 +3,8 @@
 argv[1]: the fluidbed binary (its folder holds tests/test_unit_io), argv[2]: the repository root.
 The unit test VtkWriter.WritesSampleSeriesForReadback writes a small series (sample formulas in vtk_check.py,
 sample_series.hpp) into $FLUIDBED_VTK_SAMPLE_DIR; this script checks names, shapes, times and values.
-Values are compared exactly: the writers store raw float64, and both sides compute them with the same IEEE
-operations in the same order.
+Values are compared exactly: the writers store float64 losslessly (zlib), and both sides compute them with the
+same IEEE operations in the same order. Every file must declare vtkZLibDataCompressor with UInt64 headers.
 """
 import os
 import subprocess
@@ -57,7 +57,32 @@ def main():
                 vc.require(got.dtype == values.dtype, f"frame {k}: {name} is {got.dtype}, expected {values.dtype}")
                 vc.require(np.array_equal(got, values), f"frame {k}: {name} differs: {got} vs {values}")
 
-        print(f"vtk readback: {len(fields)} .vti and {len(particles)} .vtu frames read with VTK "
+        # Every file is zlib-compressed; VTK reads them value for value, arrays of several blocks included.
+        for name in sorted(os.listdir(os.path.join(out, "fields"))):
+            vc.require_compressed(os.path.join(out, "fields", name))
+        for name in sorted(os.listdir(os.path.join(out, "particles"))):
+            vc.require_compressed(os.path.join(out, "particles", name))
+        t1 = vc.sample_time(1)
+        large = vc.read_vti(os.path.join(out, "large.vti"))
+        vc.require_compressed(os.path.join(out, "large.vti"))
+        lg = vc.SAMPLE_LARGE_GRID
+        vc.require(large["dims"] == (lg["nx"], lg["ny"]) and large["time"] == t1, f"large.vti: {large['dims']}")
+        for name, values in vc.sample_fields(t1, lg).items():
+            got = large["cell"][name]
+            vc.require(got.dtype == np.float64 and np.array_equal(got, values), f"large.vti: {name} differs")
+        big = vc.read_vtu(os.path.join(out, "large.vtu"))
+        vc.require_compressed(os.path.join(out, "large.vtu"))
+        expected = vc.sample_particles(t1, vc.SAMPLE_LARGE_PARTICLES)
+        vc.require(big["n"] == vc.SAMPLE_LARGE_PARTICLES, f"large.vtu: {big['n']} particles")
+        vc.require(np.array_equal(big["points"], expected.pop("points")), "large.vtu: positions differ")
+        for name, values in expected.items():
+            got = big["point"][name]
+            vc.require(got.dtype == values.dtype and np.array_equal(got, values), f"large.vtu: {name} differs")
+        empty = vc.read_vtu(os.path.join(out, "empty.vtu"))
+        vc.require(empty["n"] == 0 and empty["n_cells"] == 0, f"empty.vtu: {empty['n']} points")
+
+        print(f"vtk readback: {len(fields)} .vti and {len(particles)} .vtu frames, and frames of "
+              f"{vc.SAMPLE_LARGE_PARTICLES} particles and {lg['nx']} x {lg['ny']} cells, read with VTK "
               f"{vc.vtk.vtkVersion.GetVTKVersion()}; names, shapes, times and values match exactly")
     return 0
 

@@ -142,8 +142,12 @@ def sample_time(k):
     return 0.1 * k / 3.0
 
 
-def sample_fields(t):
-    g = SAMPLE_GRID
+# The large sample (sample_large_grid, sample_large_particles): several compression blocks per array.
+SAMPLE_LARGE_GRID = {"nx": 128, "ny": 64, "dx": 0.0025, "dy": 0.005, "x0": 0.0, "y0": 0.0}
+SAMPLE_LARGE_PARTICLES = 20000
+
+
+def sample_fields(t, g=SAMPLE_GRID):
     n = g["nx"] * g["ny"]
     out = {"voidage": np.zeros(n), "pressure": np.zeros(n), "gas_velocity": np.zeros((n, 3))}
     for j in range(g["ny"]):
@@ -156,16 +160,26 @@ def sample_fields(t):
     return out
 
 
-def sample_particles(t):
-    """Point arrays in id order (ids 0..4)."""
-    ids = np.arange(5, dtype=np.int64)
+def sample_particles(t, n=5):
+    """Point arrays in id order (ids 0..n-1)."""
+    ids = np.arange(n, dtype=np.int64)
     d = ids.astype(np.float64)
     return {
         "id": ids,
         "species": (ids % 2).astype(np.int32),
         "layer": (ids // 2).astype(np.int32),
-        "diameter": np.full(5, 2.0 * (0.5 * 0.004)),
-        "velocity": np.stack([0.5 * d, np.full(5, -t), np.zeros(5)], axis=1),
+        "diameter": np.full(n, 2.0 * (0.5 * 0.004)),
+        "velocity": np.stack([0.5 * d, np.full(n, -t), np.zeros(n)], axis=1),
         "angular_velocity": 10.0 * d - 1.0,
-        "points": np.stack([0.001 * (d + 1.0), 0.002 * d + t, np.zeros(5)], axis=1),
+        "points": np.stack([0.001 * (d + 1.0), 0.002 * d + t, np.zeros(n)], axis=1),
     }
+
+
+ZLIB_HEADER = 'header_type="UInt64" compressor="vtkZLibDataCompressor"'
+
+
+def require_compressed(path):
+    """The file declares VTK's zlib block compression with UInt64 headers (what fluidbed writes)."""
+    with open(path, "rb") as f:
+        head = f.read(512).decode("ascii", errors="replace")
+    require(ZLIB_HEADER in head, f"{path}: not zlib-compressed with UInt64 headers:\n{head[:200]}")

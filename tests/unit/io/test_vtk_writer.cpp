@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <bit>
@@ -45,8 +46,11 @@ TEST(VtkWriter, ImageDataHeaderAndCellArrays) {
 
   const auto parsed = parse_vtk(test::slurp(dir / "f.vti"));
   const std::string& h = parsed.header;
-  EXPECT_NE(h.find(R"(<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"),
-            std::string::npos);
+  EXPECT_NE(h.find(R"(<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64" )"
+                   R"(compressor="vtkZLibDataCompressor">)"),
+            std::string::npos)
+      << h;
+  EXPECT_TRUE(parsed.compressed);
   EXPECT_NE(h.find(R"(WholeExtent="0 3 0 2 0 0")"), std::string::npos) << h;
   EXPECT_NE(h.find(R"(<Piece Extent="0 3 0 2 0 0">)"), std::string::npos) << h;
   EXPECT_NE(h.find(fmt::format(R"(Origin="{:.17g} {:.17g} 0")", 0.1, -0.05)), std::string::npos) << h;
@@ -138,6 +142,93 @@ TEST(VtkWriter, EmptyParticleStoreGivesEmptyPiece) {
   const auto parsed = parse_vtk(test::slurp(dir / "p.vtu"));
   EXPECT_NE(parsed.header.find(R"(<Piece NumberOfPoints="0" NumberOfCells="0">)"), std::string::npos);
   EXPECT_TRUE(parsed.values<std::int64_t>("id").empty());
+  // No blocks: VTK's own writer gives an empty array the same three-word header.
+  const auto h = parsed.block_header("id");
+  EXPECT_EQ(h.blocks, 0u);
+  EXPECT_EQ(h.last_size, 0u);
+}
+
+// The appended data of every array: the block header of vtkZLibDataCompressor (UInt64 words), blocks of 64 KiB
+// with the size of a partial last block, arrays packed one after the other from offset 0.
+void expect_vtk_block_layout(const test::VtkParsed& parsed, std::size_t expected_arrays) {
+  ASSERT_TRUE(parsed.compressed);
+  ASSERT_EQ(parsed.arrays.size(), expected_arrays);
+  std::vector<std::pair<std::size_t, std::string>> by_offset;
+  for (const auto& [name, info] : parsed.arrays) by_offset.emplace_back(info.offset, name);
+  std::sort(by_offset.begin(), by_offset.end());
+  std::size_t next = 0;
+  for (const auto& [offset, name] : by_offset) {
+    EXPECT_EQ(offset, next) << name;
+    const auto h = parsed.block_header(name);
+    const std::string bytes = parsed.bytes(name);
+    EXPECT_EQ(h.block_size, 65536u) << name;
+    EXPECT_EQ(h.blocks, (bytes.size() + 65535) / 65536) << name;
+    EXPECT_EQ(h.last_size, bytes.size() % 65536) << name;
+    next = offset + h.bytes;
+    for (const std::uint64_t c : h.compressed) next += c;
+  }
+  EXPECT_EQ(next + 3, parsed.appended.size());  // then "\n  " before </AppendedData>
+}
+
+TEST(VtkWriter, CompressedInVtkBlocksBitForBit) {
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
+  // 128 x 64 cells: a scalar array is exactly one full block, a vector array three.
+  const Grid2 grid = test::sample_large_grid();
+  const auto f = test::sample_fields(0.25, grid);
+  write_vti(dir / "f.vti", grid, 0.25,
+            {VtiArray::scalar("voidage", f.voidage), VtiArray::vector("gas_velocity", f.ug, f.vg)});
+  const auto vti = parse_vtk(test::slurp(dir / "f.vti"));
+  expect_vtk_block_layout(vti, 2);
+  EXPECT_EQ(vti.block_header("voidage").blocks, 1u);
+  EXPECT_EQ(vti.block_header("voidage").last_size, 0u);
+  EXPECT_EQ(vti.block_header("gas_velocity").blocks, 3u);
+  expect_same_bits(vti.values<double>("voidage"), f.voidage.v);
+  const auto uvw = vti.values<double>("gas_velocity");
+  ASSERT_EQ(uvw.size(), 3 * grid.cells());
+  for (std::size_t k = 0; k < grid.cells(); ++k) {
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(uvw[3 * k]), std::bit_cast<std::uint64_t>(f.ug.v[k]));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(uvw[3 * k + 1]), std::bit_cast<std::uint64_t>(f.vg.v[k]));
+  }
+
+  // 20,000 particles: 480,000 bytes of points are 7 full blocks and a last one of 21,248 bytes.
+  const ParticleStore store = test::sample_particles(0.25, test::sample_large_particles);
+  write_vtu(dir / "p.vtu", 0.25, store);
+  const std::string text = test::slurp(dir / "p.vtu");
+  const auto vtu = parse_vtk(text);
+  expect_vtk_block_layout(vtu, 10);
+  const auto points = vtu.block_header("Points");
+  EXPECT_EQ(points.blocks, 8u);
+  EXPECT_EQ(points.last_size, 480000u - 7u * 65536u);
+  const auto ids = vtu.values<std::int64_t>("id");
+  const auto xyz = vtu.values<double>("Points");
+  const auto spin = vtu.values<double>("angular_velocity");
+  ASSERT_EQ(ids.size(), store.size());
+  ASSERT_EQ(xyz.size(), 3 * store.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const std::size_t s = store.size() - 1 - k;  // stored in decreasing id order
+    ASSERT_EQ(ids[k], static_cast<std::int64_t>(k));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(xyz[3 * k]), std::bit_cast<std::uint64_t>(store.x[s]));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(xyz[3 * k + 1]), std::bit_cast<std::uint64_t>(store.y[s]));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(spin[k]), std::bit_cast<std::uint64_t>(store.omega[s]));
+  }
+  // Raw, the arrays of one particle take 97 bytes (points and velocity 24 each, id, connectivity, offsets,
+  // diameter and spin 8 each, species and layer 4 each, type 1); compressed, the counters and the constant
+  // arrays nearly vanish.
+  EXPECT_LT(text.size(), 97u * store.size() * 7 / 10);
+}
+
+TEST(VtkWriter, CompressedBytesDoNotDependOnThreadCount) {
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
+  const ParticleStore store = test::sample_particles(0.5, test::sample_large_particles);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  write_vtu(dir / "one.vtu", 0.5, store);
+  omp_set_num_threads(4);
+  write_vtu(dir / "four.vtu", 0.5, store);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(test::slurp(dir / "one.vtu"), test::slurp(dir / "four.vtu"));
 }
 
 TEST(VtkWriter, UnwritableFolderIsBadInput) {
@@ -169,6 +260,15 @@ TEST(VtkWriter, WritesSampleSeriesForReadback) {
     write_vtu(dir / vtu, t, test::sample_particles(t));
     particles.add(t, vtu);
   }
+  // Files of several compression blocks (a last block full and a last block partial) and an empty piece.
+  const Grid2 large = test::sample_large_grid();
+  const auto lf = test::sample_fields(test::sample_time(1), large);
+  write_vti(dir / "large.vti", large, test::sample_time(1),
+            {VtiArray::scalar("voidage", lf.voidage), VtiArray::scalar("pressure", lf.pressure),
+             VtiArray::vector("gas_velocity", lf.ug, lf.vg)});
+  write_vtu(dir / "large.vtu", test::sample_time(1),
+            test::sample_particles(test::sample_time(1), test::sample_large_particles));
+  write_vtu(dir / "empty.vtu", 0.0, ParticleStore{});
   const auto entries = read_pvd(dir / "fields.pvd");
   ASSERT_EQ(entries.size(), static_cast<std::size_t>(test::sample_frames));
   EXPECT_EQ(entries.back().file, "fields/000002.vti");
