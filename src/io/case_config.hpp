@@ -33,7 +33,8 @@ struct ParticleInit {
 };
 
 struct OutputConfig {
-  double interval = 0.01;          ///< fields, particles, bubble samples, s
+  double interval = 0.01;          ///< field frames, tracers, bubble samples, s
+  double particle_interval = 0.01; ///< particle frames (DEM), s: a whole multiple of `interval`
   double monitor_interval = 0.001; ///< monitor.csv rows, s
   double checkpoint_interval = 0.25;  ///< s (0: only at the end)
   int checkpoint_keep = 3;            ///< periodic checkpoints kept (the newest ones)

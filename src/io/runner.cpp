@@ -508,7 +508,11 @@ class Run {
       write_vti(out_ / rel, *fv.grid, t, arrays);
       fields_pvd_->add(t, rel);
     }
-    if (const ParticleStore* p = model_->particles()) {
+    // Particle frames: every n-th frame (output.particle_interval = n * output.interval, checked by the loader),
+    // numbered as the field frame of the same instant.
+    const auto every = static_cast<std::size_t>(std::llround(cfg_.output.particle_interval / cfg_.output.interval));
+    const ParticleStore* p = index % std::max<std::size_t>(every, 1) == 0 ? model_->particles() : nullptr;
+    if (p) {
       if (cfg_.output.particles) {
         const std::string rel = frame_file_name("particles", index, "vtu");
         write_vtu(out_ / rel, t, *p);
