@@ -101,15 +101,26 @@ void CfdDemSimulation::initialize() {
   eps_gas_old_ = eps_gas_;
 }
 
-void CfdDemSimulation::advance() {
+void CfdDemSimulation::advance(double h) {
+  const bool full = h == macro_dt();
   if (!gas_) {
-    dem_.step();
+    if (full) {
+      dem_.step();
+    } else {
+      dem_.step(h);
+    }
     return;
   }
-  for (int k = 0; k < coupling_.dem_substeps; ++k) dem_.step();
+  for (int k = 0; k < coupling_.dem_substeps; ++k) {
+    if (full) {
+      dem_.step();
+    } else {
+      dem_.step(h / coupling_.dem_substeps);
+    }
+  }
   eps_gas_old_ = eps_gas_;
   deposit();
-  report_ = gas_->advance(time(), macro_dt(), eps_gas_old_, eps_gas_, beta_, us_gas_, vs_gas_);
+  report_ = gas_->advance(time(), h, eps_gas_old_, eps_gas_, beta_, us_gas_, vs_gas_);
   ++gas_steps_;
   update_particle_forces();
 }

@@ -21,7 +21,9 @@ class CfdDemSimulation {
   /// already feels the gas (time does not advance). Call once for a fresh run, not after a restart.
   void initialize();
   /// One gas step: `dem_substeps` DEM steps, then the gas. Without gas: one DEM step.
-  void advance();
+  void advance() { advance(macro_dt()); }
+  /// The same step of length h <= macro_dt() (a shortened last step): the DEM sub-steps share h equally.
+  void advance(double h);
   double time() const { return dem_.time(); }
   double macro_dt() const { return dem_.config().dt * (gas_ ? coupling_.dem_substeps : 1); }
 

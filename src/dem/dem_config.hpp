@@ -20,6 +20,9 @@ struct WallConfig {
   bool right = true;
   bool bottom = true;
   bool top = false;  ///< the paper's top is the gas outlet
+  /// Without a top wall: particles whose centre crosses the top are removed and counted (an outflow), instead of
+  /// failing the run.
+  bool top_outflow = false;
 };
 
 struct DemConfig {

@@ -47,6 +47,12 @@ DemSolver::DemSolver(DemConfig config, ParticleStore particles)
   double d_max = 0.0;
   for (const Species& s : config_.species) d_max = std::max(d_max, s.diameter);
   cell_size_ = d_max + config_.skin;
+  p_.sort_by_id();
+  for (std::size_t i = 1; i < p_.size(); ++i) {
+    if (p_.id[i] == p_.id[i - 1]) {
+      throw_input_error(fmt::format("particle id {} is given twice: every particle needs its own id", p_.id[i]));
+    }
+  }
   wall_xi_.assign(p_.size(), {});
 }
 
@@ -135,20 +141,20 @@ void DemSolver::link_mirrors() {
   entry_torque_.assign(nbr_.entries(), 0.0);
 }
 
-double DemSolver::compute_forces() {
+double DemSolver::compute_forces(double dt) {
   const std::size_t n = p_.size();
-  const double dt = config_.dt;
   const double W = config_.width;
   const double H = config_.height;
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
   if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
   double max_ov = 0.0;
+  double max_frac = 0.0;  // overlap over the contact's own diameter (the dem.max_overlap_fraction test)
   const auto sn = static_cast<std::ptrdiff_t>(n);
   // Pass 1: every pair once, from its lower slot. The law is antisymmetric bit for bit, so writing -f and -xi to
   // the partner's entry gives exactly what the partner would have computed itself; no two pairs share an entry,
   // so threads never write the same memory.
-#pragma omp parallel for schedule(static) reduction(max : max_ov)
+#pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double xi = p_.x[i], yi = p_.y[i], ri = p_.radius[i], wi = p_.omega[i];
@@ -192,10 +198,13 @@ double DemSolver::compute_forces() {
       entry_torque_[k] = tq;
       entry_torque_[km] = tq;
       max_ov = std::max(max_ov, overlap);
+      // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
+      // no longer a small perturbation of two touching spheres.
+      max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, p_.radius[j])));
     }
   }
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
-#pragma omp parallel for schedule(static) reduction(max : max_ov)
+#pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double xi = p_.x[i], yi = p_.y[i], ri = p_.radius[i], wi = p_.omega[i];
@@ -220,6 +229,7 @@ double DemSolver::compute_forces() {
       f += cf.f;
       torque += ri * cross(nrm, cf.f_t);
       max_ov = std::max(max_ov, overlap);
+      max_frac = std::max(max_frac, overlap / (2.0 * ri));
     };
     wall(Wall::Left, walls.left, ri - xi, {-1.0, 0.0});
     wall(Wall::Right, walls.right, ri - (W - xi), {1.0, 0.0});
@@ -230,30 +240,48 @@ double DemSolver::compute_forces() {
     p_.torque[i] = torque;
   }
   max_overlap_ = max_ov;
+  max_overlap_fraction_ = max_frac;
   return max_ov;
 }
 
 DemStepInfo DemSolver::step() {
+  DemStepInfo info = advance(config_.dt);
+  // Whole steps from the clock origin: n dt carries one rounding, a running sum of dt one per step.
+  time_ = time_origin_ + static_cast<double>(steps_ - steps_origin_) * config_.dt;
+  return info;
+}
+
+DemStepInfo DemSolver::step(double h) {
+  if (h == config_.dt) return step();
+  DemStepInfo info = advance(h);
+  time_ += h;
+  time_origin_ = time_;
+  steps_origin_ = steps_;
+  return info;
+}
+
+DemStepInfo DemSolver::advance(double dt) {
   DemStepInfo info;
   if (need_rebuild_) {
     rebuild();
     info.rebuilt = true;
   }
-  info.max_overlap = compute_forces();
+  info.max_overlap = compute_forces(dt);
 
   // Eq. 10: explicit update, new velocity first, then position with the new velocity. The drag
   // drag_k (ug - v) is taken implicitly in v so that light or fine particles do not limit the time step;
   // with drag_k = 0 this is exactly Eq. 10.
   const std::size_t n = p_.size();
-  const double dt = config_.dt;
   const Vec2 g = config_.gravity;
   const double half_skin2 = 0.25 * config_.skin * config_.skin;
   const double W = config_.width;
   const double H = config_.height;
+  const bool outflow = config_.walls.top_outflow && !config_.walls.top;
   int moved_far = 0;
   int bad = 0;
+  int escaped = 0;
   const auto sn = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static) reduction(max : moved_far, bad)
+#pragma omp parallel for schedule(static) reduction(max : moved_far, bad, escaped)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double k = p_.drag_k[i];
@@ -266,43 +294,108 @@ DemStepInfo DemSolver::step() {
     const double ddx = p_.x[i] - x_build_[i];
     const double ddy = p_.y[i] - y_build_[i];
     if (ddx * ddx + ddy * ddy >= half_skin2) moved_far = 1;
-    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && p_.y[i] <= H &&
+    const bool out_top = outflow && p_.y[i] > H;
+    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && (p_.y[i] <= H || out_top) &&
                         std::isfinite(p_.vx[i]) && std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
     if (!inside) bad = 1;
+    if (out_top) escaped = 1;
   }
   need_rebuild_ = moved_far != 0;
   ++steps_;
-  time_ += dt;  // accumulated the same way in every run, so restarts reproduce it exactly
   if (bad != 0) check_particles();
+  if (escaped != 0) info.removed = remove_escaped();
   return info;
+}
+
+std::size_t DemSolver::remove_escaped() {
+  const std::size_t n = p_.size();
+  const double H = config_.height;
+  constexpr auto kGone = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> keep, new_slot(n, kGone);
+  keep.reserve(n);
+  std::size_t removed = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (p_.y[i] > H) {
+      ++removed;
+      removed_mass_ += p_.mass[i];
+    } else {
+      new_slot[i] = keep.size();
+      keep.push_back(i);
+    }
+  }
+  removed_count_ += removed;
+  // The neighbour list of the particles that stay, in the same order, with their springs: the remaining pairs
+  // are still within reach of their last build, so the list stays valid without a rebuild.
+  NeighborList list;
+  list.offset.assign(keep.size() + 1, 0);
+  list.partner.reserve(nbr_.partner.size());
+  list.history.reserve(nbr_.history.size());
+  if (nbr_.offset.size() == n + 1) {
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      const std::size_t i = keep[k];
+      for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
+        const std::size_t j = new_slot[nbr_.partner[q]];
+        if (j == kGone) continue;
+        list.partner.push_back(static_cast<std::uint32_t>(j));
+        list.history.push_back(nbr_.history[q]);
+      }
+      list.offset[k + 1] = list.partner.size();
+    }
+    nbr_ = std::move(list);
+  } else {
+    need_rebuild_ = true;
+  }
+  p_.permute(keep);
+  std::vector<std::array<Vec2, 4>> w(keep.size());
+  std::vector<double> xb(keep.size()), yb(keep.size());
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    w[k] = wall_xi_[keep[k]];
+    xb[k] = x_build_.empty() ? p_.x[k] : x_build_[keep[k]];
+    yb[k] = y_build_.empty() ? p_.y[k] : y_build_[keep[k]];
+  }
+  wall_xi_.swap(w);
+  x_build_.swap(xb);
+  y_build_.swap(yb);
+  if (!need_rebuild_) link_mirrors();
+  return removed;
 }
 
 void DemSolver::check_particles() const {
   const std::size_t n = p_.size();
   const double W = config_.width;
   const double H = config_.height;
+  const bool outflow = config_.walls.top_outflow && !config_.walls.top;
+  const auto inside = [&](std::size_t i) {
+    return p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && (p_.y[i] <= H || outflow) && std::isfinite(p_.vx[i]) &&
+           std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
+  };
   int bad = 0;
   const auto sn = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && p_.y[i] <= H &&
-                        std::isfinite(p_.vx[i]) && std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
-    if (!inside) bad = 1;
+    if (!inside(static_cast<std::size_t>(ii))) bad = 1;
   }
   if (bad == 0) return;
   // Report the offending particle with the smallest id, so the message does not depend on threads.
   std::size_t worst = n;
   for (std::size_t i = 0; i < n; ++i) {
-    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && p_.y[i] <= H &&
-                        std::isfinite(p_.vx[i]) && std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
-    if (!inside && (worst == n || p_.id[i] < p_.id[worst])) worst = i;
+    if (!inside(i) && (worst == n || p_.id[i] < p_.id[worst])) worst = i;
+  }
+  const bool finite = std::isfinite(p_.x[worst]) && std::isfinite(p_.y[worst]) && std::isfinite(p_.vx[worst]) &&
+                      std::isfinite(p_.vy[worst]) && std::isfinite(p_.omega[worst]);
+  if (finite && p_.y[worst] > H && p_.x[worst] >= 0.0 && p_.x[worst] <= W) {
+    throw_simulation_error(fmt::format(
+        "t = {:.6g} s: particle {} left through the open top of the domain (y = {:.6g} m > {} m, velocity "
+        "({:.6g}, {:.6g}) m/s). The top is open to the gas but particles may not leave: likely cause, the gas lifts "
+        "the bed (a plug or a burst at the surface); remedy: domain.particle_top = \"outflow\" removes and counts "
+        "the particles that leave (monitor.csv particles_lost, mass_lost_kg), domain.particle_top = \"wall\" keeps "
+        "them in, or make the domain taller or ramp the inlet up (inlet.ramp_time).",
+        time_, p_.id[worst], p_.y[worst], H, p_.vx[worst], p_.vy[worst]));
   }
   throw_simulation_error(fmt::format(
       "t = {:.6g} s: particle {} left the domain [0, {}] x [0, {}] m or its state is not finite: position "
       "({:.6g}, {:.6g}) m, velocity ({:.6g}, {:.6g}) m/s. Likely cause: the time step is too large for the "
-      "stiffness (check `fluidbed check`), or the gas drives particles out of an open top; remedy: reduce "
-      "dem.time_step, or make the domain taller.",
+      "stiffness (check `fluidbed check`); remedy: reduce dem.time_step.",
       time_, p_.id[worst], W, H, p_.x[worst], p_.y[worst], p_.vx[worst], p_.vy[worst]));
 }
 
@@ -316,7 +409,9 @@ double DemSolver::kinetic_energy() const {
 }
 
 DemSolver::State DemSolver::state() const {
-  return State{p_, nbr_, wall_xi_, x_build_, y_build_, time_, steps_, rebuilds_, need_rebuild_};
+  return State{p_,           nbr_,          wall_xi_,       x_build_,      y_build_,
+               time_,        steps_,        rebuilds_,      need_rebuild_, time_origin_,
+               steps_origin_, removed_count_, removed_mass_};
 }
 
 void DemSolver::restore(State s) {
@@ -328,6 +423,10 @@ void DemSolver::restore(State s) {
   time_ = s.time;
   steps_ = s.steps;
   rebuilds_ = s.rebuilds;
+  time_origin_ = s.time_origin;
+  steps_origin_ = s.steps_origin;
+  removed_count_ = s.removed_count;
+  removed_mass_ = s.removed_mass;
   need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
   mirror_.clear();  // linked again at the next force evaluation
   if (wall_xi_.size() != p_.size()) wall_xi_.assign(p_.size(), {});

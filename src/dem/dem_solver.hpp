@@ -19,29 +19,51 @@ enum class Wall : int { Left = 0, Right = 1, Bottom = 2, Top = 3 };
 struct DemStepInfo {
   double max_overlap = 0.0;  ///< m
   bool rebuilt = false;
+  std::size_t removed = 0;   ///< particles that left through an outflow top in this step
 };
 
 class DemSolver {
  public:
+  /// The particles are put in the canonical storage order (ascending id) first: the run then depends only on the
+  /// particles, not on the order they were handed over in. Ids must be unique.
   DemSolver(DemConfig config, ParticleStore particles);
 
   /// Advance by one time step of config().dt.
   DemStepInfo step();
+  /// Advance by one step of length h (a shortened last step that lands on an end time); the clock continues
+  /// from there in steps of config().dt.
+  DemStepInfo step(double h);
   /// Contact forces and torques for the current positions (into particles().fx, fy, torque), no update.
-  double compute_forces();
+  double compute_forces() { return compute_forces(config_.dt); }
 
   const DemConfig& config() const { return config_; }
   ParticleStore& particles() { return p_; }
   const ParticleStore& particles() const { return p_; }
   std::uint64_t step_count() const { return steps_; }
   std::uint64_t rebuild_count() const { return rebuilds_; }
+  /// Simulated time: the time of the last clock origin plus whole steps of config().dt since it, so that it does
+  /// not drift as a running sum of dt would.
   double time() const { return time_; }
-  void set_time(double t, std::uint64_t steps) { time_ = t; steps_ = steps; }
+  void set_time(double t, std::uint64_t steps) {
+    time_ = t;
+    steps_ = steps;
+    time_origin_ = t;
+    steps_origin_ = steps;
+  }
+  /// Call the time exactly t after a step that ended within round-off of t; the clock keeps its origin, so later
+  /// steps continue the sequence of whole steps.
+  void land_time(double t) { time_ = t; }
 
   /// Translational plus rotational kinetic energy, J (fixed summation order).
   double kinetic_energy() const;
   /// Largest overlap of the last force evaluation, m.
   double max_overlap() const { return max_overlap_; }
+  /// Largest overlap of the last force evaluation relative to its own contact: the smaller diameter of the pair,
+  /// or the particle's diameter against a wall.
+  double max_overlap_fraction() const { return max_overlap_fraction_; }
+  /// Particles removed through an outflow top since the start of the run, and their mass (kg).
+  std::uint64_t removed_count() const { return removed_count_; }
+  double removed_mass() const { return removed_mass_; }
   const ContactParams& pair_params(int a, int b) const {
     return pair_params_[static_cast<std::size_t>(a) * config_.n_species() + static_cast<std::size_t>(b)];
   }
@@ -58,6 +80,10 @@ class DemSolver {
     std::uint64_t steps = 0;
     std::uint64_t rebuilds = 0;
     bool need_rebuild = true;
+    double time_origin = 0.0;
+    std::uint64_t steps_origin = 0;
+    std::uint64_t removed_count = 0;
+    double removed_mass = 0.0;
   };
   State state() const;
   /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
@@ -71,8 +97,15 @@ class DemSolver {
     std::uint64_t steps;
     std::uint64_t rebuilds;
     bool need_rebuild;
+    double time_origin;
+    std::uint64_t steps_origin;
+    std::uint64_t removed_count;
+    double removed_mass;
   };
-  StateView view() const { return {p_, nbr_, wall_xi_, x_build_, y_build_, time_, steps_, rebuilds_, need_rebuild_}; }
+  StateView view() const {
+    return {p_,    nbr_,   wall_xi_,     x_build_,      y_build_,       time_,         steps_,
+            rebuilds_, need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
+  }
   void restore(State s);
   const NeighborList& neighbors() const { return nbr_; }
 
@@ -80,8 +113,13 @@ class DemSolver {
   void invalidate_neighbors() { need_rebuild_ = true; }
 
  private:
+  DemStepInfo advance(double h);
+  double compute_forces(double dt);
   void rebuild();
   void link_mirrors();
+  /// Drop the particles whose centre is above the top (an outflow top), keeping the order of the others, their
+  /// neighbour entries and contact springs; counts them and their mass.
+  std::size_t remove_escaped();
   static constexpr std::uint64_t kSortEvery = 16;
   void check_particles() const;
 
@@ -103,8 +141,13 @@ class DemSolver {
   std::vector<double> entry_torque_;  ///< n x f_t of the pair, the same for both partners (times own radius)
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
+  double max_overlap_fraction_ = 0.0;
   double time_ = 0.0;
   std::uint64_t steps_ = 0;
+  double time_origin_ = 0.0;
+  std::uint64_t steps_origin_ = 0;
+  std::uint64_t removed_count_ = 0;
+  double removed_mass_ = 0.0;
   std::uint64_t rebuilds_ = 0;
   bool need_rebuild_ = true;
 };

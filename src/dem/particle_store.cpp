@@ -1,11 +1,13 @@
 #include "dem/particle_store.hpp"
 
+#include <algorithm>
+
 namespace fluidbed {
 
 namespace {
 template <class T>
 void apply_order(std::vector<T>& a, const std::vector<std::size_t>& order, std::vector<T>& scratch) {
-  scratch.resize(a.size());
+  scratch.resize(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = a[order[k]];
   a.swap(scratch);
 }
@@ -32,6 +34,18 @@ void ParticleStore::clear() {
                   &fy_ext, &drag_k, &ugx, &ugy}) {
     a->clear();
   }
+}
+
+}  // namespace fluidbed
+
+namespace fluidbed {
+
+void ParticleStore::sort_by_id() {
+  std::vector<std::size_t> order(size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  if (std::is_sorted(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; })) return;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  permute(order);
 }
 
 }  // namespace fluidbed

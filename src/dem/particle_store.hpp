@@ -80,8 +80,12 @@ struct ParticleStore {
   Vec2 pos(std::size_t i) const { return {x[i], y[i]}; }
   Vec2 vel(std::size_t i) const { return {vx[i], vy[i]}; }
 
-  /// Reorder every attribute so that new slot k holds old slot order[k].
+  /// Reorder every attribute so that new slot k holds old slot order[k]; slots that `order` does not name are
+  /// dropped (a selection, e.g. the particles that stay after some left the domain).
   void permute(const std::vector<std::size_t>& order);
+  /// Ascending id: the canonical storage order a solver starts from, so that a run depends on the particles and
+  /// not on how they were stored when handed over (settled in memory, read from a CSV in any row order).
+  void sort_by_id();
   void clear();
 };
 

@@ -8,14 +8,21 @@
 
 namespace fluidbed {
 
+double background_inlet_velocity(const GasBoundaryConfig& bc, double t) {
+  if (bc.ramp_time <= 0.0 || t >= bc.ramp_time) return bc.inlet_velocity;
+  const double f = std::max(t, 0.0) / bc.ramp_time;
+  return bc.ramp_from + f * (bc.inlet_velocity - bc.ramp_from);
+}
+
 double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t) {
   const double width = x_hi - x_lo;
-  double flux = bc.inlet_velocity * width;
+  const double u_bg = background_inlet_velocity(bc, t);
+  double flux = u_bg * width;
   for (const InletJet& jet : bc.jets) {
     if (t < jet.t_start || t >= jet.t_end) continue;
     const double lo = std::max(x_lo, jet.x_centre - 0.5 * jet.width);
     const double hi = std::min(x_hi, jet.x_centre + 0.5 * jet.width);
-    if (hi > lo) flux += (jet.velocity - bc.inlet_velocity) * (hi - lo);
+    if (hi > lo) flux += (jet.velocity - u_bg) * (hi - lo);
   }
   return flux / width;
 }
@@ -41,6 +48,8 @@ void validate(const GasConfig& c) {
   require(c.mass_tolerance > 0.0, "mass_tolerance must be positive");
   require(c.momentum_solver_tolerance > 0.0, "momentum_solver_tolerance must be positive");
   require(c.momentum_solver_max_iterations >= 1, "momentum_solver_max_iterations must be at least 1");
+  require(c.boundary.ramp_time >= 0.0 && std::isfinite(c.boundary.ramp_time), "inlet ramp_time must be non-negative");
+  require(std::isfinite(c.boundary.ramp_from), "inlet ramp_from must be finite");
   for (const InletJet& jet : c.boundary.jets) {
     require(jet.width > 0.0, "jet width must be positive");
     require(jet.t_end >= jet.t_start, "jet t_end must not precede t_start");

@@ -6,6 +6,10 @@
 
 namespace fluidbed {
 
+/// Background superficial inlet velocity at time t (outside the jets), m/s: inlet_velocity, reached from
+/// ramp_from by a linear ramp over [0, ramp_time]. Every model takes its background inflow from here.
+double background_inlet_velocity(const GasBoundaryConfig& bc, double t);
+
 /// Superficial inlet velocity averaged over the bottom face [x_lo, x_hi] at time t: the background velocity,
 /// replaced by each active jet over the fraction of the face it covers (so the jet's volume flux is exact).
 double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t);

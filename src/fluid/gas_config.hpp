@@ -40,6 +40,11 @@ struct InletJet {
 struct GasBoundaryConfig {
   /// Superficial (volume flux per area) velocity through the whole bottom [m/s]; paper: U_mf = 1.8.
   double inlet_velocity = 1.8;
+  /// Start-up ramp of that background velocity: linear from ramp_from at t = 0 to inlet_velocity at
+  /// t = ramp_time [s] (0: no ramp, the inflow starts at inlet_velocity), as a bed is brought to its operating
+  /// point by opening the valve.
+  double ramp_from = 0.0;  ///< [m/s]
+  double ramp_time = 0.0;  ///< [s]
   /// Jets replacing the background inflow over their width; paper: one 0.02 m jet at the centre, 30 m/s, 0-0.4 s.
   std::vector<InletJet> jets = std::vector<InletJet>(1);
   TopBoundary top = TopBoundary::PressureOutlet;

@@ -79,6 +79,10 @@ void save_dem(Hdf5File& f, const DemSolver::StateView& s) {
     f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
     f.set_attribute("dem", "rebuilds", static_cast<std::int64_t>(s.rebuilds));
     f.set_attribute("dem", "need_rebuild", static_cast<std::int64_t>(s.need_rebuild));
+    f.set_attribute("dem", "time_origin", s.time_origin);
+    f.set_attribute("dem", "steps_origin", static_cast<std::int64_t>(s.steps_origin));
+    f.set_attribute("dem", "removed_count", static_cast<std::int64_t>(s.removed_count));
+    f.set_attribute("dem", "removed_mass", s.removed_mass);
 }
 
 DemSolver::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
@@ -148,6 +152,15 @@ DemSolver::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
     s.steps = static_cast<std::uint64_t>(f.attribute_int64("dem", "steps"));
     s.rebuilds = static_cast<std::uint64_t>(f.attribute_int64("dem", "rebuilds"));
     s.need_rebuild = f.attribute_int64("dem", "need_rebuild") != 0;
+    // Checkpoints written before the clock kept an origin and before the outflow top: the clock starts at the
+    // checkpoint's time and nothing has left.
+    const bool has_origin = f.has_attribute("dem", "time_origin");
+    s.time_origin = has_origin ? f.attribute_double("dem", "time_origin") : s.time;
+    s.steps_origin = has_origin ? static_cast<std::uint64_t>(f.attribute_int64("dem", "steps_origin")) : s.steps;
+    if (f.has_attribute("dem", "removed_count")) {
+      s.removed_count = static_cast<std::uint64_t>(f.attribute_int64("dem", "removed_count"));
+      s.removed_mass = f.attribute_double("dem", "removed_mass");
+    }
     return s;
 }
 
@@ -157,23 +170,38 @@ class DemModel final : public ModelRun {
       : config_(c),
         sim_(DemSolver(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}),
              c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid, c.gas)) : std::nullopt, c.coupling) {
-    double d_min = 1e300;
-    for (const Species& s : c.dem.species) d_min = std::min(d_min, s.diameter);
-    overlap_limit_ = c.max_overlap_fraction * d_min;
     if (fresh) sim_.initialize();
   }
 
   double time() const override { return sim_.time(); }
   void advance(double t_end) override {
-    (void)t_end;  // fixed steps for now
-    sim_.advance();
-    const double ov = sim_.dem().max_overlap();
-    if (ov > overlap_limit_) {
+    // A step that ends within this fraction of a step of t_end is the last one: round-off of n dt, not a step.
+    constexpr double kLand = 1e-9;
+    const double full = sim_.macro_dt();
+    const double remaining = t_end - sim_.time();
+    if (remaining <= kLand * full) {
+      if (remaining > 0.0) sim_.dem().land_time(t_end);
+      return;
+    }
+    if (remaining < full * (1.0 - kLand)) {
+      sim_.advance(remaining);  // the shortened last step; the clock's origin moves to t_end
+      sim_.dem().set_time(t_end, sim_.dem().step_count());
+    } else {
+      sim_.advance(full);
+      // n dt within round-off of t_end reads t_end; the clock keeps its origin, so a continuation runs on as
+      // the uninterrupted run does.
+      if (remaining <= full * (1.0 + kLand)) sim_.dem().land_time(t_end);
+    }
+    const double frac = sim_.dem().max_overlap_fraction();
+    if (frac > config_.max_overlap_fraction) {
       throw_simulation_error(fmt::format(
-          "t = {:.6g} s: a contact overlaps by {:.3g} m, more than {:.0f}% of the diameter ({}). Likely cause: the "
-          "springs are too soft for the loads (stiffness {} N/m) or particles hit at high speed; remedy: raise "
-          "contact.stiffness (and lower dem.time_step), or raise dem.max_overlap_fraction if this is intended.",
-          time(), ov, 100.0 * config_.max_overlap_fraction, deepest_contact(), config_.dem.stiffness));
+          "t = {:.6g} s: a contact overlaps by {:.3g} m, {:.1f}% of its diameter (the smaller of a pair, the particle's "
+          "own at a wall), more than dem.max_overlap_fraction = {:.0f}% ({}). Likely cause: the springs are too soft "
+          "for the loads (stiffness {} N/m) or particles hit at high speed (a bed lifted as a plug hitting a top wall); "
+          "remedy: raise contact.stiffness (and lower dem.time_step), ramp the inlet up (inlet.ramp_time), or raise "
+          "dem.max_overlap_fraction if this is intended.",
+          time(), sim_.dem().max_overlap(), 100.0 * frac, 100.0 * config_.max_overlap_fraction, deepest_contact(),
+          config_.dem.stiffness));
     }
     if (sim_.has_gas() && !std::isfinite(sim_.gas().pressure_drop())) {
       throw_simulation_error(fmt::format("t = {:.6g} s: the gas pressure is not finite. Likely cause: an unstable gas "
@@ -185,7 +213,9 @@ class DemModel final : public ModelRun {
   std::vector<std::string> monitor_columns() const override {
     return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
             "gas_mass_balance", "simple_iterations", "min_voidage", "fluid_force_y_N", "gas_reaction_y_N",
-            "neighbor_rebuilds", "lacey_index"};
+            "neighbor_rebuilds", "lacey_index", "particles_lost", "mass_lost_kg",
+            // Per metre of depth (over coupling.depth, the slab the monolayer stands for): the TFM's basis.
+            "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "linear_solver_fallbacks"};
   }
   std::vector<std::optional<double>> monitor_values() override {
     const ParticleStore& p = sim_.dem().particles();
@@ -194,9 +224,15 @@ class DemModel final : public ModelRun {
     std::vector<std::optional<double>> v{sim_.dem().kinetic_energy(), std::nullopt, sim_.dem().max_overlap(),
                                          std::nullopt, mass, std::nullopt, std::nullopt, std::nullopt,
                                          std::nullopt, std::nullopt, static_cast<double>(sim_.dem().rebuild_count()),
-                                         std::nullopt};
+                                         std::nullopt,
+                                         static_cast<double>(sim_.dem().removed_count()),
+                                         sim_.dem().removed_mass()};
+    v.push_back(mass / config_.coupling.depth);
+    v.push_back(*v[0] / config_.coupling.depth);
+    v.push_back(std::nullopt);
     if (sim_.has_gas()) {
       const GasStepReport& r = sim_.last_gas_report();
+      v.back() = static_cast<double>(r.linear_fallbacks);
       v[1] = sim_.gas().pressure_drop();
       v[3] = r.mass_residual;
       v[5] = r.mass_balance_relative;
@@ -314,8 +350,8 @@ class DemModel final : public ModelRun {
     return p;
   }
 
-  /// Where the deepest contact is, for the overlap diagnosis: the particle pair (from the neighbour list) or the
-  /// particle and wall. Runs only on the failure path.
+  /// Where the deepest contact (relative to its own diameter) is, for the overlap diagnosis: the particle pair
+  /// (from the neighbour list) or the particle and wall. Runs only on the failure path.
   std::string deepest_contact() const {
     const ParticleStore& p = sim_.dem().particles();
     const NeighborList& nbr = sim_.dem().neighbors();
@@ -324,17 +360,19 @@ class DemModel final : public ModelRun {
     for (std::size_t i = 0; i < p.size(); ++i) {
       for (std::size_t k = nbr.offset[i]; k < nbr.offset[i + 1]; ++k) {
         const std::size_t j = nbr.partner[k];
-        const double ov = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+        const double ov = (p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i])) /
+                          (2.0 * std::min(p.radius[i], p.radius[j]));
         if (ov > worst) {
           worst = ov;
           const std::size_t a = p.id[i] < p.id[j] ? i : j, b = a == i ? j : i;
-          where = fmt::format("particles {} and {} at ({:.6g}, {:.6g}) m and ({:.6g}, {:.6g}) m", p.id[a], p.id[b],
-                              p.x[a], p.y[a], p.x[b], p.y[b]);
+          where = fmt::format("particles {} (d = {:.3g} m) and {} (d = {:.3g} m) at ({:.6g}, {:.6g}) m and ({:.6g}, "
+                              "{:.6g}) m", p.id[a], 2.0 * p.radius[a], p.id[b], 2.0 * p.radius[b], p.x[a], p.y[a],
+                              p.x[b], p.y[b]);
         }
       }
       const double W = config_.dem.width, H = config_.dem.height, r = p.radius[i];
-      for (const auto& [ov, wall] : {std::pair{r - p.x[i], "left"}, std::pair{p.x[i] + r - W, "right"},
-                                     std::pair{r - p.y[i], "bottom"}, std::pair{p.y[i] + r - H, "top"}}) {
+      for (const auto& [ov, wall] : {std::pair{(r - p.x[i]) / (2.0 * r), "left"}, std::pair{(p.x[i] + r - W) / (2.0 * r), "right"},
+                                     std::pair{(r - p.y[i]) / (2.0 * r), "bottom"}, std::pair{(p.y[i] + r - H) / (2.0 * r), "top"}}) {
         if (ov > worst && (std::string(wall) != "top" || config_.dem.walls.top)) {
           worst = ov;
           where = fmt::format("particle {} at ({:.6g}, {:.6g}) m and the {} wall", p.id[i], p.x[i], p.y[i], wall);
@@ -346,7 +384,6 @@ class DemModel final : public ModelRun {
 
   CaseConfig config_;
   CfdDemSimulation sim_;
-  double overlap_limit_ = 0.0;
 };
 
 }  // namespace
