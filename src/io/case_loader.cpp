@@ -62,7 +62,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
   // [domain]
   c.dem.width = r.number("domain.width", 0.6, "m", "bed width (x)", R::positive());
   c.dem.height = r.number("domain.height", 1.0, "m", "domain height (y)", R::positive());
-  c.dem.walls.top = r.boolean("domain.top_wall", false, "particles meet a wall at the top (the gas outlet stays open)");
+  const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
+                                    "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
+                                    "outflow (they leave, removed and counted in monitor.csv)", {"open", "wall", "outflow"});
+  c.dem.walls.top = ptop == "wall";
+  c.dem.walls.top_outflow = ptop == "outflow";
 
   if (c.model == Model::Tfm) return;  // the particle keys belong to the discrete model
 
@@ -268,6 +272,9 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   // [inlet]
   g.boundary.inlet_velocity = r.number("inlet.velocity", 1.8, "m/s",
                                        "superficial gas velocity through the whole bottom (the paper: U_mf = 1.8 m/s)");
+  g.boundary.ramp_time = r.number("inlet.ramp_time", 0.0, "s", "the background inflow ramps linearly from "
+                                  "inlet.ramp_from to inlet.velocity over this time (0: no ramp)", R::non_negative());
+  g.boundary.ramp_from = r.number("inlet.ramp_from", 0.0, "m/s", "background inflow at t = 0 when inlet.ramp_time > 0");
   const std::size_t nj = r.table_count("inlet.jet", "jets through the bottom, replacing the background inflow");
   g.boundary.jets.clear();
   for (std::size_t k = 0; k < nj; ++k) {
