@@ -22,6 +22,9 @@ struct GasStepReport {
   double accumulation = 0.0;         ///< rho_g sum (eps_new - eps_old) V / dt
   double mass_balance = 0.0;         ///< mass_out - mass_in + accumulation (zero when gas mass is conserved)
   double mass_balance_relative = 0.0;///< |mass_balance| / reference_mass_flow
+  /// Momentum solves of the step whose BiCGSTAB stopped short of its tolerance and that a sparse LU answered
+  /// (a solve neither answers fails the step).
+  int linear_fallbacks = 0;
 };
 
 class GasSolver {

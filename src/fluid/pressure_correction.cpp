@@ -110,26 +110,40 @@ void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const F
     s.pcg.preconditioner().use(&s.ldlt);
     const Eigen::VectorXd guess = s.x;
     s.x = s.pcg.solveWithGuess(s.b, guess);
-    solved = s.pcg.info() == Eigen::Success;
+    solved = s.pcg.info() == Eigen::Success && s.x.allFinite();
     if (!solved) s.x = guess;  // the matrix moved too far from the factorised one: factorise it below
   }
-  if (solved) {
-  } else if (s.kind == PressureSolverKind::Direct) {
+  std::string cg_failure;
+  if (!solved && s.kind == PressureSolverKind::ConjugateGradient) {
+    s.cg.compute(s.a.matrix());
+    const Eigen::VectorXd guess = s.x;
+    s.x = s.cg.solveWithGuess(s.b, guess);
+    solved = s.cg.info() == Eigen::Success && s.x.allFinite();
+    if (!solved) {
+      // Not accepted: the factorisation below answers instead (it does not depend on convergence).
+      cg_failure = "conjugate gradient stopped at relative residual " + std::to_string(s.cg.error()) + " after " +
+                   std::to_string(s.cg.iterations()) + " iterations; ";
+      s.x = guess;
+    }
+  }
+  if (!solved) {
     if (!s.analysed) {
       s.ldlt.analyzePattern(s.a.matrix());
       s.analysed = true;
     }
     s.ldlt.factorize(s.a.matrix());
-    if (s.ldlt.info() != Eigen::Success) throw_simulation_error("gas pressure correction: LDLT factorisation failed");
+    if (s.ldlt.info() != Eigen::Success) {
+      throw_simulation_error("gas pressure correction: " + cg_failure +
+                             "the LDLT factorisation failed (the matrix is not positive definite: a face coefficient "
+                             "is negative or not finite)");
+    }
     s.factorised = true;
     s.x = s.ldlt.solve(s.b);
-  } else {
-    s.cg.compute(s.a.matrix());
-    s.x = s.cg.solveWithGuess(s.b, s.x);
-    if (s.cg.info() != Eigen::Success) {
-      throw_simulation_error("gas pressure correction: conjugate gradient did not converge (error " +
-                             std::to_string(s.cg.error()) + " after " + std::to_string(s.cg.iterations()) +
-                             " iterations)");
+    // Finite and backward stable, or not accepted (a zero pivot that LDLT does not report shows up here).
+    const double err = backward_error(s.a.matrix(), s.x, s.b);
+    if (!(err <= kDirectBackwardError)) {
+      throw_simulation_error("gas pressure correction: " + cg_failure + "the LDLT answer has backward error " +
+                             std::to_string(err) + " (the matrix is singular or not finite)");
     }
   }
   for (int j = 0; j < ny; ++j)

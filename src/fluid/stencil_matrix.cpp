@@ -1,5 +1,9 @@
 #include "fluid/stencil_matrix.hpp"
 
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+
 namespace fluidbed {
 
 void StencilMatrix::build(int n, const std::vector<std::array<int, 4>>& neighbours) {
@@ -39,6 +43,66 @@ void StencilMatrix::build_cells(int nx, int ny) {
                                          j < ny - 1 ? r + nx : -1};
     }
   build(nx * ny, nb);
+}
+
+double backward_error(const StencilMatrix::Matrix& a, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  double a_norm = 0.0;
+  for (Eigen::Index r = 0; r < a.outerSize(); ++r) {
+    double row = 0.0;
+    for (StencilMatrix::Matrix::InnerIterator it(a, r); it; ++it) row += std::abs(it.value());
+    a_norm = std::max(a_norm, row);
+  }
+  const double denom = a_norm * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>();
+  const double r = (a * x - b).lpNorm<Eigen::Infinity>();
+  if (!std::isfinite(r) || !std::isfinite(denom)) return INFINITY;
+  return denom > 0.0 ? r / denom : r;
+}
+
+LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  LinearSolveOutcome out;
+  const Eigen::Index n = a.rows();
+  if (x.size() != n) x = Eigen::VectorXd::Zero(n);
+  // A non-finite coefficient makes every solver's answer meaningless: name the row instead of iterating.
+  for (Eigen::Index r = 0; r < n && out.bad_row < 0; ++r) {
+    bool finite = std::isfinite(b[r]);
+    for (Matrix::InnerIterator it(a, r); it && finite; ++it) finite = std::isfinite(it.value());
+    if (!finite) out.bad_row = static_cast<int>(r);
+  }
+  if (out.bad_row >= 0) {
+    out.why = "non-finite coefficient or right-hand side in row " + std::to_string(out.bad_row);
+    return out;
+  }
+  bicgstab_.compute(a);
+  Eigen::VectorXd y = bicgstab_.solveWithGuess(b, x);
+  out.iterations = static_cast<int>(bicgstab_.iterations());
+  out.error = bicgstab_.error();
+  if (bicgstab_.info() == Eigen::Success && y.allFinite()) {
+    out.ok = true;
+    x = std::move(y);
+    return out;
+  }
+  // BiCGSTAB ran out of iterations or broke down: a direct factorisation does not depend on convergence.
+  out.fell_back = true;
+  const Eigen::SparseMatrix<double, Eigen::ColMajor, int> a_col = a;
+  Eigen::SparseLU<Eigen::SparseMatrix<double, Eigen::ColMajor, int>> lu;
+  lu.compute(a_col);
+  if (lu.info() != Eigen::Success) {
+    out.why = "BiCGSTAB stopped at relative residual " + std::to_string(out.error) + " after " +
+              std::to_string(out.iterations) + " iterations and the sparse LU failed (" + lu.lastErrorMessage() +
+              "): the matrix is singular";
+    return out;
+  }
+  y = lu.solve(b);
+  out.backward_error = y.allFinite() ? backward_error(a, y, b) : INFINITY;
+  if (!(out.backward_error <= kDirectBackwardError)) {
+    out.why = "BiCGSTAB stopped at relative residual " + std::to_string(out.error) + " after " +
+              std::to_string(out.iterations) + " iterations and the sparse LU answer has backward error " +
+              std::to_string(out.backward_error) + ": the matrix is singular to working precision";
+    return out;
+  }
+  out.ok = true;
+  x = std::move(y);
+  return out;
 }
 
 }  // namespace fluidbed

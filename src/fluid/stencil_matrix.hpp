@@ -2,8 +2,10 @@
 // A sparse matrix whose pattern (at most five entries per row: self, W, E, S, N) is fixed once, so repeated
 // assemblies write values in place and factorisations can reuse their symbolic analysis.
 #include <array>
+#include <string>
 #include <vector>
 
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
 namespace fluidbed {
@@ -36,6 +38,43 @@ class StencilMatrix {
  private:
   Matrix matrix_;
   std::vector<int> offset_;
+};
+
+/// Normwise backward error of an answer, |A x - b|_inf / (|A|_inf |x|_inf + |b|_inf) (Rigal & Gaches 1967): a
+/// backward-stable direct solve leaves it near the machine epsilon however ill-conditioned A is, so a large
+/// value means the factorisation broke down, not that the matrix is hard.
+double backward_error(const StencilMatrix::Matrix& a, const Eigen::VectorXd& x, const Eigen::VectorXd& b);
+/// A direct answer is accepted below this backward error.
+inline constexpr double kDirectBackwardError = 1e-10;
+
+/// What a checked solve did: BiCGSTAB first, a sparse LU when BiCGSTAB did not reach its tolerance.
+struct LinearSolveOutcome {
+  bool ok = false;          ///< x holds a finite answer: BiCGSTAB converged, or the LU met kDirectBackwardError
+  bool fell_back = false;   ///< BiCGSTAB failed (no convergence or breakdown) and the sparse LU answered
+  int iterations = 0;       ///< BiCGSTAB iterations
+  double error = 0.0;       ///< BiCGSTAB relative residual estimate when it stopped
+  double backward_error = 0.0;  ///< backward_error() of the LU answer (fell_back only)
+  int bad_row = -1;         ///< first row with a non-finite coefficient or right-hand side; -1 if none
+  std::string why;          ///< when !ok: what failed, in words
+};
+
+/// A nonsymmetric sparse system solved by BiCGSTAB with a diagonal preconditioner, checked: when BiCGSTAB stops
+/// short of its tolerance (iteration cap or breakdown) the system is solved again by a sparse LU, and an answer
+/// is accepted only when it is finite and its relative residual is small. Nothing is accepted silently; the
+/// caller turns !ok into a diagnosis with its own context (time, cell, likely cause).
+class CheckedSparseSolver {
+ public:
+  using Matrix = StencilMatrix::Matrix;
+  void set_tolerance(double tol) { bicgstab_.setTolerance(tol); }
+  /// At most this many BiCGSTAB iterations; 0: Eigen's default (twice the size).
+  void set_max_iterations(int n) {
+    if (n > 0) bicgstab_.setMaxIterations(n);
+  }
+  /// Solves a x = b; x is the initial guess on entry (zero for an empty vector) and the answer on exit.
+  LinearSolveOutcome solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+ private:
+  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> bicgstab_;
 };
 
 }  // namespace fluidbed
