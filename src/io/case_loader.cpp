@@ -243,6 +243,11 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     r.fail("grid.cell_height", fmt::format("{} m does not divide the domain height {} m into whole cells", dy, c.dem.height));
   }
   c.grid = Grid2::uniform(c.dem.width, c.dem.height, static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy)));
+  if (t.rheology == tfm::SolidsRheology::KineticTheory && t.e >= 1.0) {
+    r.fail("tfm.restitution", "e = 1 has no granular temperature in the kinetic theory: its algebraic balance of "
+                              "shear production against collisional dissipation (~ 1 - e^2, Eqs. 25-26) has no "
+                              "finite solution for elastic particles; use e < 1 (the paper: 0.9)");
+  }
 
   GasConfig& g = c.gas;
   g.rho_g = r.number("gas.density", 1.205, "kg/m^3", "gas density rho_g", R::positive());
@@ -260,6 +265,11 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   g.relax_velocity = r.number("gas.relax_velocity", 0.8, "", "momentum under-relaxation", R::Range{0.0, 1.0, true, false});
   g.relax_pressure = r.number("gas.relax_pressure", 1.0, "", "pressure under-relaxation", R::Range{0.0, 1.0, true, false});
   g.max_simple_iterations = static_cast<int>(r.integer("gas.max_iterations", 200, "SIMPLE iterations per gas step at most",
+  t.eps_noise = r.number("tfm.eps_noise", 0.0, "", "amplitude of the seeded (case.seed) initial voidage noise of the "
+                         "bed: eps + a (2u - 1), kept in [eps*, 1]", R::Range{0.0, 0.5, false, true});
+  t.inlet_noise = r.number("tfm.inlet_noise", 0.0, "", "relative amplitude of a seeded (case.seed) distributor "
+                           "non-uniformity fixed per bottom cell, total inflow unchanged", R::Range{0.0, 1.0, false, true});
+  t.seed = c.seed;
                                                        R::between(1, 100000)));
   g.mass_tolerance = r.number("gas.mass_tolerance", 1e-8, "", "SIMPLE stops when the normalised mass residual is below this",
                               R::positive());

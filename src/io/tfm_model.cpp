@@ -34,22 +34,28 @@ class TfmModel final : public ModelRun {
   }
   /// The step is adaptive and lands on the output times: no scheduling slack is needed.
   double macro_dt() const override { return 0.0; }
+  // Columns defined in docs/output-format.md ("monitor.csv columns"). Mass and kinetic energy come per metre of
+  // depth (the two-dimensional equations) and, for the contract columns, for a slab coupling.depth deep, the
+  // basis of the CFD-DEM monolayer, so that the two models' columns of one name compare directly.
   std::vector<std::string> monitor_columns() const override {
     return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
-            "time_step_s", "min_voidage", "max_solids_speed_m_s", "granular_temperature_max"};
+            "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "time_step_s", "min_voidage",
+            "max_solids_speed_m_s", "granular_temperature_bed_max_m2_s2", "granular_temperature_solids_mean_m2_s2",
+            "linear_solver_fallbacks"};
   }
   std::vector<std::optional<double>> monitor_values() override {
-    // Solids kinetic energy per metre of depth, from cell-centred velocities.
+    // Kinetic energy of the solids' mean motion per metre of depth, from cell-centred velocities.
     const Grid2& g = solver_.grid();
     const tfm::TfmState& s = solver_.state();
     double ke = 0.0;
     for (std::size_t c = 0; c < g.cells(); ++c) {
       ke += 0.5 * config_.tfm.rho_s * (1.0 - s.eps.v[c]) * (us_.v[c] * us_.v[c] + vs_.v[c] * vs_.v[c]) * g.dx * g.dy;
     }
-    double theta_max = 0.0;
-    for (double th : s.theta.v) theta_max = std::max(theta_max, th);
-    return {ke, solver_.pressure_drop(), std::nullopt, solver_.gas_volume_residual(), solver_.solids_mass(),
-            last_dt_, solver_.min_voidage(), solver_.max_solids_speed(), theta_max};
+    const double depth = config_.coupling.depth;
+    const double mass = solver_.solids_mass();
+    return {ke * depth, solver_.pressure_drop(), std::nullopt, solver_.gas_volume_residual(), mass * depth, mass, ke,
+            last_dt_, solver_.min_voidage(), solver_.max_solids_speed(), solver_.bed_granular_temperature_max(),
+            solver_.solids_mean_granular_temperature(), static_cast<double>(solver_.linear_fallbacks())};
   }
   FieldView fields() override {
     FieldView f;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <fmt/format.h>
 #include <string>
 
 #include "core/error.hpp"
@@ -22,6 +24,16 @@ constexpr double kEpsSTrace = 1e-4;
 constexpr double kEpsSBed = 0.05;
 
 int clampi(int k, int lo, int hi) { return std::min(std::max(k, lo), hi); }
+
+// Uniform number in [0, 1) from (seed, stream, index) by the splitmix64 finaliser (Steele et al. 2014): the same
+// on every platform and independent of the order in which cells ask, so the perturbations are reproducible.
+double seeded_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (stream * 0x100000001B3ULL + index + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
 
 // Advective term (U . grad) u of the x-velocity at u-face (i, j), TVD face values, advective form
 // div(U u) - u div(U) so that it vanishes for a uniform field.
@@ -100,6 +112,13 @@ void validate(const TfmConfig& c) {
   need(c.rho_s > c.rho_g && c.rho_g > 0.0, "need rho_s > rho_g > 0");
   need(c.mu_g > 0.0, "mu_g must be positive");
   need(c.e > 0.0 && c.e <= 1.0, "e must lie in (0, 1]");
+  need(c.rheology != SolidsRheology::KineticTheory || c.e < 1.0,
+       "e = 1 does not work with the kinetic theory: the algebraic granular temperature balances shear production "
+       "against collisional dissipation (K4 ~ 1 - e^2, Eqs. 25-26), which vanishes for elastic particles, so Theta "
+       "has no finite value; use e < 1 (the paper: 0.9)");
+  need(c.eps_noise >= 0.0 && c.eps_noise < 0.5, "eps_noise must lie in [0, 0.5)");
+  need(c.inlet_noise >= 0.0 && c.inlet_noise < 1.0, "inlet_noise must lie in [0, 1)");
+  need(c.linear_max_iterations >= 0, "linear_max_iterations must be non-negative");
   need(c.phi_deg > 0.0 && c.phi_deg < 90.0, "phi_deg must lie in (0, 90)");
   need(c.eps_star > 0.0 && c.eps_star < 1.0, "eps_star must lie in (0, 1)");
   need(c.eps_initial >= c.eps_star && c.eps_initial <= 1.0, "eps_initial must lie in [eps_star, 1]");
@@ -136,6 +155,20 @@ TfmSolver::TfmSolver(const TfmConfig& config)
     const double filled = std::clamp((config_.packed_height - j * grid_.dy) / grid_.dy, 0.0, 1.0);
     for (int i = 0; i < nx; ++i) s_.eps(i, j) = 1.0 - filled * (1.0 - config_.eps_initial);
   }
+  if (config_.eps_noise > 0.0) {
+    // Kept at or above eps*: a cell starting compacted would start on the frictional pressure (Eq. 21).
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        if (s_.eps(i, j) >= 1.0) continue;
+        const double u = seeded_uniform(config_.seed, 1, grid_.index(i, j));
+        s_.eps(i, j) = std::clamp(s_.eps(i, j) + config_.eps_noise * (2.0 * u - 1.0), config_.eps_star, 1.0);
+      }
+    }
+  }
+  inlet_factor_.assign(static_cast<std::size_t>(nx), 1.0);
+  for (int i = 0; i < nx && config_.inlet_noise > 0.0; ++i) {
+    inlet_factor_[static_cast<std::size_t>(i)] = 1.0 + config_.inlet_noise * (2.0 * seeded_uniform(config_.seed, 2, i) - 1.0);
+  }
   s_.ug = Field2(nx + 1, ny);
   s_.us = Field2(nx + 1, ny);
   s_.vg = Field2(nx, ny + 1);
@@ -144,7 +177,8 @@ TfmSolver::TfmSolver(const TfmConfig& config)
   s_.p = Field2(nx, ny);
   // Gas carries the background inflow: superficial velocity over the face voidage the continuity equation uses,
   // so the initial volume flux is divergence-free.
-  const double u_in = config_.boundary.inlet_velocity;
+  // The background inflow at t = 0 (the start of an inlet ramp, src/fluid/gas_boundary.hpp).
+  const double u_in = background_inlet_velocity(config_.boundary, 0.0);
   {
     Field2 up(nx + 1, ny, 0.0), vp(nx, ny + 1, 1.0), eg_x, eg_y;
     tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity{up, vp, false}, eg_x, eg_y);
@@ -307,11 +341,27 @@ double TfmSolver::step(double t_stop) {
   compute_cell_closures();
   const double dt = choose_dt(t_stop);
   if (!(dt >= c.dt_min) && t_stop - s_.time > c.dt_min) {
-    throw_simulation_error("tfm: time step " + std::to_string(dt) + " s fell below dt_min at t = " +
-                           std::to_string(s_.time) + " s");
+    throw_simulation_error(fmt::format(
+        "tfm at t = {:.6g} s (step {}): the time step {:.3g} s fell below tfm.dt_min = {:.3g} s (largest solids "
+        "speed {:.4g} m/s, last compaction per step {:.3g}). Likely cause: the solids are running away (speed) or a "
+        "cell is being compacted ever faster past eps*. Remedy: {}",
+        s_.time, s_.steps, dt, c.dt_min, max_solids_speed(), s_.dense_change, remedy()));
   }
   std::vector<double> inlet;
   inlet_superficial_profile(config_.boundary, grid_, s_.time + dt, inlet);
+  if (c.inlet_noise > 0.0) {
+    // The distributor pattern redistributes the inflow; the total volume flux stays that of the boundary.
+    double before = 0.0, after = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      before += inlet[static_cast<std::size_t>(i)];
+      inlet[static_cast<std::size_t>(i)] *= inlet_factor_[static_cast<std::size_t>(i)];
+      after += inlet[static_cast<std::size_t>(i)];
+    }
+    if (after != 0.0) {
+      for (double& u : inlet) u *= before / after;
+    }
+  }
+  linear_fallbacks_ = 0;
 
   const Field2& eps = s_.eps;
   const Field2& p = s_.p;
@@ -533,10 +583,26 @@ double TfmSolver::step(double t_stop) {
     }
   }
   outflow(out_g, out_s);
-  solids_solver_.setTolerance(1e-12);
-  solids_solver_.compute(e_matrix_.matrix());
-  const Eigen::VectorXd e_corr = solids_solver_.solve(-out_s);
-  if (solids_solver_.info() != Eigen::Success) throw_simulation_error("tfm: solids-fraction correction did not converge");
+  solids_solver_.set_tolerance(1e-12);
+  solids_solver_.set_max_iterations(c.linear_max_iterations);
+  Eigen::VectorXd e_corr;
+  const LinearSolveOutcome e_res = solids_solver_.solve(e_matrix_.matrix(), -out_s, e_corr);
+  if (e_res.fell_back) ++linear_fallbacks_;
+  if (!e_res.ok) {
+    // Name the cell: the row that is not finite, else the stiffest cell (largest dP_s/d eps_s).
+    int r = e_res.bad_row;
+    if (r < 0) {
+      r = static_cast<int>(std::max_element(dps_deps_.v.begin(), dps_deps_.v.end()) - dps_deps_.v.begin());
+    }
+    const int ci = r % nx, cj = r / nx;
+    throw_simulation_error(fmt::format(
+        "tfm at t = {:.6g} s (step {}, dt = {:.3g} s): the solids-fraction correction (implicit solids pressure, "
+        "E' equation) failed: {}. At {}: voidage {:.4g}, solids pressure {:.4g} Pa, dP_s/d eps_s {:.4g} Pa, "
+        "granular temperature {:.4g} m^2/s^2. Likely cause: a solids pressure that is not finite or too stiff for "
+        "the step (a voidage far below eps*, or a runaway granular temperature). Remedy: {}",
+        s_.time, s_.steps, dt, e_res.why, where(ci, cj), s_.eps(ci, cj), p_s_(ci, cj), dps_deps_(ci, cj),
+        s_.theta(ci, cj), remedy()));
+  }
   auto w = [&](int i, int j) { return dps_deps_(i, j) * e_corr[id(i, j)]; };
   for (int j = 0; j < ny; ++j) {
     for (int i = 1; i < nx; ++i) {
@@ -556,7 +622,13 @@ double TfmSolver::step(double t_stop) {
 
   // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
   FaceFluxes fs;
-  advance_scalar_implicit(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, dt, c.mass_corrections, fs);
+  try {
+    advance_scalar_implicit(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, dt, c.mass_corrections, fs,
+                            c.linear_max_iterations, &linear_fallbacks_);
+  } catch (const Error& e) {
+    throw_simulation_error(fmt::format("tfm at t = {:.6g} s (step {}, dt = {:.3g} s): {}. Remedy: {}", s_.time,
+                                       s_.steps, dt, e.what(), remedy()));
+  }
   const FaceFluxes fs_unlimited = fs;
   // Packing limit (docs/model-tfm.md): eps >= eps* - max_compaction exactly. The solids pressure stiffens the bed
   // only through a linearisation, so the bound is kept on the fluxes: inflows into a cell that would pass it are
@@ -614,12 +686,6 @@ double TfmSolver::step(double t_stop) {
     s_.eps.v[k] = eps_new;
   }
 
-  for (double x : s_.eps.v) {
-    if (!std::isfinite(x)) throw_simulation_error("tfm: voidage became NaN at t = " + std::to_string(s_.time));
-  }
-  for (double x : s_.p.v) {
-    if (!std::isfinite(x)) throw_simulation_error("tfm: pressure became NaN at t = " + std::to_string(s_.time));
-  }
   s_.time += dt;
   // A step clipped to reach t_stop says little about the natural step; keep the rate of a full one.
   if (dt >= 0.5 * s_.dt || s_.steps == 0) {
@@ -627,7 +693,115 @@ double TfmSolver::step(double t_stop) {
     s_.dense_change = dense_change;
   }
   ++s_.steps;
+  check_health(dt);
   return dt;
+}
+
+double TfmSolver::reference_speed() const {
+  const GasBoundaryConfig& b = config_.boundary;
+  double u_in = std::max(std::abs(b.inlet_velocity), std::abs(b.ramp_from));
+  for (const InletJet& j : b.jets) u_in = std::max(u_in, std::abs(j.velocity));
+  return u_in / config_.eps_star + std::sqrt(2.0 * std::hypot(config_.gravity.x, config_.gravity.y) * grid_.height());
+}
+
+std::string TfmSolver::where(int i, int j) const {
+  return fmt::format("cell ({}, {}) at x = {:.3f} m, y = {:.3f} m", i, j, (i + 0.5) * grid_.dx, (j + 0.5) * grid_.dy);
+}
+
+std::string TfmSolver::remedy() const {
+  std::string r;
+  if (config_.rheology == SolidsRheology::KineticTheory && config_.e > 0.95) {
+    r = fmt::format("lower tfm.restitution (now {:g}; the paper: 0.9): nearly elastic particles dissipate almost no "
+                    "granular energy (K4 ~ 1 - e^2, Eq. 25), so Theta and the solids pressure grow with the shear, "
+                    "and a smaller time step does not cure it; otherwise ", config_.e);
+  }
+  return r + fmt::format("lower tfm.cfl (now {:g}) or tfm.dt_max (now {:g} s), and check the inlet and jet velocities "
+                         "against the bed's minimum fluidization velocity", config_.cfl, config_.dt_max);
+}
+
+void TfmSolver::check_health(double dt) const {
+  const int nx = grid_.nx, ny = grid_.ny;
+  const double t = s_.time;
+  auto fail = [&](const std::string& what, int i, int j, const std::string& cause) {
+    throw_simulation_error(fmt::format("tfm: the run went bad at t = {:.6g} s (step {}, dt = {:.3g} s): {} in {}. "
+                                       "Likely cause: {}. Remedy: {}",
+                                       t, s_.steps, dt, what, where(i, j), cause, remedy()));
+  };
+  const char* overflow = "a solids pressure or viscosity that overflowed, or a linear solve fed with such values";
+  // The deferred TVD correction of the implicit continuity undershoots a little at the bed surface (solids
+  // fractions down to -1e-5 in the paper's case); below the trace level that carries no momentum it is a defect.
+  constexpr double kVoidageSlack = kEpsSTrace;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double e = s_.eps(i, j);
+      if (!std::isfinite(e) || !std::isfinite(s_.p(i, j)) || !std::isfinite(s_.theta(i, j))) {
+        fail(fmt::format("a non-finite value (voidage {}, pressure {}, granular temperature {})", e, s_.p(i, j),
+                         s_.theta(i, j)), i, j, overflow);
+      }
+      if (e < -kVoidageSlack || e > 1.0 + kVoidageSlack) {
+        fail(fmt::format("the voidage is {:.9g}, outside [0, 1]", e), i, j,
+             "a solids flux out of a cell larger than its content: the time step outran the solids velocity");
+      }
+    }
+  }
+  const double v_ref = reference_speed();
+  const double v_gas_max = 10.0 * v_ref;
+  auto faces = [&](const Field2& g, const Field2& sol, bool vertical) {
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        const double ug = g(i, j), us = sol(i, j);
+        // The cell on the inner side of the face (clamped at the boundaries).
+        const int ci = vertical ? std::min(i, nx - 1) : i, cj = vertical ? j : std::min(j, ny - 1);
+        if (!std::isfinite(ug) || !std::isfinite(us)) {
+          fail(fmt::format("a non-finite face velocity (gas {}, solids {} m/s)", ug, us), ci, cj, overflow);
+        }
+        const int i0 = vertical ? clampi(i - 1, 0, nx - 1) : i, j0 = vertical ? j : clampi(j - 1, 0, ny - 1);
+        const bool carries = std::min(1.0 - s_.eps(i0, j0), 1.0 - s_.eps(ci, cj)) > kEpsSTrace;
+        if (carries && std::abs(us) > v_ref) {
+          fail(fmt::format("the solids move at {:.4g} m/s, faster than anything that drives them ({:.3g} m/s: the "
+                           "fastest interstitial inflow plus free fall over the domain height)", std::abs(us), v_ref),
+               ci, cj, "an instability of the solids momentum");
+        }
+        if (std::abs(ug) > v_gas_max) {
+          fail(fmt::format("the gas moves at {:.4g} m/s, ten times the fastest interstitial inflow plus free fall "
+                           "({:.3g} m/s)", std::abs(ug), v_ref), ci, cj,
+               "an instability of the coupled gas-solids momentum");
+        }
+      }
+    }
+  };
+  faces(s_.ug, s_.us, true);
+  faces(s_.vg, s_.vs, false);
+  // Theta is the mean square fluctuation velocity per direction: its root cannot exceed the speed scale either.
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      if (1.0 - s_.eps(i, j) < kBedSolidsFraction) continue;
+      if (s_.theta(i, j) > v_ref * v_ref) {
+        fail(fmt::format("the granular temperature is {:.4g} m^2/s^2 (fluctuation speed {:.4g} m/s, above the {:.3g} "
+                         "m/s that drives the bed) at solids fraction {:.3g}",
+                         s_.theta(i, j), std::sqrt(s_.theta(i, j)), v_ref, 1.0 - s_.eps(i, j)),
+             i, j, "a runaway granular temperature: production by shear outgrows the collisional dissipation");
+      }
+    }
+  }
+}
+
+double TfmSolver::bed_granular_temperature_max() const {
+  double m = 0.0;
+  for (std::size_t k = 0; k < s_.eps.size(); ++k) {
+    if (1.0 - s_.eps.v[k] >= kBedSolidsFraction) m = std::max(m, s_.theta.v[k]);
+  }
+  return m;
+}
+
+double TfmSolver::solids_mean_granular_temperature() const {
+  double num = 0.0, den = 0.0;
+  for (std::size_t k = 0; k < s_.eps.size(); ++k) {
+    const double es = 1.0 - s_.eps.v[k];
+    num += es * s_.theta.v[k];
+    den += es;
+  }
+  return den > 0.0 ? num / den : 0.0;
 }
 
 void TfmSolver::advance_to(double t) {

@@ -71,6 +71,21 @@ class TfmSolver {
 
   /// Sweeps the packing limiter needed in the last step (1: nothing to limit); diagnostics, not state.
   int packing_sweeps() const { return packing_sweeps_; }
+  /// Linear solves of the last step that BiCGSTAB did not converge and the sparse LU answered; diagnostics.
+  int linear_fallbacks() const { return linear_fallbacks_; }
+
+  /// The fastest speed the bed's drivers can give it [m/s]: the fastest interstitial inflow (the largest inlet
+  /// or jet superficial velocity over eps*) plus the free-fall speed over the domain height, sqrt(2 g H).
+  /// Solids are driven only by the gas drag and gravity, so a solids speed (or a fluctuation speed sqrt(Theta))
+  /// above it means the numerics, not the physics, produced it.
+  double reference_speed() const;
+  /// Largest granular temperature over cells in the bed (solids fraction >= kBedSolidsFraction) [m^2/s^2]; the
+  /// algebraic Theta diverges as eps_s -> 0 (dilute limit of Eq. 26), so cells without solids are left out.
+  double bed_granular_temperature_max() const;
+  /// Solids-volume-weighted mean granular temperature, sum(eps_s Theta) / sum(eps_s) [m^2/s^2].
+  double solids_mean_granular_temperature() const;
+  /// Solids fraction from which a cell counts as "in the bed" for the granular-temperature monitors and checks.
+  static constexpr double kBedSolidsFraction = 0.05;
 
   /// Solids pressure [Pa] and solids shear viscosity [Pa s] of the last step, cells.
   const Field2& solids_pressure() const { return p_s_; }
@@ -90,6 +105,11 @@ class TfmSolver {
   void mask_trace_solids_velocity();
   void compute_cell_closures();
   double choose_dt(double t_stop) const;
+  /// Throws a simulation error with a diagnosis (time, cell, what, likely cause, remedy) when the state just
+  /// reached is not physical: non-finite values, voidage outside [0, 1], speeds above reference_speed().
+  void check_health(double dt) const;
+  std::string where(int i, int j) const;
+  std::string remedy() const;
 
   TfmConfig config_;
   Grid2 grid_;
@@ -97,9 +117,11 @@ class TfmSolver {
   // Work arrays (derived each step, not state).
   Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
   int packing_sweeps_ = 0;
+  int linear_fallbacks_ = 0;
+  std::vector<double> inlet_factor_;  ///< distributor non-uniformity per bottom cell (inlet_noise), fixed
   PressureCorrectionSolver pressure_solver_;  // shared with the gas solver (src/fluid)
   StencilMatrix e_matrix_;  ///< solids-fraction correction, five-point pattern fixed at construction
-  Eigen::BiCGSTAB<StencilMatrix::Matrix, Eigen::DiagonalPreconditioner<double>> solids_solver_;
+  CheckedSparseSolver solids_solver_;
 };
 
 }  // namespace fluidbed::tfm

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "fluid/stencil_matrix.hpp"
 
 namespace fluidbed::tfm {
 namespace {
@@ -95,7 +96,8 @@ Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& ph
 }
 
 Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
-                               double dt, int corrections, FaceFluxes& flux) {
+                               double dt, int corrections, FaceFluxes& flux, int linear_max_iterations,
+                               int* fallbacks) {
   const int n = g.nx * g.ny;
   const bool per = vel.periodic_x;
   auto id = [&](int i, int j) {
@@ -130,9 +132,9 @@ Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& ph
   Eigen::SparseMatrix<double, Eigen::RowMajor> a(n, n);
   a.setFromTriplets(trip.begin(), trip.end());
 
-  Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::DiagonalPreconditioner<double>> solver;
-  solver.setTolerance(1e-12);
-  solver.compute(a);
+  CheckedSparseSolver solver;
+  solver.set_tolerance(1e-12);
+  solver.set_max_iterations(linear_max_iterations);
 
   Field2 phi = phi_old;
   for (int pass = 0; pass <= corrections; ++pass) {
@@ -171,8 +173,16 @@ Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& ph
     }
     Eigen::VectorXd x0(n);
     for (int p = 0; p < n; ++p) x0[p] = phi.v[static_cast<std::size_t>(p)];
-    Eigen::VectorXd x = solver.solveWithGuess(rhs, x0);
-    if (solver.info() != Eigen::Success) throw_simulation_error("tfm: implicit scalar transport did not converge");
+    Eigen::VectorXd x = x0;
+    const LinearSolveOutcome res = solver.solve(a, rhs, x);
+    if (res.fell_back && fallbacks) ++*fallbacks;
+    if (!res.ok) {
+      const int r = res.bad_row;
+      throw_simulation_error(
+          "implicit transport of the solids fraction (Eq. 16), pass " + std::to_string(pass) + ": " + res.why +
+          (r >= 0 ? " (cell (" + std::to_string(r % g.nx) + ", " + std::to_string(r / g.nx) + "))" : std::string()) +
+          "; the face velocities or dt that build the matrix are not finite or not usable");
+    }
     for (int p = 0; p < n; ++p) phi.v[static_cast<std::size_t>(p)] = x[p];
     if (limiter == Limiter::Upwind && pass == 0) break;
   }

@@ -48,7 +48,11 @@ Field2 advance_scalar_implicit(const Grid2& grid, Limiter limiter, const Field2&
                                double dt, int corrections = 2);
 
 /// The same step, returning the final face fluxes too: the result equals conservative_update(phi_old, flux, dt).
+/// Each linear solve is checked (CheckedSparseSolver: BiCGSTAB, a sparse LU when it stops short; at most
+/// `linear_max_iterations` BiCGSTAB iterations, 0 for Eigen's default); a solve neither answers is a simulation
+/// error. `fallbacks`, when given, counts the solves the LU answered.
 Field2 advance_scalar_implicit(const Grid2& grid, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
-                               double dt, int corrections, FaceFluxes& flux);
+                               double dt, int corrections, FaceFluxes& flux, int linear_max_iterations = 0,
+                               int* fallbacks = nullptr);
 
 }  // namespace fluidbed::tfm
