@@ -5,46 +5,242 @@
 #include <fmt/format.h>
 #include <numbers>
 
+#include "core/error.hpp"
 #include "dem/contact_law.hpp"
 #include "fluid/drag.hpp"
 #include "io/case_loader.hpp"
 
 namespace fluidbed {
 
+namespace {
+
+// Eq. 8 on the contact's reduced mass: damping from restitution, then the damped half period.
+double pair_contact_duration(double m_eff, double k, double e) {
+  return contact_duration(m_eff, k, damping_from_restitution(m_eff, k, e));
+}
+
+std::string pair_name(int a, int b) {
+  return b < 0 ? fmt::format("species {} with a wall", a) : fmt::format("species {} with species {}", a, b);
+}
+
+// A random 2D packing of discs fills about 82% of the area (Berryman 1983).
+constexpr double kDiscPackingFraction = 0.82;
+
+}  // namespace
+
+StiffestContact stiffest_contact(const DemConfig& dem) {
+  StiffestContact out{1e300, 0, -1};
+  for (std::size_t a = 0; a < dem.n_species(); ++a) {
+    const double ma = dem.species[a].mass();
+    for (std::size_t b = a; b < dem.n_species(); ++b) {
+      const double t = pair_contact_duration(reduced_mass(ma, dem.species[b].mass()), dem.stiffness,
+                                             dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution);
+      if (t < out.t_c) out = {t, static_cast<int>(a), static_cast<int>(b)};
+    }
+    const double t = pair_contact_duration(ma, dem.stiffness, dem.wall[a].restitution);
+    if (t < out.t_c) out = {t, static_cast<int>(a), -1};
+  }
+  return out;
+}
+
+double default_dem_time_step(const DemConfig& dem) {
+  const double target = std::min(stiffest_contact(dem).t_c / kStepsPerContact, dem_stable_time_step(dem));
+  const double decade = std::pow(10.0, std::floor(std::log10(target)));
+  double dt = decade;
+  for (double m : {1.25, 2.0, 2.5, 4.0, 5.0, 8.0}) {
+    if (m * decade <= target) dt = m * decade;
+  }
+  return dt;
+}
+
+BedMixture bed_mixture(const DemConfig& dem, const std::vector<double>& fraction) {
+  double s2 = 0.0, s3 = 0.0, m3 = 0.0;
+  for (std::size_t s = 0; s < dem.n_species(); ++s) {
+    const double f = s < fraction.size() ? fraction[s] : 0.0;
+    const double d = dem.species[s].diameter;
+    s2 += f * d * d;
+    s3 += f * d * d * d;
+    m3 += f * d * d * d * dem.species[s].density;
+  }
+  if (!(s2 > 0.0)) return {dem.species[0].diameter, dem.species[0].density};
+  return {s3 / s2, m3 / s3};
+}
+
+std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c) {
+  const double g = -c.domain.gravity.y;
+  double eps = kDemEpsMf, d = 0.0, rho = 0.0;
+  if (c.model == Model::Tfm) {
+    eps = c.tfm.eps_initial;
+    d = c.tfm.d_p;
+    rho = c.tfm.rho_s;
+  } else {
+    const BedMixture mix = bed_mixture(c.dem, c.particles.packing.species_fraction);
+    d = mix.d32;
+    rho = mix.rho;
+  }
+  if (!(g > 0.0 && eps > 0.0 && eps < 1.0 && d > 0.0 && rho > c.gas.rho_g && c.gas.rho_g > 0.0 && c.gas.mu_g > 0.0)) {
+    return std::nullopt;
+  }
+  return ergun_minimum_fluidisation_velocity(eps, d, rho, c.gas.rho_g, c.gas.mu_g, g);
+}
+
+void check_particle_plausible(const CaseReader& r, const std::string& diameter_key, double d,
+                              const std::string& density_key, double rho, const DomainConfig& domain,
+                              const std::optional<Grid2>& cell) {
+  if (d > std::min(domain.width, domain.height)) {
+    r.fail(diameter_key, fmt::format("a particle of {} m is larger than the domain ({} x {} m): a diameter in "
+                                     "millimetres? {} mm is {:g} m", d, domain.width, domain.height, d, d * 1e-3));
+  }
+  if (cell && d > std::min(cell->dx, cell->dy)) {
+    r.fail(diameter_key, fmt::format("a particle of {} m is larger than a gas cell ({} x {} m): the gas sees the "
+                                     "solids averaged over a cell, so a cell must be wider than a particle; a coarser "
+                                     "grid (grid.cell_width) or a smaller diameter", d, cell->dx, cell->dy));
+  }
+  // The lightest particles fluidised are foams of some 10-100 kg/m^3; gases are below 10 kg/m^3 at the pressures
+  // of a fluidised bed; no solid is denser than osmium.
+  if (rho < 10.0) {
+    r.fail(density_key, fmt::format("{} kg/m^3 is the density of a gas, not of a solid (air: 1.2 kg/m^3, glass: "
+                                    "2500 kg/m^3): in g/cm^3? {} g/cm^3 is {:g} kg/m^3", rho, rho, rho * 1e3));
+  }
+  if (rho > 25000.0) {
+    r.fail(density_key, fmt::format("{} kg/m^3 is denser than any solid (osmium, the densest: 22,590 kg/m^3): in "
+                                    "g/m^3? {} g/m^3 is {:g} kg/m^3", rho, rho, rho * 1e-3));
+  }
+}
+
+void check_gas_plausible(const CaseReader& r, const GasConfig& g, std::vector<std::string>& notes) {
+  // Gases a bed is fluidised with: hydrogen at 0.08 kg/m^3 to pressurised gases of some 100 kg/m^3; liquids to
+  // about 2000 kg/m^3. Viscosities: gases 9e-6 (hydrogen) to 5e-5 Pa s, liquids 3e-4 to 10 Pa s (honey).
+  if (g.rho_g < 0.01) {
+    r.fail("gas.density", fmt::format("{} kg/m^3 is thinner than any gas a bed is fluidised with (air: 1.205 "
+                                      "kg/m^3): in g/cm^3? {} g/cm^3 is {:g} kg/m^3", g.rho_g, g.rho_g, g.rho_g * 1e3));
+  }
+  if (g.rho_g > 2000.0) {
+    r.fail("gas.density", fmt::format("{} kg/m^3 is denser than a gas or a common liquid (air: 1.205, water: 1000 "
+                                      "kg/m^3): in g/m^3? {} g/m^3 is {:g} kg/m^3", g.rho_g, g.rho_g, g.rho_g * 1e-3));
+  }
+  if (g.rho_g > 100.0) {
+    notes.push_back(fmt::format("gas.density = {} kg/m^3 is the density of a liquid, not of a gas (air: 1.205 "
+                                "kg/m^3); the drag laws hold for both, but check the unit", g.rho_g));
+  }
+  if (g.mu_g < 1e-6) {
+    r.fail("gas.viscosity", fmt::format("{} Pa s is below the viscosity of any gas (hydrogen: 8.9e-6, air: 1.8e-5 "
+                                        "Pa s)", g.mu_g));
+  }
+  if (g.mu_g > 10.0) {
+    r.fail("gas.viscosity", fmt::format("{} Pa s is above the viscosity of any gas or common liquid (air: 1.8e-5, "
+                                        "water: 1e-3 Pa s): in micropascal seconds? {} uPa s is {:g} Pa s",
+                                        g.mu_g, g.mu_g, g.mu_g * 1e-6));
+  }
+  if (g.mu_g > 1e-4) {
+    notes.push_back(fmt::format("gas.viscosity = {} Pa s is the viscosity of a liquid, not of a gas (air: 1.8e-5 "
+                                "Pa s): in mPa s (cP)? {} mPa s is {:g} Pa s", g.mu_g, g.mu_g, g.mu_g * 1e-3));
+  }
+}
+
 std::string describe_case(const CaseConfig& c) {
   std::string s;
   auto line = [&s](const std::string& what, const std::string& value) { s += fmt::format("  {:<44} {}\n", what, value); };
   s += fmt::format("case '{}' ({}): {}\n", c.name, c.model == Model::Tfm ? "two-fluid model" : "discrete particles",
                    c.description);
-  line("domain", fmt::format("{} x {} m", c.dem.width, c.dem.height));
+  for (const std::string& n : c.notes) s += fmt::format("  note: {}\n", n);
+  line("domain", fmt::format("{} x {} m, gravity ({}, {}) m/s^2", c.domain.width, c.domain.height, c.domain.gravity.x,
+                             c.domain.gravity.y));
   line("end time", fmt::format("{} s", c.run.end_time));
+  const double g = std::abs(c.domain.gravity.y);
+  const double rho_g = c.gas.rho_g, mu_g = c.gas.mu_g;
+  const bool sinks = g > 0.0;
   if (c.model == Model::Dem) {
-    const Species& sp = c.dem.species[0];
-    const double m = sp.mass();
-    const double k = c.dem.stiffness;
-    const double t_cr = critical_time(m, k);
-    const double m_eff = reduced_mass(m, m);
-    const double e = c.dem.pair_params(0, 0).restitution;
-    const double eta = damping_from_restitution(m_eff, k, e);
-    const double t_c = contact_duration(m_eff, k, eta);
-    line("particle mass (species 0)", fmt::format("{:.4g} kg (d = {} m, rho = {} kg/m^3)", m, sp.diameter, sp.density));
-    line("t_cr = 2 pi sqrt(m/k) (Table 3 item 5)", fmt::format("{:.4g} s; dt / t_cr = {:.3f}", t_cr, c.dem.dt / t_cr));
-    line("contact duration (pair, e)", fmt::format("{:.4g} s = {:.1f} time steps", t_c, t_c / c.dem.dt));
-    line("damping eta (Eq. 8, pair reduced mass)", fmt::format("{:.4g} kg/s", eta));
-    line("largest stable time step", fmt::format("{:.4g} s (dt = {:g} s)", dem_stable_time_step(c.dem), c.dem.dt));
-    const double g = std::abs(c.dem.gravity.y);
-    line("static overlap under its own weight", fmt::format("{:.3g} m = {:.2f}% of d", m * g / k, 100.0 * m * g / k / sp.diameter));
+    const DemConfig& dem = c.dem;
+    const double k = dem.stiffness;
+    const std::vector<double>& frac = c.particles.packing.species_fraction;
     const std::int64_t n = c.particles.packing.count;
-    if (c.particles.source != ParticleSource::File) {
-      // A random 2D packing of discs fills about 82% of the area (Berryman 1983).
-      const double area = static_cast<double>(n) * std::numbers::pi * sp.diameter * sp.diameter / 4.0;
-      line("particles", fmt::format("{} placed at random", n));
-      line("estimated settled bed height", fmt::format("{:.3f} m (random disc packing, area fraction 0.82)",
-                                                        area / 0.82 / c.dem.width));
+    double bed_mass = 0.0, bed_area = 0.0;
+    for (std::size_t a = 0; a < dem.n_species(); ++a) {
+      const Species& sp = dem.species[a];
+      const double f = a < frac.size() ? frac[a] : 0.0;
+      bed_mass += static_cast<double>(n) * f * sp.mass();
+      bed_area += static_cast<double>(n) * f * std::numbers::pi * sp.diameter * sp.diameter / 4.0;
+      std::string v = fmt::format("d = {} m, rho = {} kg/m^3, mass {:.4g} kg, {:.3g}% by number", sp.diameter,
+                                  sp.density, sp.mass(), 100.0 * f);
+      if (sinks && sp.density > rho_g) {
+        v += fmt::format("; u_t = {:.3f} m/s (Eq. 14), U_mf alone {:.3f} m/s", terminal_velocity(sp.diameter, sp.density, rho_g, mu_g, g),
+                         ergun_minimum_fluidisation_velocity(kDemEpsMf, sp.diameter, sp.density, rho_g, mu_g, g));
+      }
+      line(fmt::format("species {}", a), v);
     }
-    const double rho_g = c.gas.rho_g, mu_g = c.gas.mu_g;
-    line("terminal velocity in air (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(sp.diameter, sp.density, rho_g, mu_g, g)));
-    line("Ergun U_mf at eps_mf = 0.43", fmt::format("{:.3f} m/s", ergun_minimum_fluidisation_velocity(0.43, sp.diameter, sp.density, rho_g, mu_g, g)));
+    const double m_light = std::min_element(dem.species.begin(), dem.species.end(), [](const Species& x, const Species& y) {
+                             return x.mass() < y.mass();
+                           })->mass();
+    const double t_cr = critical_time(m_light, k);
+    line("t_cr = 2 pi sqrt(m/k) (Table 3 item 5)",
+         fmt::format("{:.4g} s for the lightest species; dt / t_cr = {:.3f}", t_cr, dem.dt / t_cr));
+    // Every kind of contact: its duration in time steps says whether dt resolves it.
+    for (std::size_t a = 0; a < dem.n_species(); ++a) {
+      for (std::size_t b = a; b < dem.n_species(); ++b) {
+        const double m_eff = reduced_mass(dem.species[a].mass(), dem.species[b].mass());
+        const double e = dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution;
+        const double t_c = pair_contact_duration(m_eff, k, e);
+        line(fmt::format("contact duration {}-{} (e = {})", a, b, e),
+             fmt::format("{:.4g} s = {:.1f} time steps; damping eta {:.4g} kg/s (Eq. 8)", t_c, t_c / dem.dt,
+                         damping_from_restitution(m_eff, k, e)));
+      }
+      const double e = dem.wall[a].restitution;
+      const double t_c = pair_contact_duration(dem.species[a].mass(), k, e);
+      line(fmt::format("contact duration {}-wall (e = {})", a, e), fmt::format("{:.4g} s = {:.1f} time steps", t_c, t_c / dem.dt));
+    }
+    const StiffestContact sc = stiffest_contact(dem);
+    line("DEM time step", fmt::format("{:g} s = t_c / {:.1f} of the stiffest contact ({}); largest stable {:.4g} s",
+                                      dem.dt, sc.t_c / dem.dt, pair_name(sc.a, sc.b), dem_stable_time_step(dem)));
+    // Overlaps the spring allows, and the stiffness for a target overlap: the static load at the bottom of the
+    // bed (the column above a particle's width: delta / d = M g / (W k), the same for every species) and a
+    // head-on impact (delta = v sqrt(m_eff / k), the undamped spring's amplitude).
+    constexpr double target = 0.01;
+    const double static_fraction = bed_mass * g / (c.domain.width * k);
+    const auto dt_at = [&](double k_new) {
+      DemConfig d2 = dem;
+      d2.stiffness = k_new;
+      return default_dem_time_step(d2);
+    };
+    if (sinks) {
+      const double k_static = static_fraction * k / target;
+      line("mean overlap under the bed's weight", fmt::format("{:.3g}% of d at the bottom (force chains carry several "
+                                                              "times the mean)", 100.0 * static_fraction));
+      line("stiffness for a 1% mean static overlap", fmt::format("k = {:.3g} N/m (default dt there {:g} s)", k_static, dt_at(k_static)));
+    }
+    const bool gas = c.gas_enabled;
+    const double v_impact = gas ? std::abs(c.gas.boundary.inlet_velocity) : std::sqrt(2.0 * g * c.particles.packing.y_max);
+    if (v_impact > 0.0) {
+      double worst = 0.0, k_impact = 0.0;
+      for (std::size_t a = 0; a < dem.n_species(); ++a) {
+        for (std::size_t b = a; b < dem.n_species(); ++b) {
+          const double m_eff = reduced_mass(dem.species[a].mass(), dem.species[b].mass());
+          const double dmin = std::min(dem.species[a].diameter, dem.species[b].diameter);
+          worst = std::max(worst, v_impact * std::sqrt(m_eff / k) / dmin);
+          k_impact = std::max(k_impact, m_eff * std::pow(v_impact / (target * dmin), 2));
+        }
+        const double m = dem.species[a].mass(), d = dem.species[a].diameter;  // on a wall: the whole mass
+        worst = std::max(worst, v_impact * std::sqrt(m / k) / d);
+        k_impact = std::max(k_impact, m * std::pow(v_impact / (target * d), 2));
+      }
+      const std::string at = gas ? fmt::format("at the inlet velocity {} m/s", v_impact)
+                                 : fmt::format("at {:.2f} m/s (free fall from the fill height)", v_impact);
+      line("overlap of a head-on impact", fmt::format("{:.3g}% of d {}", 100.0 * worst, at));
+      line("stiffness for a 1% impact overlap", fmt::format("k = {:.3g} N/m (default dt there {:g} s)", k_impact, dt_at(k_impact)));
+    }
+    line("particles", c.particles.source == ParticleSource::File ? fmt::format("{} read from {}", n, c.particles.file)
+                                                                 : fmt::format("{} placed at random", n));
+    line("estimated settled bed height", fmt::format("{:.3f} m from every species' area (random disc packing, area "
+                                                      "fraction {})", bed_area / kDiscPackingFraction / c.domain.width,
+                                                      kDiscPackingFraction));
+    if (dem.n_species() > 1) {
+      const BedMixture mix = bed_mixture(dem, frac);
+      line("mixture", fmt::format("Sauter mean diameter d32 = {:.4g} m, volume-mean density {:.4g} kg/m^3", mix.d32, mix.rho));
+    }
+    if (const auto u = bed_minimum_fluidisation_velocity(c)) {
+      line(fmt::format("Ergun U_mf at eps_mf = {}", kDemEpsMf),
+           fmt::format("{:.3f} m/s{}", *u, dem.n_species() > 1 ? " (the mixture's d32 and density)" : ""));
+    }
     // The solver's data per particle (docs/performance.md, section 4) with E = 6 list entries (a packed bed):
     // store 152, last-rebuild positions and wall springs 80, list and its previous copy 2 x (8 + 20 E), per-entry
     // mirror, force and torque 28 E. The program and its libraries add about 25 MB.
@@ -63,13 +259,13 @@ std::string describe_case(const CaseConfig& c) {
       line("jet", fmt::format("{} m/s over [{}, {}] m for {} <= t < {} s", j.velocity, j.x_centre - 0.5 * j.width,
                               j.x_centre + 0.5 * j.width, j.t_start, j.t_end));
     }
+    line("U_mf of the throughflow ratio (bubble.u_mf)", fmt::format("{:.3f} m/s", c.bubble.u_mf));
   }
   if (c.model == Model::Tfm) {
     const tfm::TfmConfig& t = c.tfm;
-    const double g = std::abs(t.gravity.y);
     line("solids", fmt::format("d = {} m, rho_s = {} kg/m^3, eps_initial = {}, eps* = {}", t.d_p, t.rho_s, t.eps_initial, t.eps_star));
-    line("Ergun U_mf at eps_initial", fmt::format("{:.3f} m/s", ergun_minimum_fluidisation_velocity(t.eps_initial, t.d_p, t.rho_s, t.rho_g, t.mu_g, g)));
-    line("terminal velocity (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(t.d_p, t.rho_s, t.rho_g, t.mu_g, g)));
+    if (const auto u = bed_minimum_fluidisation_velocity(c)) line("Ergun U_mf at eps_initial", fmt::format("{:.3f} m/s", *u));
+    if (sinks) line("terminal velocity (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(t.d_p, t.rho_s, t.rho_g, t.mu_g, g)));
     line("bed weight per area", fmt::format("{:.0f} Pa", (1.0 - t.eps_initial) * (t.rho_s - t.rho_g) * g * t.packed_height));
     line("memory estimate", fmt::format("{:.2f} MB", static_cast<double>(c.grid.cells()) * 40 * 8 / 1e6));
   }

@@ -1,11 +1,55 @@
 #pragma once
-// `fluidbed check`: derived quantities of a case, so a user sees what the numbers imply before running.
+// `fluidbed check`: derived quantities of a case, so a user sees what the numbers imply before running; the
+// loader takes its derived defaults (DEM time step, U_mf) and its plausibility rules from here too.
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "io/case_config.hpp"
+#include "io/case_reader.hpp"
 
 namespace fluidbed {
 
 std::string describe_case(const CaseConfig& c);
+
+/// Normal-mode contact duration t_c of the stiffest contact of the case (the shortest over species pairs and
+/// particle-wall contacts), Eq. 8 damping from the contact's restitution on its reduced mass.
+struct StiffestContact {
+  double t_c = 0.0;  ///< s
+  int a = 0;         ///< species
+  int b = -1;        ///< partner species, or -1 for a wall
+};
+StiffestContact stiffest_contact(const DemConfig& dem);
+
+/// Time steps per contact of the default DEM time step: dt = t_c / 20 (at most, see default_dem_time_step).
+inline constexpr double kStepsPerContact = 20.0;
+/// The DEM time step used when dem.time_step is not given: t_c / kStepsPerContact of the stiffest contact (and
+/// never above the stability limit), rounded down to 1, 1.25, 2, 2.5, 4, 5 or 8 x 10^n so that decimal output
+/// intervals are whole numbers of steps.
+double default_dem_time_step(const DemConfig& dem);
+
+/// Mixture means of a bed of species with number fractions `fraction`: the Sauter diameter d32 = sum f d^3 /
+/// sum f d^2 (the diameter with the mixture's volume-to-surface ratio, which sets its Ergun pressure drop) and
+/// the volume-weighted density.
+struct BedMixture {
+  double d32 = 0.0;  ///< m
+  double rho = 0.0;  ///< kg/m^3
+};
+BedMixture bed_mixture(const DemConfig& dem, const std::vector<double>& fraction);
+
+/// Voidage at minimum fluidisation of the discrete model's bed (the paper's eps_mf, about 0.43).
+inline constexpr double kDemEpsMf = 0.43;
+/// Ergun U_mf of the case's bed (DEM: the mixture at kDemEpsMf; TFM: the solids at tfm.eps_initial), the default of
+/// bubble.u_mf; empty where the bed has none (no downward gravity, solids not heavier than the gas).
+std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c);
+
+/// Plausibility of a particle diameter and density (either model): a value that cannot describe a bed particle
+/// is a bad-input error saying what looks wrong and the likely unit slip. `cell` is the gas cell when particles
+/// are averaged over cells (CFD-DEM, TFM), else empty.
+void check_particle_plausible(const CaseReader& r, const std::string& diameter_key, double d,
+                              const std::string& density_key, double rho, const DomainConfig& domain,
+                              const std::optional<Grid2>& cell);
+/// Plausibility of the gas: no fluid at all is an error; a liquid's value is a note.
+void check_gas_plausible(const CaseReader& r, const GasConfig& g, std::vector<std::string>& notes);
 
 }  // namespace fluidbed

@@ -6,6 +6,7 @@
 
 #include "analysis/bubble_tracker.hpp"
 #include "core/grid2.hpp"
+#include "core/vec2.hpp"
 #include "coupling/coupling_config.hpp"
 #include "dem/dem_config.hpp"
 #include "fluid/gas_config.hpp"
@@ -16,6 +17,14 @@ namespace fluidbed {
 
 enum class Model { Dem, Tfm };
 enum class ParticleSource { Random, File };
+
+/// The box every model lives in, and gravity: read once from [domain] and copied into DemConfig, GasConfig and
+/// TfmConfig, so the models cannot disagree on them.
+struct DomainConfig {
+  double width = 0.6;         ///< x, m (Table 1)
+  double height = 1.0;        ///< y, m
+  Vec2 gravity{0.0, -9.81};   ///< m/s^2
+};
 
 /// Settling of the random placement under gravity in vacuum (the paper's initial packed bed).
 struct SettleConfig {
@@ -56,6 +65,7 @@ struct CaseConfig {
   Model model = Model::Dem;
   std::uint64_t seed = 1998;
   RunConfig run{};
+  DomainConfig domain{};
   DemConfig dem{};
   ParticleInit particles{};
   SettleConfig settle{};
@@ -67,6 +77,9 @@ struct CaseConfig {
   BubbleConfig bubble{};
   tfm::TfmConfig tfm{};
   double max_overlap_fraction = 0.1;  ///< a run fails when an overlap exceeds this fraction of the diameter
+  /// What the loader wants the user to read before a run: defaults it derived from other keys (and how), values
+  /// that are allowed but look like a unit slip. `check` prints them; a run logs them.
+  std::vector<std::string> notes;
 };
 
 }  // namespace fluidbed

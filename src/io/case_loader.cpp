@@ -6,6 +6,8 @@
 
 #include "core/error.hpp"
 #include "dem/contact_law.hpp"
+#include "fluid/gas_boundary.hpp"
+#include "io/case_check.hpp"
 #include "io/dem_model.hpp"
 #include <filesystem>
 
@@ -59,9 +61,16 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.run.max_wall_time = r.number("case.max_wall_time", 0.0, "s",
                                  "stop with a checkpoint (exit 130) after this wall time; 0 = no limit", R::non_negative());
 
-  // [domain]
-  c.dem.width = r.number("domain.width", 0.6, "m", "bed width (x)", R::positive());
-  c.dem.height = r.number("domain.height", 1.0, "m", "domain height (y)", R::positive());
+  // [domain]: the box and gravity of every model, read here only and copied into each model's config.
+  c.domain.width = r.number("domain.width", 0.6, "m", "bed width (x)", R::positive());
+  c.domain.height = r.number("domain.height", 1.0, "m", "domain height (y)", R::positive());
+  r.alias("dem.gravity", "domain.gravity");  // its name before the two-fluid model could set it
+  const auto grav = r.numbers("domain.gravity", {0.0, -9.81}, "m/s^2", "gravitational acceleration (x, y) of every "
+                              "model (dem.gravity is read as this key)", 2);
+  c.domain.gravity = {grav[0], grav[1]};
+  c.dem.width = c.domain.width;
+  c.dem.height = c.domain.height;
+  c.dem.gravity = c.domain.gravity;
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
                                     "outflow (they leave, removed and counted in monitor.csv)", {"open", "wall", "outflow"});
@@ -85,6 +94,12 @@ void read_case(CaseReader& r, CaseConfig& c) {
   for (double f : fraction) fsum += f;
   if (std::abs(fsum - 1.0) > 1e-9) r.fail("species[0].fraction", fmt::format("the fractions add up to {}, not 1", fsum));
   c.particles.packing.species_fraction = fraction;
+  // Before any rule that an implausible unit would trip in a less telling way (a time step, a packing).
+  for (std::size_t s = 0; s < ns; ++s) {
+    const std::string p = fmt::format("species[{}].", s);
+    check_particle_plausible(r, p + "diameter", c.dem.species[s].diameter, p + "density", c.dem.species[s].density,
+                             c.domain, std::nullopt);
+  }
 
   // [contact]
   const R::Range restitution{0.0, 1.0, true, false};
@@ -109,14 +124,23 @@ void read_case(CaseReader& r, CaseConfig& c) {
   }
 
   // [dem]
-  c.dem.dt = r.number("dem.time_step", 2e-4, "s", "DEM time step (the paper: 2e-4 s)", R::positive());
+  const bool dt_given = r.has("dem.time_step");
+  c.dem.dt = r.number("dem.time_step", default_dem_time_step(c.dem), "s",
+                      "DEM time step (the paper: 2e-4 s); default: t_c / 20 of the stiffest contact, rounded down to "
+                      "1, 1.25, 2, 2.5, 4, 5 or 8 x 10^n s", R::positive());
+  r.describe_default("dem.time_step", "t_c / 20");
+  if (!dt_given) {
+    const StiffestContact sc = stiffest_contact(c.dem);
+    c.notes.push_back(fmt::format("dem.time_step not given: {:g} s = t_c / {:.1f}, from t_c / {} = {:.4g} s rounded "
+                                  "down (t_c = {:.4g} s, the contact duration of species {} with {})",
+                                  c.dem.dt, sc.t_c / c.dem.dt, kStepsPerContact, sc.t_c / kStepsPerContact, sc.t_c,
+                                  sc.a, sc.b < 0 ? std::string("a wall") : fmt::format("species {}", sc.b)));
+  }
   // 0.5 d: in a dense bed the second shell of neighbours is at 1.73 d, so a wide skin adds few list entries and
   // saves rebuilds (measured in docs/performance.md: 19% less CPU for the settling bed than 0.1 d).
   c.dem.skin = r.number("dem.skin", 0.5 * c.dem.species[0].diameter, "m",
                         "Verlet skin of the neighbour list; the list is rebuilt when a particle has moved half of it",
                         R::non_negative());
-  const auto g = r.numbers("dem.gravity", {0.0, -9.81}, "m/s^2", "gravitational acceleration (x, y)", 2);
-  c.dem.gravity = {g[0], g[1]};
   const double dt_max = dem_stable_time_step(c.dem);
   if (c.dem.dt > dt_max) {
     r.fail("dem.time_step", fmt::format("{} s is above the stability limit of the stiffest contact; the largest "
@@ -159,7 +183,13 @@ void read_case(CaseReader& r, CaseConfig& c) {
     const auto path = std::filesystem::path(c.particles.file).is_absolute()
                           ? std::filesystem::path(c.particles.file)
                           : std::filesystem::path(r.file_name()).parent_path() / c.particles.file;
-    c.particles.packing.count = static_cast<std::int64_t>(particles_from_csv(path.string(), c.dem).size());
+    const ParticleStore from_file = particles_from_csv(path.string(), c.dem);
+    c.particles.packing.count = static_cast<std::int64_t>(from_file.size());
+    // The bed is the file's: its species make up the mixture `check` and the U_mf default describe.
+    std::vector<double> share(c.dem.n_species(), 0.0);
+    for (const std::int32_t sp : from_file.species) share[static_cast<std::size_t>(sp)] += 1.0;
+    for (double& f : share) f /= std::max<double>(1.0, static_cast<double>(from_file.size()));
+    if (from_file.size() > 0) c.particles.packing.species_fraction = share;
   }
   c.particles.layers = static_cast<int>(r.integer("particles.layers", 6, "colour layers of the initial bed (Fig. 4)",
                                                   R::between(1, 1000)));
@@ -181,30 +211,43 @@ void read_case(CaseReader& r, CaseConfig& c) {
 void read_tfm(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   tfm::TfmConfig& t = c.tfm;
-  t.width = c.dem.width;
-  t.height = c.dem.height;
+  t.width = c.domain.width;
+  t.height = c.domain.height;
   if (std::abs(c.grid.dx - c.grid.dy) > 1e-12 * c.grid.dx) {
     r.fail("grid.cell_height", "the two-fluid model needs square cells (cell_height = cell_width)");
   }
   t.cell_size = c.grid.dx;
   t.rho_g = c.gas.rho_g;
   t.mu_g = c.gas.mu_g;
-  t.gravity = c.gas.gravity;
+  t.gravity = c.domain.gravity;
   t.boundary = c.gas.boundary;
   t.drag_switch = c.coupling.drag_switch;
   t.d_p = r.number("tfm.particle_diameter", 0.004, "m", "particle diameter d_p", R::positive());
   t.rho_s = r.number("tfm.particle_density", 2700.0, "kg/m^3", "particle density rho_s", R::positive());
+  check_particle_plausible(r, "tfm.particle_diameter", t.d_p, "tfm.particle_density", t.rho_s, c.domain, c.grid);
+  if (!(t.rho_s > t.rho_g)) {
+    r.fail("tfm.particle_density", fmt::format("solids of {} kg/m^3 are not heavier than the gas ({} kg/m^3): they "
+                                               "do not form a bed", t.rho_s, t.rho_g));
+  }
+  if (c.gas.viscous != ViscousStress::Off) {
+    r.fail("gas.viscous_stress", "the two-fluid model's gas has no viscous stress (Eq. 12 of the paper); only \"off\"");
+  }
   t.e = r.number("tfm.restitution", 0.9, "", "restitution e of the kinetic theory (Eqs. 23-25)", R::Range{0.0, 1.0, true, false});
   t.phi_deg = r.number("tfm.friction_angle", 40.0, "deg", "angle of internal friction phi (Eq. 21)", R::Range{0.0, 90.0, true, true});
   t.eps_initial = r.number("tfm.eps_initial", 0.431, "", "voidage of the initial bed (Table 1)", R::Range{0.0, 1.0, true, true});
   t.packed_height = r.number("tfm.packed_height", 0.54, "m", "height of the initial bed", R::positive());
-  if (t.packed_height > c.dem.height) r.fail("tfm.packed_height", "the bed is taller than the domain");
+  if (t.packed_height > c.domain.height) r.fail("tfm.packed_height", "the bed is taller than the domain");
   t.eps_star = r.number("tfm.eps_star", 0.43, "", "compaction voidage eps* (Eq. 20)", R::Range{0.0, 1.0, true, true});
   const std::string rh = r.string("tfm.rheology", "kinetic_theory", "solids rheology: kinetic theory with the "
                                   "frictional regime (Eqs. 21-26), constant viscosity, or inviscid (both with Eq. 20)",
                                   {"kinetic_theory", "constant_viscosity", "inviscid"});
   t.rheology = rh == "inviscid" ? tfm::SolidsRheology::Inviscid
                : rh == "constant_viscosity" ? tfm::SolidsRheology::ConstantViscosity : tfm::SolidsRheology::KineticTheory;
+  if (t.rheology == tfm::SolidsRheology::KineticTheory && t.e >= 1.0) {
+    r.fail("tfm.restitution", "e = 1 has no granular temperature in the kinetic theory: its algebraic balance of "
+                              "shear production against collisional dissipation (~ 1 - e^2, Eqs. 25-26) has no "
+                              "finite solution for elastic particles; use e < 1 (the paper: 0.9)");
+  }
   t.mu_s_constant = r.number("tfm.solids_viscosity", 0.5, "Pa s", "solids viscosity of the constant-viscosity rheology "
                              "(the paper gives no value)", R::positive());
   t.mu_s_max = r.number("tfm.max_solids_viscosity", 100.0, "Pa s", "cap on the frictional viscosity", R::positive());
@@ -222,6 +265,11 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
                               "exactly (default 0.015 with kinetic_theory, 0.03 with the Eq. 20 rheologies)",
                               R::Range{0.0, t.eps_star, false, true});
   t.solids_no_slip_walls = r.boolean("tfm.solids_no_slip_walls", false, "solids stick to the side walls");
+  t.eps_noise = r.number("tfm.eps_noise", 0.0, "", "amplitude of the seeded (case.seed) initial voidage noise of the "
+                         "bed: eps + a (2u - 1), kept in [eps*, 1]", R::Range{0.0, 0.5, false, true});
+  t.inlet_noise = r.number("tfm.inlet_noise", 0.0, "", "relative amplitude of a seeded (case.seed) distributor "
+                           "non-uniformity fixed per bottom cell, total inflow unchanged", R::Range{0.0, 1.0, false, true});
+  t.seed = c.seed;
   try {
     tfm::validate(t);
   } catch (const Error& e) {
@@ -235,27 +283,44 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   // [grid]: one staggered grid for the gas, the voidage and the two-fluid model.
   const double dx = r.number("grid.cell_width", 0.02, "m", "gas cell width (the paper: 0.02 m)", R::positive());
   const double dy = r.number("grid.cell_height", dx, "m", "gas cell height", R::positive());
-  const double fx = c.dem.width / dx, fy = c.dem.height / dy;
+  const double fx = c.domain.width / dx, fy = c.domain.height / dy;
   if (std::abs(fx - std::round(fx)) > 1e-9 * fx) {
-    r.fail("grid.cell_width", fmt::format("{} m does not divide the domain width {} m into whole cells", dx, c.dem.width));
+    r.fail("grid.cell_width", fmt::format("{} m does not divide the domain width {} m into whole cells", dx, c.domain.width));
   }
   if (std::abs(fy - std::round(fy)) > 1e-9 * fy) {
-    r.fail("grid.cell_height", fmt::format("{} m does not divide the domain height {} m into whole cells", dy, c.dem.height));
+    r.fail("grid.cell_height", fmt::format("{} m does not divide the domain height {} m into whole cells", dy, c.domain.height));
   }
-  c.grid = Grid2::uniform(c.dem.width, c.dem.height, static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy)));
-  if (t.rheology == tfm::SolidsRheology::KineticTheory && t.e >= 1.0) {
-    r.fail("tfm.restitution", "e = 1 has no granular temperature in the kinetic theory: its algebraic balance of "
-                              "shear production against collisional dissipation (~ 1 - e^2, Eqs. 25-26) has no "
-                              "finite solution for elastic particles; use e < 1 (the paper: 0.9)");
+  c.grid = Grid2::uniform(c.domain.width, c.domain.height, static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy)));
+  // The gas solver's rule (GasSolver refuses fewer cells), here so that `check` refuses what `run` would, gas or not.
+  if (c.grid.nx < 2) {
+    r.fail("grid.cell_width", fmt::format("{} m leaves {} cell across the domain width {} m; the gas needs at least 2",
+                                          dx, c.grid.nx, c.domain.width));
+  }
+  if (c.grid.ny < 2) {
+    r.fail("grid.cell_height", fmt::format("{} m leaves {} cell over the domain height {} m; the gas needs at least 2",
+                                           dy, c.grid.ny, c.domain.height));
   }
 
   GasConfig& g = c.gas;
   g.rho_g = r.number("gas.density", 1.205, "kg/m^3", "gas density rho_g", R::positive());
   g.mu_g = r.number("gas.viscosity", 1.8e-5, "Pa s", "gas viscosity mu_g", R::positive());
-  g.gravity = c.dem.gravity;
-  const std::string visc = r.string("gas.viscous_stress", "off", "gas viscous stress (off in the paper's Eq. 12)",
-                                    {"off", "laplacian"});
-  g.viscous = visc == "off" ? ViscousStress::Off : ViscousStress::Laplacian;
+  check_gas_plausible(r, g, c.notes);
+  if (c.model == Model::Dem && c.gas_enabled) {
+    for (std::size_t s = 0; s < c.dem.n_species(); ++s) {
+      const std::string p = fmt::format("species[{}].", s);
+      check_particle_plausible(r, p + "diameter", c.dem.species[s].diameter, p + "density", c.dem.species[s].density,
+                               c.domain, c.grid);
+      if (!(c.dem.species[s].density > g.rho_g)) {
+        r.fail(p + "density", fmt::format("particles of {} kg/m^3 are not heavier than the gas ({} kg/m^3): they do "
+                                          "not form a bed", c.dem.species[s].density, g.rho_g));
+      }
+    }
+  }
+  g.gravity = c.domain.gravity;
+  const std::string visc = r.string("gas.viscous_stress", "off", "gas viscous stress (off in the paper's Eq. 12): "
+                                    "laplacian div(eps mu grad u), or full div(eps mu (grad u + grad u^T))",
+                                    {"off", "laplacian", "full"});
+  g.viscous = visc == "off" ? ViscousStress::Off : visc == "full" ? ViscousStress::Full : ViscousStress::Laplacian;
   const std::string conv = r.string("gas.convection", "van_leer", "bounded convection scheme of the gas momentum",
                                     {"upwind", "van_leer", "minmod"});
   g.convection = conv == "upwind" ? ConvectionScheme::Upwind
@@ -265,11 +330,6 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   g.relax_velocity = r.number("gas.relax_velocity", 0.8, "", "momentum under-relaxation", R::Range{0.0, 1.0, true, false});
   g.relax_pressure = r.number("gas.relax_pressure", 1.0, "", "pressure under-relaxation", R::Range{0.0, 1.0, true, false});
   g.max_simple_iterations = static_cast<int>(r.integer("gas.max_iterations", 200, "SIMPLE iterations per gas step at most",
-  t.eps_noise = r.number("tfm.eps_noise", 0.0, "", "amplitude of the seeded (case.seed) initial voidage noise of the "
-                         "bed: eps + a (2u - 1), kept in [eps*, 1]", R::Range{0.0, 0.5, false, true});
-  t.inlet_noise = r.number("tfm.inlet_noise", 0.0, "", "relative amplitude of a seeded (case.seed) distributor "
-                           "non-uniformity fixed per bottom cell, total inflow unchanged", R::Range{0.0, 1.0, false, true});
-  t.seed = c.seed;
                                                        R::between(1, 100000)));
   g.mass_tolerance = r.number("gas.mass_tolerance", 1e-8, "", "SIMPLE stops when the normalised mass residual is below this",
                               R::positive());
@@ -290,14 +350,14 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   for (std::size_t k = 0; k < nj; ++k) {
     const std::string p = fmt::format("inlet.jet[{}].", k);
     InletJet j;
-    j.x_centre = r.number(p + "centre", c.dem.width / 2, "m", "x of the jet centre");
+    j.x_centre = r.number(p + "centre", c.domain.width / 2, "m", "x of the jet centre");
     j.width = r.number(p + "width", dx, "m", "jet width", R::positive());
     j.velocity = r.number(p + "velocity", 30.0, "m/s", "superficial gas velocity through the jet");
     j.t_start = r.number(p + "start", 0.0, "s", "the jet opens at this time", R::non_negative());
     j.t_end = r.number(p + "end", 0.4, "s", "the jet closes at this time", R::non_negative());
-    if (j.x_centre - 0.5 * j.width < -1e-12 || j.x_centre + 0.5 * j.width > c.dem.width + 1e-12) {
+    if (j.x_centre - 0.5 * j.width < -1e-12 || j.x_centre + 0.5 * j.width > c.domain.width + 1e-12) {
       r.fail(p + "centre", fmt::format("the jet [{}, {}] m is not inside the bottom [0, {}] m",
-                                       j.x_centre - 0.5 * j.width, j.x_centre + 0.5 * j.width, c.dem.width));
+                                       j.x_centre - 0.5 * j.width, j.x_centre + 0.5 * j.width, c.domain.width));
     }
     if (j.width < dx * (1.0 - 1e-9)) {
       r.fail(p + "width", fmt::format("{} m is narrower than a gas cell ({} m): the grid cannot resolve it", j.width, dx));
@@ -320,22 +380,32 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   cc.drag_switch = sw == "smooth" ? DragSwitch::Smooth : DragSwitch::Sharp;
   cc.pressure_gradient_force = r.boolean("coupling.pressure_force", true, "apply -V_p grad P to each particle");
 
+  if (c.model == Model::Tfm) read_tfm(r, c);  // before [bubble]: the U_mf default needs the solids
+
   // [bubble]
   BubbleConfig& b = c.bubble;
   b.grid = c.grid;
   b.eps_threshold = r.number("bubble.threshold", 0.8, "", "voidage above which a cell is bubble (the paper: 0.8)",
                              R::Range{0.0, 1.0, true, true});
-  b.jet_x = r.number("bubble.jet_x", g.boundary.jets.empty() ? c.dem.width / 2 : g.boundary.jets[0].x_centre, "m",
+  b.jet_x = r.number("bubble.jet_x", g.boundary.jets.empty() ? c.domain.width / 2 : g.boundary.jets[0].x_centre, "m",
                      "vertical line on which the nose is measured");
   b.jet_width = r.number("bubble.jet_width", g.boundary.jets.empty() ? dx : g.boundary.jets[0].width, "m",
                          "width of the jet the bubble grows from", R::positive());
-  b.u_mf = r.number("bubble.u_mf", g.boundary.inlet_velocity > 0 ? g.boundary.inlet_velocity : 1.8, "m/s",
-                    "U_mf of the throughflow ratio", R::positive());
+  const bool u_mf_given = r.has("bubble.u_mf");
+  const std::optional<double> u_ergun = bed_minimum_fluidisation_velocity(c);
+  b.u_mf = r.number("bubble.u_mf", u_ergun.value_or(1.8), "m/s", "U_mf of the throughflow ratio (the paper: 1.8 "
+                    "m/s); default: the Ergun U_mf of the bed (DEM: Sauter mean diameter of the species at eps_mf = "
+                    "0.43; TFM: at tfm.eps_initial)", R::positive());
+  r.describe_default("bubble.u_mf", "Ergun U_mf");
+  if (!u_mf_given && (c.model == Model::Tfm || c.gas_enabled)) {
+    c.notes.push_back(u_ergun ? fmt::format("bubble.u_mf not given: {:.4g} m/s, the Ergun U_mf of the bed", b.u_mf)
+                              : fmt::format("bubble.u_mf not given and the bed has no Ergun U_mf (no downward gravity): "
+                                            "{} m/s", b.u_mf));
+  }
   b.min_area = r.number("bubble.min_area", b.min_area, "m^2", "smallest void counted as a bubble", R::positive());
   b.surface_eps = r.number("bubble.surface_voidage", b.surface_eps, "", "voidage that marks the bed surface",
                            R::Range{0.0, 1.0, true, true});
   (void)needs_gas;
-  if (c.model == Model::Tfm) read_tfm(r, c);
 }
 
 void read_output(CaseReader& r, CaseConfig& c) {
@@ -376,6 +446,14 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
   read_output(r, out.config);
   r.reject_unknown_keys();
+  // What the gas solver and the bubble tracker check when they are built, so that `check` refuses what `run`
+  // would (the TFM's own check, tfm::validate, runs in read_tfm).
+  try {
+    validate(out.config.gas);
+    const BubbleTracker probe(out.config.bubble);
+  } catch (const Error& e) {
+    throw_input_error(fmt::format("{}: {}", r.file_name(), e.what()));
+  }
   out.config.source_path = r.file_name();
   out.resolved_toml = r.resolved_toml();
   out.keys = r.keys();

@@ -50,7 +50,8 @@ bad too_many_particles "particles.count: 1000000 particles do not fit" "particle
 bad bad_model 'case.model: "lbm" is not one of "dem", "tfm"' 'case.model = "lbm"'
 bad fractions "fractions add up to" "species = [{fraction = 0.5}, {fraction = 0.3}]"
 bad wall_restitution "contact.wall_restitution: 1.5 is out of range" "contact.wall_restitution = 1.5"
-bad gravity_size "dem.gravity: expected 2 values, got 3" "dem.gravity = [0.0, -9.81, 0.0]"
+bad gravity_size "domain.gravity: expected 2 values, got 3" "domain.gravity = [0.0, -9.81, 0.0]"
+bad gravity_old_name_size "gravity_old_name_size.toml:[0-9]+:[0-9]+ \(dem.gravity\): domain.gravity: expected 2 values" "dem.gravity = [0.0, -9.81, 0.0]"
 bad fill_height "particles.fill_height: 2 m is above the domain height" "particles.fill_height = 2.0"
 bad particle_file_missing "particles.source = \"file\" needs particles.file" 'particles.source = "file"'
 # Gas, grid and jets: read and checked even when gas.enabled = false.
@@ -93,6 +94,42 @@ set_bad set_new_species "'species' has 1 entry" 'species[1].diameter=0.003'
 set_bad set_section_value "'case' is a section" case=1
 expect 0 "OK" "--set a whole species array" "$FLUIDBED" check "$ROOT/cases/gera1998/dem.toml" \
   --set 'species=[{diameter = 0.004}, {diameter = 0.004, density = 2500.0}]'
+
+# Defaults from the bed (issue 11, item 11): a 1 mm bed without dem.time_step gets t_c / 20 rounded down to the
+# 1-1.25-2-2.5-4-5-8 series (t_c = 9.34e-5 s: 4e-6 s), printed; U_mf defaults to the bed's Ergun value, printed.
+expect 0 "note: dem.time_step not given: 4e-06 s = t_c / 23.4, from t_c / 20" "derived time step (1 mm)" \
+  "$FLUIDBED" check "$WORK/ok.toml" --set 'species=[{diameter = 0.001}]'
+expect 0 "stiffness for a 1% mean static overlap +k = " "stiffness for a target overlap" "$FLUIDBED" check "$WORK/ok.toml"
+expect 0 "note: bubble.u_mf not given: 1.909 m/s, the Ergun U_mf" "U_mf default" \
+  "$FLUIDBED" check "$WORK/ok.toml" --set gas.enabled=true
+expect 0 "bubble.u_mf\) +1.800 m/s" "the paper's case keeps U_mf = 1.8" "$FLUIDBED" check "$ROOT/cases/gera1998/dem.toml"
+# check covers every species (item 12) and refuses what run refuses, gas on or off.
+expect 0 "species 1 +d = 0.002 m.*contact duration 0-1" "check: every species and pair" \
+  bash -c "'$FLUIDBED' check '$WORK/ok.toml' --set 'species=[{diameter = 0.004}, {diameter = 0.002}]' | tr '\n' ' '"
+bad grid_one_cell "grid.cell_width: 0.6 m leaves 1 cell across the domain width 0.6 m; the gas needs at least 2" \
+  "grid.cell_width = 0.6" "grid.cell_height = 0.02"
+expect 2 "grid.cell_width: 0.6 m leaves 1 cell" "run refuses the same grid" \
+  "$FLUIDBED" run "$WORK/grid_one_cell.toml" --quiet --out "$WORK/grid1"
+# One domain and gravity for every model; the full viscous stress (item 13).
+expect 0 "gravity \(0, -5\) m/s\^2" "a TFM case sets gravity" "$FLUIDBED" check "$ROOT/cases/gera1998/tfm.toml" \
+  --set 'domain.gravity=[0.0, -5.0]'
+expect 0 "OK" "gas.viscous_stress = full" "$FLUIDBED" check "$ROOT/cases/gera1998/dem.toml" --set gas.viscous_stress=full
+expect 2 "gas.viscous_stress: the two-fluid model's gas has no viscous stress" "TFM refuses a gas viscous stress" \
+  "$FLUIDBED" check "$ROOT/cases/gera1998/tfm.toml" --set gas.viscous_stress=full
+# Units that look wrong say what is wrong and the likely slip (item 14).
+bad diameter_in_mm "species\[0\].diameter: a particle of 4 m is larger than the domain \(0.6 x 1 m\).*4 mm is 0.004 m" \
+  "species = [{diameter = 4.0}]"
+bad density_in_g_cm3 "species\[0\].density: 2.7 kg/m\^3 is the density of a gas, not of a solid.*2.7 g/cm\^3 is 2700 kg/m\^3" \
+  "species = [{density = 2.7}]"
+bad particle_above_cell "species\[0\].diameter: a particle of 0.03 m is larger than a gas cell" \
+  "gas.enabled = true" "particles.count = 10" "species = [{diameter = 0.03}]"
+bad gas_density_in_g_cm3 "gas.density: 0.001205 kg/m\^3 is thinner than any gas.*is 1.205 kg/m\^3" "gas.density = 0.001205"
+bad gas_viscosity_in_micro "gas.viscosity: 18 Pa s is above the viscosity of any gas.*18 uPa s is 1.8e-05 Pa s" \
+  "gas.viscosity = 18.0"
+expect 2 "tfm.particle_density: 2.7 kg/m\^3 is the density of a gas" "TFM density in g/cm^3" \
+  "$FLUIDBED" check "$ROOT/cases/gera1998/tfm.toml" --set tfm.particle_density=2.7
+expect 0 "note: gas.viscosity = 0.018 Pa s is the viscosity of a liquid" "a liquid's viscosity is a note" \
+  "$FLUIDBED" check "$WORK/ok.toml" --set gas.viscosity=0.018
 
 # A particle CSV with a bad row names the file, the row and the column.
 printf 'id,x,y,vx,vy,omega,species\n0,0.1,0.1,0,0,0,0\n1,0.2,abc,0,0,0,0\n' > "$WORK/bad.csv"

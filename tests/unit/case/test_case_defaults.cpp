@@ -1,0 +1,228 @@
+// Defaults derived from the bed instead of the paper's numbers, `check` over every species, one domain for every
+// model, the same rules in `check` and `run`, and plausibility of units (issue 11, items 11-14).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "core/error.hpp"
+#include "fluid/drag.hpp"
+#include "fluid/gas_solver.hpp"
+#include "io/case_check.hpp"
+#include "io/case_loader.hpp"
+
+namespace fluidbed {
+namespace {
+
+// A DEM case of `count` randomly placed particles with `extra` keys.
+std::string dem_case(const std::string& extra = "", int count = 1000) {
+  return "case.name = \"x\"\nsettle.enabled = false\nparticles.count = " + std::to_string(count) + "\n" + extra;
+}
+const std::string kTfm = "case.name = \"x\"\ncase.model = \"tfm\"\n";
+
+std::string error_of(const std::string& text, const std::vector<std::string>& sets = {}) {
+  try {
+    load_case_text(text, "t.toml", sets);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exit_code(), 2);
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted: " << text;
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// Eq. 8 on the reduced mass of a pair of equal spheres: the damped half period of the linear spring.
+double equal_pair_contact_duration(double d, double rho, double k, double e) {
+  const double m_eff = 0.5 * rho * std::numbers::pi * d * d * d / 6.0;
+  const double l = std::log(1.0 / e);
+  const double eta = 2.0 * std::sqrt(m_eff * k) * l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+  return std::numbers::pi / std::sqrt(k / m_eff - std::pow(eta / (2.0 * m_eff), 2));
+}
+
+// ---- item 11: defaults tied to the bed, not to the paper
+
+TEST(CaseDefaults, TheTimeStepOfASmallerParticleIsDerivedFromItsContactDuration) {
+  // Before: the paper's 2e-4 s was the default and failed the stability check for 1 mm particles.
+  const CaseConfig c = load_case_text(dem_case("species = [{diameter = 0.001}]\n"), "t.toml").config;
+  const double t_c = equal_pair_contact_duration(0.001, 2700.0, 800.0, 0.9);
+  // dt = t_c / 20 rounded down to 1, 1.25, 2, 2.5, 4, 5, 8 x 10^n: at most a factor 1.6 below t_c / 20.
+  EXPECT_LE(c.dem.dt, t_c / 20.0);
+  EXPECT_GT(c.dem.dt, t_c / 20.0 / 1.6);
+  EXPECT_LE(c.dem.dt, dem_stable_time_step(c.dem));
+  const double mantissa = c.dem.dt / std::pow(10.0, std::floor(std::log10(c.dem.dt)));
+  EXPECT_TRUE(std::any_of(std::begin({1.0, 1.25, 2.0, 2.5, 4.0, 5.0, 8.0}), std::end({1.0, 1.25, 2.0, 2.5, 4.0, 5.0, 8.0}),
+                          [&](double m) { return std::abs(mantissa - m) < 1e-9; }))
+      << c.dem.dt;
+  ASSERT_FALSE(c.notes.empty());
+  EXPECT_TRUE(contains(c.notes[0], "dem.time_step not given")) << c.notes[0];
+  EXPECT_TRUE(contains(c.notes[0], "t_c / 20")) << c.notes[0];
+  EXPECT_TRUE(contains(describe_case(c), "note: dem.time_step not given"));
+}
+
+TEST(CaseDefaults, TheStiffestPairOfAMixtureSetsTheTimeStep) {
+  // The lighter pair (2 mm with 2 mm) has the shortest contact.
+  const CaseConfig c =
+      load_case_text(dem_case("species = [{diameter = 0.004}, {diameter = 0.002}]\n"), "t.toml").config;
+  const StiffestContact sc = stiffest_contact(c.dem);
+  EXPECT_EQ(sc.a, 1);
+  EXPECT_EQ(sc.b, 1);
+  EXPECT_NEAR(sc.t_c, equal_pair_contact_duration(0.002, 2700.0, 800.0, 0.9), 1e-12);
+  EXPECT_DOUBLE_EQ(c.dem.dt, default_dem_time_step(c.dem));
+  EXPECT_LE(c.dem.dt, sc.t_c / 20.0);
+}
+
+TEST(CaseDefaults, AGivenTimeStepIsKeptAndThePapersCasesSetTheirOwn) {
+  EXPECT_DOUBLE_EQ(load_case_text(dem_case("dem.time_step = 2e-4\n"), "t.toml").config.dem.dt, 2e-4);
+  const std::string root = FLUIDBED_SOURCE_DIR;
+  const CaseConfig dem = load_case(root + "/cases/gera1998/dem.toml").config;
+  EXPECT_DOUBLE_EQ(dem.dem.dt, 1e-4);
+  EXPECT_DOUBLE_EQ(dem.bubble.u_mf, 1.8);
+  for (const char* f : {"tfm.toml", "tfm-constant-viscosity.toml", "tfm-inviscid.toml"}) {
+    EXPECT_DOUBLE_EQ(load_case(root + "/cases/gera1998/" + f).config.bubble.u_mf, 1.8) << f;
+  }
+  for (const char* f : {"settle-22k.toml", "scale-100k.toml", "scale-300k.toml", "scale-1m.toml"}) {
+    EXPECT_DOUBLE_EQ(load_case(root + "/cases/bench/" + f).config.dem.dt, 2e-4) << f;
+  }
+}
+
+TEST(CaseDefaults, UmfDefaultsToTheErgunValueOfTheBed) {
+  // Before: bubble.u_mf defaulted to the inlet velocity.
+  const CaseConfig c = load_case_text(dem_case("inlet.velocity = 3.6\n"), "t.toml").config;
+  EXPECT_NEAR(c.bubble.u_mf, ergun_minimum_fluidisation_velocity(0.43, 0.004, 2700.0, 1.205, 1.8e-5, 9.81), 1e-12);
+  EXPECT_TRUE(contains(describe_case(c), "note: bubble.u_mf not given"));
+  // A mixture: the Sauter mean diameter sum f d^3 / sum f d^2 and the volume-mean density.
+  const CaseConfig m = load_case_text(dem_case("dem.time_step = 1e-5\nspecies = [{diameter = 0.004, fraction = 0.25}, "
+                                               "{diameter = 0.002, density = 2500.0, fraction = 0.75}]\n"),
+                                      "t.toml")
+                           .config;
+  const double d32 = (0.25 * 64e-9 + 0.75 * 8e-9) / (0.25 * 16e-6 + 0.75 * 4e-6);
+  const double rho = (0.25 * 64e-9 * 2700.0 + 0.75 * 8e-9 * 2500.0) / (0.25 * 64e-9 + 0.75 * 8e-9);
+  EXPECT_NEAR(m.bubble.u_mf, ergun_minimum_fluidisation_velocity(0.43, d32, rho, 1.205, 1.8e-5, 9.81), 1e-12);
+  // The two-fluid bed at its initial voidage.
+  const CaseConfig t = load_case_text(kTfm, "t.toml").config;
+  EXPECT_NEAR(t.bubble.u_mf, ergun_minimum_fluidisation_velocity(0.431, 0.004, 2700.0, 1.205, 1.8e-5, 9.81), 1e-12);
+  EXPECT_DOUBLE_EQ(load_case_text(kTfm + "bubble.u_mf = 1.8\n", "t.toml").config.bubble.u_mf, 1.8);
+}
+
+TEST(CaseDefaults, CheckSuggestsAStiffnessForATargetOverlap) {
+  // 1000 particles of 4 mm on 0.6 m: a bottom particle carries the column over its width, delta / d = M g / (W k);
+  // for a 1% overlap k = M g / (0.01 W) = 1000 * 9.048e-5 kg * 9.81 / 0.006 m = 148 N/m.
+  const std::string s = describe_case(load_case_text(dem_case(), "t.toml").config);
+  const double mass = 2700.0 * std::numbers::pi * 0.004 * 0.004 * 0.004 / 6.0;
+  EXPECT_TRUE(contains(s, fmt::format("k = {:.3g} N/m", 1000 * mass * 9.81 / (0.01 * 0.6)))) << s;
+  EXPECT_TRUE(contains(s, "stiffness for a 1% impact overlap")) << s;
+  EXPECT_TRUE(contains(s, fmt::format("{:.3g}% of d at the bottom", 100.0 * 1000 * mass * 9.81 / (0.6 * 800.0)))) << s;
+}
+
+// ---- item 12: `check` covers every species; `check` and `run` apply the same rules
+
+TEST(CaseCheck, EverySpeciesEveryPairAndTheBedOfAllSpecies) {
+  const CaseConfig c = load_case_text(dem_case("species = [{diameter = 0.004}, {diameter = 0.002, density = 2500.0}]\n"),
+                                      "t.toml")
+                           .config;
+  const std::string s = describe_case(c);
+  for (const char* part : {"species 0 ", "species 1 ", "contact duration 0-0", "contact duration 0-1",
+                           "contact duration 1-1", "contact duration 1-wall", "Sauter mean diameter"}) {
+    EXPECT_TRUE(contains(s, part)) << part << "\n" << s;
+  }
+  EXPECT_TRUE(contains(s, "mass 1.047e-05 kg")) << s;  // 2500 pi (0.002)^3 / 6
+  // 500 discs of each: area 500 pi (0.004^2 + 0.002^2) / 4 at a packing fraction 0.82 over 0.6 m.
+  const double h = 500.0 * std::numbers::pi * (16e-6 + 4e-6) / 4.0 / 0.82 / 0.6;
+  EXPECT_TRUE(contains(s, fmt::format("{:.3f} m from every species' area", h))) << s;
+}
+
+TEST(CaseCheck, AGridTheGasSolverRefusesIsRefusedByTheLoaderGasOrNot) {
+  // Before: `check` passed a one-cell-wide grid that GasSolver then refused at the start of `run`.
+  const Grid2 one_wide = Grid2::uniform(0.6, 1.0, 1, 50);
+  EXPECT_THROW(GasSolver(one_wide, GasConfig{}), Error);
+  EXPECT_NO_THROW(GasSolver(Grid2::uniform(0.04, 0.04, 2, 2), GasConfig{}));
+  for (const char* gas : {"true", "false"}) {
+    const std::string e = error_of(dem_case(std::string("gas.enabled = ") + gas + "\ngrid.cell_width = 0.6\ngrid.cell_height = 0.02\n"));
+    EXPECT_TRUE(contains(e, "grid.cell_width: 0.6 m leaves 1 cell across the domain width 0.6 m")) << e;
+  }
+  EXPECT_TRUE(contains(error_of(kTfm + "grid.cell_width = 1.0\ndomain.width = 1.0\n"), "the gas needs at least 2"));
+  const CaseConfig two = load_case_text(dem_case("gas.enabled = false\ndomain.width = 0.04\ndomain.height = 0.04\n", 10),
+                                        "t.toml")
+                             .config;
+  EXPECT_EQ(two.grid.nx, 2);
+}
+
+// ---- item 13: one domain and gravity for every model; the full viscous stress
+
+TEST(CaseDomain, GravityReachesEveryModelFromTheDomain) {
+  const CaseConfig d = load_case_text(dem_case("domain.gravity = [0.5, -5.0]\n"), "t.toml").config;
+  EXPECT_DOUBLE_EQ(d.domain.gravity.y, -5.0);
+  EXPECT_DOUBLE_EQ(d.dem.gravity.x, 0.5);
+  EXPECT_DOUBLE_EQ(d.dem.gravity.y, -5.0);
+  EXPECT_DOUBLE_EQ(d.gas.gravity.y, -5.0);
+  // Before: a two-fluid case could not set gravity at all (dem.gravity was an unknown key there).
+  const CaseConfig t = load_case_text(kTfm + "domain.gravity = [0.0, -5.0]\ndomain.width = 0.4\n", "t.toml").config;
+  EXPECT_DOUBLE_EQ(t.tfm.gravity.y, -5.0);
+  EXPECT_DOUBLE_EQ(t.gas.gravity.y, -5.0);
+  EXPECT_DOUBLE_EQ(t.tfm.width, 0.4);
+  EXPECT_DOUBLE_EQ(t.domain.width, 0.4);
+}
+
+TEST(CaseDomain, TheOldNameDemGravityIsReadAsDomainGravity) {
+  const LoadedCase lc = load_case_text(dem_case("[dem]\ngravity = [0.0, -3.0]\n"), "t.toml");
+  EXPECT_DOUBLE_EQ(lc.config.dem.gravity.y, -3.0);
+  EXPECT_TRUE(contains(lc.resolved_toml, "[domain]")) << lc.resolved_toml;
+  EXPECT_FALSE(contains(lc.resolved_toml, "[dem]\ngravity")) << lc.resolved_toml;
+  EXPECT_DOUBLE_EQ(load_case_text(kTfm, "t.toml", {"dem.gravity=[0.0, -2.0]"}).config.tfm.gravity.y, -2.0);
+  EXPECT_TRUE(contains(error_of(dem_case("dem.gravity = [0.0, -3.0]\ndomain.gravity = [0.0, -3.0]\n")),
+                       "dem.gravity: is the old name of domain.gravity; give only domain.gravity"));
+}
+
+TEST(CaseDomain, TheFullViscousStressCanBeChosen) {
+  EXPECT_EQ(load_case_text(dem_case("gas.viscous_stress = \"full\"\n"), "t.toml").config.gas.viscous, ViscousStress::Full);
+  EXPECT_EQ(load_case_text(dem_case("gas.viscous_stress = \"laplacian\"\n"), "t.toml").config.gas.viscous,
+            ViscousStress::Laplacian);
+  // The two-fluid model's gas has no viscous stress: choosing one there is refused, not ignored.
+  EXPECT_TRUE(contains(error_of(kTfm + "gas.viscous_stress = \"full\"\n"), "gas.viscous_stress: the two-fluid model"));
+}
+
+// ---- item 14: implausible units say what looks wrong
+
+TEST(CasePlausibility, AParticleInMetresThatWasMeantInMillimetres) {
+  // Before: "particles do not fit".
+  const std::string e = error_of(dem_case("species = [{diameter = 4.0}]\n"));
+  EXPECT_TRUE(contains(e, "species[0].diameter: a particle of 4 m is larger than the domain (0.6 x 1 m)")) << e;
+  EXPECT_TRUE(contains(e, "4 mm is 0.004 m")) << e;
+  const std::string cell = error_of(dem_case("dem.time_step = 1e-4\nspecies = [{diameter = 0.03}]\n", 10));
+  EXPECT_TRUE(contains(cell, "larger than a gas cell (0.02 x 0.02 m)")) << cell;
+  // Without gas the particles need no cell.
+  EXPECT_NO_THROW(load_case_text(dem_case("gas.enabled = false\nspecies = [{diameter = 0.03}]\n", 10),
+                                 "t.toml"));
+  EXPECT_TRUE(contains(error_of(kTfm + "tfm.particle_diameter = 4.0\n"), "tfm.particle_diameter: a particle of 4 m"));
+  EXPECT_TRUE(contains(error_of(kTfm + "tfm.particle_diameter = 0.03\n"), "larger than a gas cell"));
+}
+
+TEST(CasePlausibility, ADensityInGramsPerCubicCentimetre) {
+  // Before: a time-step error (the 2.7 kg/m^3 particles are 1000 times too light for the spring).
+  const std::string e = error_of(dem_case("species = [{density = 2.7}]\n"));
+  EXPECT_TRUE(contains(e, "species[0].density: 2.7 kg/m^3 is the density of a gas, not of a solid")) << e;
+  EXPECT_TRUE(contains(e, "2.7 g/cm^3 is 2700 kg/m^3")) << e;
+  EXPECT_TRUE(contains(error_of(kTfm + "tfm.particle_density = 2.7\n"), "the density of a gas, not of a solid"));
+  EXPECT_TRUE(contains(error_of(dem_case("species = [{density = 2.7e6}]\n")), "denser than any solid"));
+  // Heavier than a gas but not heavier than this gas.
+  EXPECT_TRUE(contains(error_of(dem_case("species = [{density = 50.0}]\ngas.density = 60.0\ndem.time_step = 1e-5\n")),
+                       "are not heavier than the gas"));
+}
+
+TEST(CasePlausibility, GasPropertiesOutsideAnyFluidAndOfALiquid) {
+  EXPECT_TRUE(contains(error_of(dem_case("gas.density = 0.001205\n")), "gas.density: 0.001205 kg/m^3 is thinner than any gas"));
+  EXPECT_TRUE(contains(error_of(dem_case("gas.density = 1205.0e3\n")), "denser than a gas or a common liquid"));
+  EXPECT_TRUE(contains(error_of(dem_case("gas.viscosity = 18.0\n")), "in micropascal seconds? 18 uPa s is 1.8e-05 Pa s"));
+  EXPECT_TRUE(contains(error_of(dem_case("gas.viscosity = 1e-8\n")), "below the viscosity of any gas"));
+  // A liquid's values are allowed (the drag laws hold), with a note.
+  const CaseConfig c = load_case_text(dem_case("gas.viscosity = 0.018\n"), "t.toml").config;
+  EXPECT_TRUE(std::any_of(c.notes.begin(), c.notes.end(),
+                          [](const std::string& n) { return contains(n, "gas.viscosity = 0.018 Pa s is the viscosity of a liquid"); }));
+  EXPECT_TRUE(contains(error_of(kTfm + "gas.viscosity = 18.0\n"), "gas.viscosity"));
+}
+
+}  // namespace
+}  // namespace fluidbed
