@@ -428,7 +428,14 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
     for (std::size_t k = 0; k < s.imbalance.size(); ++k) s.imbalance.v[k] = -s.imbalance.v[k];
     s.p_corr.fill(0.0);
     // Factorised at the first SIMPLE iteration of each step only (the same in a restarted run).
-    s.pressure.solve(s.ax, s.ay, s.imbalance, s.p_corr, it > 1);
+    try {
+      s.pressure.solve(s.ax, s.ay, s.imbalance, s.p_corr, it > 1);
+    } catch (const Error& e) {
+      throw_simulation_error(fmt::format(
+          "gas at t = {:.6g} s (dt = {:.3g} s), SIMPLE iteration {}: {}. Likely cause: a voidage, drag or velocity "
+          "that is no longer finite or usable; remedy: reduce the time step, check the inlet and jet velocities",
+          t_new, dt, it, e.what()));
+    }
     const Field2& pc = s.p_corr;
     for (std::size_t k = 0; k < s.f.p.size(); ++k) s.f.p.v[k] += cfg.relax_pressure * pc.v[k];
     for (int j = 0; j < ny; ++j)

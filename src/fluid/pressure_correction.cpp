@@ -2,6 +2,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
+#include <cmath>
 #include <string>
 
 #include "core/error.hpp"
@@ -103,6 +104,16 @@ void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const F
       s.a.set_row(r, diag, off);
       s.b[r] = b;
       s.x[r] = x(i, j);
+    }
+  // A non-finite coefficient or imbalance makes any answer meaningless: name the cell instead of solving.
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (!std::isfinite(rhs(i, j)) || !std::isfinite(ax(i, j)) || !std::isfinite(ax(i + 1, j)) ||
+          !std::isfinite(ay(i, j)) || !std::isfinite(ay(i, j + 1))) {
+        throw_simulation_error("gas pressure correction: the mass imbalance or a face coefficient of cell (" +
+                               std::to_string(i) + ", " + std::to_string(j) + ") is not finite (imbalance " +
+                               std::to_string(rhs(i, j)) + ")");
+      }
     }
   bool solved = false;
   if (s.kind == PressureSolverKind::Direct && reuse_factorisation && s.factorised) {

@@ -542,7 +542,14 @@ double TfmSolver::step(double t_stop) {
     outflow(out_g, out_s);
     for (int k = 0; k < n; ++k) rhs_p.v[static_cast<std::size_t>(k)] = -(out_g[k] + out_s[k]);
     p_corr.fill(0.0);
-    pressure_solver_.solve(a_x, a_y, rhs_p, p_corr, same_matrix);
+    try {
+      pressure_solver_.solve(a_x, a_y, rhs_p, p_corr, same_matrix);
+    } catch (const Error& e) {
+      throw_simulation_error(fmt::format(
+          "tfm at t = {:.6g} s (step {}, dt = {:.3g} s): {} (mixture volume constraint, Eqs. 15 + 16). Likely cause: "
+          "face velocities that are no longer finite (a solids stress or drag that overflowed). Remedy: {}",
+          s_.time, s_.steps, dt, e.what(), remedy()));
+    }
     const std::vector<double>& pc = p_corr.v;
     for (int j = 0; j < ny; ++j) {
       for (int i = 1; i < nx; ++i) {

@@ -69,6 +69,27 @@ TEST(TfmFailures, RunawaySolidsStopWithADiagnosisNamingTheCell) {
   }
 }
 
+// A non-finite solids velocity inside the bed reaches the first linear solve of the step, the mixture pressure
+// correction, as a non-finite imbalance: the step must fail there naming the solve, the time and the cell.
+TEST(TfmFailures, FailedLinearSolveSaysWhereAndWhy) {
+  TfmSolver solver(jet_bed());
+  solver.advance_to(0.005);
+  std::vector<NamedArray> s = solver.save_state();
+  array(s, "us")[static_cast<std::size_t>(3 * 11 + 5)] = NAN;  // u-face (5, 3): cells (4, 3) and (5, 3), in the bed
+  solver.restore_state(s);
+  try {
+    solver.step(0.01);
+    FAIL() << "a NaN solids velocity passed";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    std::printf("diagnosis: %s\n", m.c_str());
+    EXPECT_EQ(e.kind(), ErrorKind::SimulationFailed);
+    for (const char* part : {"t = ", "pressure correction", "cell (", "Likely cause", "Remedy"}) {
+      EXPECT_NE(m.find(part), std::string::npos) << part << " missing from: " << m;
+    }
+  }
+}
+
 TEST(TfmFailures, GranularTemperatureMonitorsIgnoreCellsWithoutSolids) {
   TfmSolver solver(jet_bed());
   std::vector<NamedArray> s = solver.save_state();
