@@ -28,7 +28,12 @@ std::string errno_text(int err) { return std::strerror(err); }
                    err);
 }
 
-std::string megabytes(std::uintmax_t bytes) { return fmt::format("{:.3g} MB", static_cast<double>(bytes) / 1e6); }
+std::string size_text(std::uintmax_t bytes) {
+  const double b = static_cast<double>(bytes);
+  if (b < 1e6) return fmt::format("{:.3g} kB", b / 1e3);
+  if (b < 1e9) return fmt::format("{:.3g} MB", b / 1e6);
+  return fmt::format("{:.3g} GB", b / 1e9);
+}
 
 // Best effort: the rename is already atomic; syncing the folder makes it survive a power loss.
 void sync_directory(const std::filesystem::path& dir) {
@@ -62,11 +67,11 @@ void write_all(int fd, std::string_view content, const std::filesystem::path& ta
 std::string disk_space_note(const std::filesystem::path& path, std::uintmax_t bytes_needed, int error_number) {
   if (error_number != ENOSPC && error_number != EDQUOT) return {};
   const std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  const std::string need = bytes_needed > 0 ? fmt::format("; the file needs about {}", size_text(bytes_needed)) : "";
   struct statvfs fs {};
-  if (::statvfs(dir.c_str(), &fs) != 0) return fmt::format("; the file needs about {}", megabytes(bytes_needed));
+  if (::statvfs(dir.c_str(), &fs) != 0) return need;
   const std::uintmax_t free_bytes = static_cast<std::uintmax_t>(fs.f_bavail) * fs.f_frsize;
-  return fmt::format("; the file needs about {} and {} are free on {}", megabytes(bytes_needed), megabytes(free_bytes),
-                     dir.string());
+  return fmt::format("{}{}{} free on {}", need, need.empty() ? "; " : " and ", size_text(free_bytes), dir.string());
 }
 
 std::filesystem::path temp_path_for(const std::filesystem::path& path) {

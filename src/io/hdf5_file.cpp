@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <system_error>
 #include <type_traits>
@@ -34,8 +35,17 @@ class Handle {
   herr_t (*closer_)(hid_t);
 };
 
-// Our own messages replace HDF5's stack dump on stderr.
-void silence_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+// Our own messages replace HDF5's stack dump on stderr. HDF5's exit handler is not installed: after a write
+// failed (disk full) the file cannot be closed, and that handler's second attempt crashes the program on exit
+// (HDF5 1.10.8); the operating system releases what is left.
+void silence_hdf5() {
+  static const bool once = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)once;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
 herr_t first_error(unsigned n, const H5E_error2_t* err, void* data) {
   if (n == 0 && err != nullptr && err->desc != nullptr) *static_cast<std::string*>(data) = err->desc;
@@ -56,10 +66,22 @@ int errno_in(const std::string& reason) {
   return at == std::string::npos ? 0 : std::atoi(reason.c_str() + at + 8);
 }
 
+// A failed system call as the user reads it ("No space left on device"), instead of the driver's dump of
+// buffers and offsets; HDF5's own text otherwise.
+std::string write_reason(const std::string& reason) {
+  const int err = errno_in(reason);
+  return err != 0 ? std::string(std::strerror(err)) : reason;
+}
+
 // The 1.10 file format: checksums on the superblock, object headers (and so attributes) and chunk indexes.
 hid_t file_access_plist() {
   const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (fapl >= 0) H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+  if (fapl >= 0) {
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+    // No aggregation blocks: their unused tail is bytes no checksum covers.
+    H5Pset_meta_block_size(fapl, 0);
+    H5Pset_small_data_block_size(fapl, 0);
+  }
   return fapl;
 }
 
@@ -165,8 +187,8 @@ Hdf5File Hdf5File::create(const std::filesystem::path& path) {
     const std::string reason = hdf5_reason();
     ::unlink(f.temp_.c_str());
     f.temp_.clear();
-    throw WriteError(path, "cannot write " + path.string() + ": " + reason + disk_space_note(path, 0, errno_in(reason)),
-                     errno_in(reason));
+    throw WriteError(path, "cannot write " + path.string() + ": " + write_reason(reason) +
+                               disk_space_note(path, 0, errno_in(reason)), errno_in(reason));
   }
   return f;
 }
@@ -222,7 +244,7 @@ void Hdf5File::fail(const std::string& what) const {
   const std::string reason = hdf5_reason();
   if (!temp_.empty()) {
     const int err = errno_in(reason);
-    throw WriteError(path_, "cannot write " + path_.string() + ": " + what + " (" + reason + ")" +
+    throw WriteError(path_, "cannot write " + path_.string() + ": " + what + " (" + write_reason(reason) + ")" +
                                 disk_space_note(path_, bytes_, err), err);
   }
   throw Error(ErrorKind::BadInput, path_.string() + ": " + what + " (" + reason + ")");
@@ -242,7 +264,8 @@ void Hdf5File::commit() {
     ::unlink(temp_.c_str());
     temp_.clear();
     const int err = errno_in(reason);
-    throw WriteError(path_, "cannot write " + path_.string() + ": " + reason + disk_space_note(path_, bytes_, err), err);
+    throw WriteError(path_, "cannot write " + path_.string() + ": " + write_reason(reason) +
+                                disk_space_note(path_, bytes_, err), err);
   }
   const std::filesystem::path temp = temp_;
   temp_.clear();

@@ -577,15 +577,21 @@ class Run {
   /// last complete checkpoint is the place to continue from.
   [[noreturn]] void output_failed(const WriteError& e) {
     const double t = model_ ? model_->time() : 0.0;
+    std::error_code ec;
+    const auto last_size = last_checkpoint_.empty() ? 0 : fs::file_size(last_checkpoint_, ec);
+    const std::string size_hint =
+        e.path().parent_path().filename() == "checkpoints" && !ec && last_size > 0
+            ? fmt::format(" (a checkpoint takes about {:.3g} MB: the last one)", static_cast<double>(last_size) / 1e6)
+            : "";
     std::string resume = last_checkpoint_.empty()
                              ? std::string("no checkpoint was written yet, so the run must start again (a shorter "
                                            "output.checkpoint_interval loses less)")
                              : fmt::format("the last complete checkpoint is {}; continue with: {}", last_checkpoint_.string(),
                                            continue_command(last_checkpoint_));
     const std::string message =
-        fmt::format("t = {:.6g} s: an output could not be written: {}. Every file under its final name is whole; {}. "
-                    "Likely cause: the disk or quota is full; remedy: free space (or choose another --out) and "
-                    "continue.", t, e.what(), resume);
+        fmt::format("t = {:.6g} s: an output could not be written: {}{}. Every file under its final name is whole; "
+                    "{}. Likely cause: the disk or quota is full; remedy: free space (or choose another --out) and "
+                    "continue.", t, e.what(), size_hint, resume);
     if (log_ptr_) log().error("the simulation failed: {}", message);
     throw_simulation_error(message);
   }
