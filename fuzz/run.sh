@@ -50,7 +50,7 @@ compile "$ROOT/fuzz/fuzz_case_loader.cpp" "$BUILD/obj/fuzz_case_loader.o"
 rm -f "$BUILD/libfluidbed_fuzz.a"
 ar rcs "$BUILD/libfluidbed_fuzz.a" $(for s in "${sources[@]}"; do echo "$BUILD/obj/$(echo "${s%.cpp}" | tr / _).o"; done)
 "$CXX" -fsanitize=fuzzer,address,undefined -fopenmp "$BUILD/obj/fuzz_case_loader.o" "$BUILD/libfluidbed_fuzz.a" \
-  -L/usr/lib/x86_64-linux-gnu/hdf5/serial -lhdf5 -lspdlog -lfmt -lpthread -o "$BUILD/fuzz_case_loader"
+  -L/usr/lib/x86_64-linux-gnu/hdf5/serial -lhdf5 -lspdlog -lfmt -lz -lpthread -o "$BUILD/fuzz_case_loader"
 echo "built $BUILD/fuzz_case_loader"
 
 cp -n "$ROOT"/fuzz/corpus/* "$BUILD/corpus/" 2>/dev/null || true

@@ -134,6 +134,10 @@ expect 0 "note: gas.viscosity = 0.018 Pa s is the viscosity of a liquid" "a liqu
 # A particle CSV with a bad row names the file, the row and the column.
 printf 'id,x,y,vx,vy,omega,species\n0,0.1,0.1,0,0,0,0\n1,0.2,abc,0,0,0,0\n' > "$WORK/bad.csv"
 bad bad_particle_csv "bad.csv: row 3, column (3|y)" 'particles.source = "file"' "particles.file = \"$WORK/bad.csv\""
+# An id given twice: the DEM solver refuses it when a run starts, so `check` does too (issue 11, item 12).
+printf 'id,x,y,vx,vy,omega,species\n4,0.1,0.1,0,0,0,0\n5,0.2,0.1,0,0,0,0\n4,0.3,0.1,0,0,0,0\n' > "$WORK/twice.csv"
+bad particle_id_twice "twice.csv: row 4, column 1: duplicate id 4" 'particles.source = "file"' \
+  "particles.file = \"$WORK/twice.csv\""
 
 # Output folder that cannot be written.
 touch "$WORK/not-a-folder"
