@@ -58,6 +58,14 @@ stop_and_resume() {
   local t_stop t_end
   t_stop=$(grep -o 'stopped at t = [0-9.e+-]*' "$out/log.txt" | tail -1 | awk '{ print $5 }')
   check "$label: stopped before the end (t = $t_stop s)" awk -v t="$t_stop" -v e="$LONG" 'BEGIN { exit !(t > 0 && t < e) }'
+  check "$label: the continue command keeps --end-time $LONG" grep -q "continue with: .* --end-time $LONG .*--restart" "$out/log.txt"
+  # Past the case's own end time (0.02 s), a restart without --end-time has nothing to run: refused, and it
+  # does not overwrite final.h5 with a run of zero steps.
+  if awk -v t="$t_stop" 'BEGIN { exit !(t > 0.02) }'; then
+    expect 2 "at or past the end time 0.02 s: nothing to run" "$label: restart past the case's end time is refused" \
+      "$FLUIDBED" run "$WORK/cfd.toml" --out "$out" --quiet --restart "$cp"
+    check "$label: no final.h5 from the refused restart" test ! -e "$out/checkpoints/final.h5"
+  fi
   t_end=$(awk -v t="$t_stop" 'BEGIN { printf "%.3f", t + 0.005 }')
   expect 0 "" "$label: --restart runs on to t = $t_end s" "$FLUIDBED" run "$WORK/cfd.toml" --out "$out" \
     --end-time "$t_end" --quiet --restart "$cp"
@@ -70,6 +78,32 @@ stop_and_resume sigint INT
 stop_and_resume sigterm TERM
 stop_and_resume stopfile STOP
 stop_and_resume walltime WALL
+
+# The command the log prints reproduces the interrupted run exactly: the same --set overrides and --end-time.
+# Following it literally ends in the state of a run with those settings that was never interrupted.
+CONT_ARGS=(--end-time 0.3 --set inlet.velocity=2.0 --set 'inlet.jet[0].velocity=25' --quiet)
+"$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cont" "${CONT_ARGS[@]}" >/dev/null 2>&1 &
+pid=$!
+if wait_for_stepping "$WORK/cont" "$pid"; then
+  sleep 0.3
+  kill -INT "$pid"
+fi
+wait "$pid"
+rc=$?
+check "continue: stopped by SIGINT (exit $rc)" test "$rc" -eq 130
+cont=$(grep -o 'continue with: fluidbed run .*' "$WORK/cont/log.txt" | tail -1 | sed 's/^continue with: fluidbed //')
+check "continue: the command keeps the overrides and the end time" \
+  grep -q -- "--end-time 0.3 --set inlet.velocity=2.0 --set 'inlet.jet\[0\].velocity=25' --quiet --restart" <<<"$cont"
+expect 0 "" "continue: the logged command, as printed" eval "\"\$FLUIDBED\" $cont"
+run_ok "continue: the same run uninterrupted" run "$WORK/cfd.toml" --out "$WORK/cont-ref" "${CONT_ARGS[@]}"
+same_results "continue: logged command vs uninterrupted" "$WORK/cont-ref" "$WORK/cont"
+
+# A stop file left in the folder before a run starts belongs to an earlier run: cleared, not obeyed.
+mkdir -p "$WORK/stale"
+touch "$WORK/stale/STOP"
+expect 0 "" "stale STOP: the run is not stopped by it" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/stale" --quiet
+check "stale STOP: the log says it was removed" grep -q "removed the stop file .*STOP left from an earlier run" "$WORK/stale/log.txt"
+check "stale STOP: it is gone" test ! -e "$WORK/stale/STOP"
 
 # The interrupted and resumed run equals one that was never interrupted.
 t_end=$(cat "$WORK/sigint.end")

@@ -75,6 +75,15 @@ expect 2 "gas/. has [0-9]+ values, the case's grid needs [0-9]+" "cfd: restart o
   "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-grid" --quiet --set grid.cell_width=0.005 --allow-changed grid \
   --restart "$WORK/mid.h5"
 
+# A new run into a folder that holds results does not delete them: exit 2 naming the folder, unless --overwrite.
+cp "$WORK/cfd-full/monitor.csv" "$WORK/monitor-before.csv"
+expect 2 "cfd-full holds the results of an earlier run \(monitor.csv.*checkpoints/.*--overwrite" \
+  "cfd: a new run into a folder with results is refused" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-full" --quiet
+check "cfd: the refused run left the results as they were" cmp "$WORK/monitor-before.csv" "$WORK/cfd-full/monitor.csv"
+expect 0 "" "cfd: --overwrite replaces them" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-full" --quiet --overwrite
+check "cfd: the log says they were replaced" grep -q -- "--overwrite: replaced the earlier results" "$WORK/cfd-full/log.txt"
+check "cfd: no checkpoint of the replaced run is left" test -z "$(ls "$WORK"/cfd-full/checkpoints/t*.h5 2>/dev/null)"
+
 # A checkpoint at or past the end time has nothing to run: refused (exit 2), final.h5 left as it was.
 cp "$WORK/cfd-split/checkpoints/final.h5" "$WORK/final-before.h5"
 expect 2 "final.h5: the checkpoint is at t = 0.02 s, at or past the end time 0.02 s: nothing to run" \
@@ -99,6 +108,22 @@ output.checkpoint_interval = 0.0
 output.particles_csv = true
 TOML
 restart_case dem "$WORK/dem.toml" 0.08
+# Output times are the scheduled instants k * interval exactly, not a sum of 2e-4 s steps (0.019000000000000003):
+# every monitor row and every .pvd entry, in the straight run and in the restarted one.
+for d in dem-full dem-split; do
+  check "dem: $d: monitor.csv times and particles.pvd times are exact multiples of their intervals" python3 - \
+    "$WORK/$d" 0.002 0.02 <<'PY'
+import re, sys
+out, monitor, frames = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
+def exact(t, interval):
+    return t == round(t / interval) * interval
+rows = [float(l.split(",")[0]) for l in open(out + "/monitor.csv").read().splitlines()[1:]]
+bad = [t for t in rows if not exact(t, monitor)]
+pvd = [float(t) for t in re.findall(r'timestep="([^"]+)"', open(out + "/particles.pvd").read())]
+bad += [t for t in pvd if not exact(t, frames)]
+assert rows and pvd and not bad, f"{len(rows)} rows, {len(pvd)} frames; not k * interval: {bad[:5]}"
+PY
+done
 expect 2 "dem-full/checkpoints/final.h5.*gas.enabled" "dem: a DEM-alone checkpoint cannot start a run with gas" \
   "$FLUIDBED" run "$WORK/dem.toml" --out "$WORK/dem-gas" --quiet --set gas.enabled=true \
   --restart "$WORK/dem-full/checkpoints/final.h5"
