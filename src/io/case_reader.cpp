@@ -66,14 +66,23 @@ void insert_at(toml::table& root, const std::string& path, V&& value) {
   for (std::size_t k = 0; k < parts.size(); ++k) {
     const bool last = k + 1 == parts.size();
     const std::string& part = parts[k];
+    // Only paths the loader reads come here; a section given as a value in the case (domain = 1) is refused.
+    const auto refuse = [&] {
+      std::string owner;
+      for (std::size_t j = 0; j < k; ++j) owner += (j && parts[j].front() != '[' ? "." : "") + parts[j];
+      throw_input_error(fmt::format("{}: '{}' must be a {} to hold it", path, owner,
+                                    part.front() == '[' ? "array of tables" : "section (a table)"));
+    };
     if (part.front() == '[') {
       auto* arr = cur->as_array();
+      if (!arr) refuse();
       const auto idx = static_cast<std::size_t>(std::stoul(part.substr(1, part.size() - 2)));
       while (arr->size() <= idx) arr->push_back(toml::table{});
       cur = arr->get(idx);
       continue;
     }
     auto* tbl = cur->as_table();
+    if (!tbl) refuse();
     const bool next_is_index = !last && parts[k + 1].front() == '[';
     if (last) {
       tbl->insert_or_assign(part, std::forward<V>(value));
@@ -314,7 +323,11 @@ void CaseReader::alias(const std::string& old_path, const std::string& new_path)
   if (!old_node) return;
   if (find(new_path)) fail(old_path, fmt::format("is the old name of {}; give only {}", new_path, new_path));
   const std::string origin = fmt::format("{} ({})", where(old_path), old_path);
-  insert_at(table_, new_path, *old_node);
+  try {
+    insert_at(table_, new_path, *old_node);
+  } catch (const Error& e) {
+    throw_input_error(fmt::format("{}: {}", where(old_path), e.what()));
+  }
   const auto dot = old_path.rfind('.');
   toml::table* parent = dot == std::string::npos ? &table_ : table_.at_path(old_path.substr(0, dot)).as_table();
   parent->erase(old_path.substr(dot == std::string::npos ? 0 : dot + 1));
