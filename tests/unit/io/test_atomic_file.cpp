@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <stdexcept>
 
 #include "core/error.hpp"
@@ -74,6 +75,29 @@ TEST(AtomicFile, UnwritableTargetIsBadInputNamingThePath) {
     EXPECT_NE(msg.find("cannot write " + path.string() + ": "), std::string::npos) << msg;
     EXPECT_NE(msg.find("No such file"), std::string::npos) << msg;
   }
+}
+
+TEST(AtomicFile, WriteErrorsAreBadInputWithTheirPath) {
+  const test::ScratchDir scratch;
+  const auto path = scratch.path / "missing-folder" / "d.txt";
+  try {
+    write_file_atomic(path, std::string("x"));
+    FAIL() << "expected a WriteError";
+  } catch (const WriteError& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+    EXPECT_EQ(e.path(), path);
+    EXPECT_EQ(e.error_number(), ENOENT);
+  }
+}
+
+TEST(AtomicFile, DiskSpaceNoteOnlyForAFullDisk) {
+  // What a user needs to size the space to free: the file's size and what is left on that file system.
+  const test::ScratchDir scratch;
+  const std::string note = disk_space_note(scratch.path / "f.h5", 2500000, ENOSPC);
+  EXPECT_EQ(note.rfind("; the file needs about 2.5 MB and ", 0), 0u) << note;
+  EXPECT_NE(note.find(" free on " + scratch.path.string()), std::string::npos) << note;
+  EXPECT_EQ(disk_space_note(scratch.path / "f.h5", 0, EDQUOT).rfind("; ", 0), 0u);
+  EXPECT_EQ(disk_space_note(scratch.path / "f.h5", 100, EACCES), "");
 }
 
 TEST(AtomicFile, TempPathIsBesideTargetWithPid) {

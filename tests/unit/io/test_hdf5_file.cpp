@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <functional>
@@ -205,6 +206,81 @@ TEST(Hdf5File, WritingErrorsAreBadInput) {
   EXPECT_NE(twice.find("cannot create dataset 'x'"), std::string::npos) << twice;
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
   EXPECT_EQ(test::temp_files_in(dir), 1);  // still open, uncommitted
+}
+
+// A file with a dataset whose values have a bit pattern found nowhere else, so a test can damage exactly it.
+std::filesystem::path write_marked_file(const std::filesystem::path& dir) {
+  const auto path = dir / "c.h5";
+  Hdf5File f = Hdf5File::create(path);
+  f.create_group("dem");
+  f.write("dem/x", std::vector<double>(500, 0.123456789012345));
+  f.write("dem/id", std::vector<std::int64_t>{1, 2, 3});
+  f.write("dem/empty", std::vector<double>{});
+  f.set_attribute("/", "case_toml", std::string("[case]\nname = \"marked-case-record\"\n"));
+  f.set_attribute("dem", "time", 0.25);
+  f.commit();
+  return path;
+}
+
+std::vector<char> file_bytes(const std::filesystem::path& p) {
+  const std::string s = test::slurp(p);
+  return {s.begin(), s.end()};
+}
+
+void put_bytes(const std::filesystem::path& p, const std::vector<char>& bytes) {
+  test::spit(p, std::string(bytes.begin(), bytes.end()));
+}
+
+std::size_t find_bytes(const std::vector<char>& data, const void* pattern, std::size_t n) {
+  const char* c = static_cast<const char*>(pattern);
+  const auto it = std::search(data.begin(), data.end(), c, c + n);
+  return it == data.end() ? std::string::npos : static_cast<std::size_t>(it - data.begin());
+}
+
+TEST(Hdf5File, VerifyAcceptsAWholeFile) {
+  const test::ScratchDir scratch;
+  const auto path = write_marked_file(scratch.path);
+  ::testing::internal::CaptureStderr();
+  EXPECT_NO_THROW(Hdf5File::open(path).verify());
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(Hdf5File, VerifyNamesTheDatasetWhoseChecksumFails) {
+  // One flipped bit in the payload: the checkpoint was loaded and failed the run steps later.
+  const test::ScratchDir scratch;
+  const auto path = write_marked_file(scratch.path);
+  std::vector<char> data = file_bytes(path);
+  const double marker = 0.123456789012345;
+  const std::size_t at = find_bytes(data, &marker, sizeof marker);
+  ASSERT_NE(at, std::string::npos);
+  data[at + 8 * 250 + 2] ^= 0x10;
+  put_bytes(path, data);
+  ::testing::internal::CaptureStderr();
+  const Hdf5File f = Hdf5File::open(path);
+  const std::string msg = expect_bad_input([&] { f.verify(); });
+  EXPECT_EQ(msg.rfind(path.string() + ": corrupt: dataset 'dem/x' fails its checksum", 0), 0u) << msg;
+  const std::string read = expect_bad_input([&] { (void)f.read_double("dem/x"); });
+  EXPECT_NE(read.find("dataset 'dem/x' cannot be read (corrupt"), std::string::npos) << read;
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(Hdf5File, VerifyRefusesDamagedMetadataAndAttributes) {
+  // The 1.10 format's metadata checksums cover the superblock and the object headers holding the attributes.
+  const test::ScratchDir scratch;
+  const auto path = write_marked_file(scratch.path);
+  const std::vector<char> good = file_bytes(path);
+  const std::string record = "marked-case-record";
+  const std::size_t attribute_at = find_bytes(good, record.data(), record.size());
+  ASSERT_NE(attribute_at, std::string::npos);
+  for (const std::size_t at : {std::size_t{20}, attribute_at + 3}) {
+    std::vector<char> data = good;
+    data[at] ^= 0x01;
+    put_bytes(path, data);
+    ::testing::internal::CaptureStderr();
+    const std::string msg = expect_bad_input([&] { Hdf5File::open(path).verify(); });
+    EXPECT_EQ(msg.rfind(path.string() + ": ", 0), 0u) << "byte " << at << ": " << msg;
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  }
 }
 
 }  // namespace
