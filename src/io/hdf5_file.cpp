@@ -506,8 +506,11 @@ herr_t verify_object(hid_t root, const char* name, const H5O_info_t* info, void*
   }
   hsize_t index = 0;
   if (H5Aiterate2(object.get(), H5_INDEX_NAME, H5_ITER_NATIVE, &index, verify_attribute, &st) != 0) {
-    if (st.problem.empty()) st.problem = "the attributes of '" + where + "' cannot be read (" + hdf5_reason() + ")";
-    st.problem += " on '" + where + "'";
+    if (st.problem.empty()) {
+      st.problem = "the attributes of '" + where + "' cannot be read (" + hdf5_reason() + ")";
+    } else {
+      st.problem += " on '" + where + "'";
+    }
     return 1;
   }
   if (info->type != H5O_TYPE_DATASET) return 0;
