@@ -1,11 +1,15 @@
 #!/usr/bin/python3
 """Report of one or more fluidbed run folders: figures in the layout of Gera et al. (1998) and summary.md.
 
-Usage: report.py OUT_DIR [OUT_DIR ...] --out REPORT_DIR
+Usage: report.py OUT_DIR [OUT_DIR ...] [--label NAME ...] --out REPORT_DIR
 
 Reads per run folder (see /work/shared/interface.md): case.toml, monitor.csv, bubble.csv, fields.pvd with
 fields/NNNNNN.vti, particles.pvd with particles/NNNNNN.vtu, tracers/NNNNNN.csv and cost.json. Every missing input
-skips its figure or table with a note in summary.md. Numbers in summary.md are the CSV/JSON values as written.
+skips its figure or table with a note in summary.md, and every run a figure or table leaves out is named there with
+the reason. Numbers in summary.md are the CSV/JSON values as written.
+
+Runs are labelled by their folder name (the shortest tail of the path that tells the folders apart), or by
+--label, given once per folder in the order of the folders: a --set sweep of one case gets one label per run.
 """
 
 import argparse
@@ -23,9 +27,15 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 # Instants of the paper's Figs. 3 and 4.
 PAPER_INSTANTS = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0]
+# A frame this close to an instant is "at" it (the runner stamps frames k * interval exactly).
+AT_INSTANT = 0.005
+# Panels of a run that has no frame at any of the paper's instants (a short run, another output interval).
+OWN_INSTANTS = 6
 # Instants of the paper's Table 2.
 TABLE2_TIMES = [0.2, 0.3, 0.4, 0.5]
 # U_b = C sqrt(g D) for two-dimensional bubbles; the same constant as src/analysis/rise_velocity.hpp.
@@ -34,6 +44,12 @@ G = 9.81
 VOIDAGE_CMAP = "cividis"
 # Two alternating shades that stay distinct in grey print, as the paper's coloured layers.
 LAYER_COLOURS = ["#1f3b73", "#e8c547"]
+# Species: Okabe-Ito colours (distinct for colour-blind readers), none of them a layer shade.
+SPECIES_COLOURS = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#F0E442", "#56B4E9", "#E69F00", "#000000"]
+# Panel size of the bed maps, inches: the paper's bed (0.6 x 1.0 m) gets 1.6 x 2.7; a panel is never taller
+# than PANEL_MAX_H nor narrower than PANEL_MIN_W (a tall narrow bed), nor wider than PANEL_MAX_W (a wide one).
+PANEL_REF_W, PANEL_REF_ASPECT = 1.6, 1.0 / 0.6
+PANEL_MAX_H, PANEL_MIN_W, PANEL_MAX_W = 4.5, 0.45, 3.2
 
 
 # ---------------------------------------------------------------------------------------------------------- input
@@ -108,7 +124,7 @@ def read_vti(path):
 
 
 def read_vtu(path):
-    """Particle centres, diameters and layers of a particles/NNNNNN.vtu file."""
+    """Particle centres, diameters, layers and species of a particles/NNNNNN.vtu file."""
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
 
@@ -121,10 +137,12 @@ def read_vtu(path):
     pts = vtk_to_numpy(grid.GetPoints().GetData())
     pd = grid.GetPointData()
     layer = vtk_array(pd, "layer")
+    species = vtk_array(pd, "species")
     diameter = vtk_array(pd, "diameter")
     n = pts.shape[0]
     return {"x": pts[:, 0].astype(float), "y": pts[:, 1].astype(float),
             "layer": np.zeros(n, dtype=int) if layer is None else np.asarray(layer, dtype=int),
+            "species": np.zeros(n, dtype=int) if species is None else np.asarray(species, dtype=int),
             "diameter": np.full(n, 0.004) if diameter is None else np.asarray(diameter, dtype=float)}
 
 
@@ -133,11 +151,50 @@ def frame_index(path):
     return int(stem) if stem.isdigit() else None
 
 
+def jets_of(case):
+    """The jets of a resolved case.toml: [[inlet.jet]] entries that blow faster or slower than the rest of the
+    inlet for some time, with the gas on. None when the case is unknown."""
+    if not case:
+        return None
+    gas = case.get("gas", {})
+    if isinstance(gas, dict) and gas.get("enabled") is False:
+        return []
+    inlet = case.get("inlet", {})
+    if not isinstance(inlet, dict):
+        return []
+    base = inlet.get("velocity", 0.0)
+    jets = inlet.get("jet", [])
+    if not isinstance(jets, list):
+        return []
+    out = []
+    for j in jets:
+        if not isinstance(j, dict):
+            continue
+        v, start, end = j.get("velocity", 0.0), j.get("start", 0.0), j.get("end", math.inf)
+        if isinstance(v, (int, float)) and v != base and end > start:
+            out.append(j)
+    return out
+
+
+def gravity_of(case):
+    """|g| of a resolved case.toml (domain.gravity, formerly dem.gravity: x, y components), else 9.81."""
+    for section in ("domain", "dem", "gas"):
+        g = case.get(section, {}).get("gravity") if isinstance(case.get(section), dict) else None
+        if isinstance(g, list) and len(g) == 2 and all(isinstance(c, (int, float)) for c in g):
+            magnitude = math.hypot(g[0], g[1])
+            if magnitude > 0:
+                return magnitude
+        elif isinstance(g, (int, float)) and g > 0:
+            return float(g)
+    return G
+
+
 class Run:
     def __init__(self, folder):
         self.folder = folder
         self.notes = []
-        self.name = os.path.basename(os.path.normpath(folder))
+        self.label = os.path.basename(os.path.normpath(folder))
+        self.name = self.label
         self.model = "?"
         self.case = {}
         case_path = os.path.join(folder, "case.toml")
@@ -152,6 +209,8 @@ class Run:
                 self.notes.append(f"case.toml unreadable ({e})")
         else:
             self.notes.append("no case.toml")
+        self.jets = jets_of(self.case)
+        self.species = [s for s in self.case.get("species", []) if isinstance(s, dict)] if self.case else []
         self.monitor = read_csv(os.path.join(folder, "monitor.csv"))
         if self.monitor is None:
             self.notes.append("no monitor.csv")
@@ -179,37 +238,104 @@ class Run:
                     self.cost = json.load(f)
             except (json.JSONDecodeError, OSError) as e:
                 self.notes.append(f"cost.json unreadable ({e})")
-        self.gravity = G
-        g = self.case.get("gas", {}).get("gravity") if isinstance(self.case.get("gas"), dict) else None
-        if isinstance(g, (int, float)) and g > 0:
-            self.gravity = float(g)
+        self.gravity = gravity_of(self.case) if self.case else G
+        self._domain = None
 
-    def label(self):
-        return f"{self.name} ({self.model})"
+    def has_jet(self):
+        """True or False from case.toml; None when the case is unknown (then the jet tables show the run)."""
+        return None if self.jets is None else bool(self.jets)
+
+    def domain(self):
+        """(x0, x1, y0, y1, cell width) of the bed: from the first field frame, else from case.toml."""
+        if self._domain is None:
+            if self.fields:
+                f = read_vti(self.fields[0][1])
+                if f is not None:
+                    self._domain = (f["x0"], f["x0"] + f["nx"] * f["dx"], f["y0"], f["y0"] + f["ny"] * f["dy"],
+                                    f["dx"])
+            if self._domain is None and isinstance(self.case.get("domain"), dict):
+                d = self.case["domain"]
+                w, h = d.get("width"), d.get("height")
+                cw = self.case.get("grid", {}).get("cell_width", 0.02) if isinstance(self.case.get("grid"), dict) \
+                    else 0.02
+                if isinstance(w, (int, float)) and isinstance(h, (int, float)) and w > 0 and h > 0:
+                    self._domain = (0.0, float(w), 0.0, float(h), float(cw))
+        return self._domain
+
+
+def unique_labels(folders):
+    """Folder names, lengthened by parent folders where two runs would otherwise share one (a/run, b/run)."""
+    parts = [os.path.normpath(os.path.abspath(f)).split(os.sep) for f in folders]
+    depth = [1] * len(folders)
+    while True:
+        labels = ["/".join(p[-d:]) for p, d in zip(parts, depth)]
+        clash = [k for k, lab in enumerate(labels) if labels.count(lab) > 1 and depth[k] < len(parts[k])]
+        if not clash:
+            return labels
+        for k in clash:
+            depth[k] += 1
 
 
 # ---------------------------------------------------------------------------------------------------- selection
 
-def nearest_frame(frames, t, tol):
-    """The frame nearest to time t, if within tol."""
+def span_of(frames):
+    """(first, last, spacing) of a run's frame times."""
+    times = [t for t, _ in frames]
+    spacing = float(np.median(np.diff(times))) if len(times) > 1 else 0.0
+    return times[0], times[-1], spacing
+
+
+def nearest_frame(frames, t):
+    """The frame nearest to time t, if t lies within the run's frames (half a frame spacing past either end)."""
     if not frames:
         return None
-    best = min(frames, key=lambda fr: abs(fr[0] - t))
-    return best if abs(best[0] - t) <= tol else None
+    first, last, spacing = span_of(frames)
+    if t < first - 0.5 * spacing - AT_INSTANT or t > last + 0.5 * spacing + AT_INSTANT:
+        return None
+    return min(frames, key=lambda fr: abs(fr[0] - t))
 
 
-def choose_instants(frame_lists):
-    """The paper's instants that some run has a frame for (within 5 ms), else up to 6 instants spread over the
-    frames of the first run with frames."""
-    chosen = [t for t in PAPER_INSTANTS if any(nearest_frame(fl, t, 0.005) for fl in frame_lists)]
-    if chosen:
-        return chosen, 0.005
-    for fl in frame_lists:
-        if fl:
-            times = [fr[0] for fr in fl]
-            k = np.unique(np.linspace(0, len(times) - 1, min(6, len(times))).round().astype(int))
-            return [times[i] for i in k], 1e-9
-    return [], 0.0
+def own_instants(frames, n=OWN_INSTANTS):
+    times = [t for t, _ in frames]
+    k = np.unique(np.linspace(0, len(times) - 1, min(n, len(times))).round().astype(int))
+    return [times[i] for i in k]
+
+
+def choose_panels(runs, frames_of, what):
+    """One row per run with frames: the columns are the paper's instants that some run reaches; a run reaching
+    none of them gets its own instants (up to OWN_INSTANTS frames spread over it). Returns (rows, columns, notes):
+    rows [(run, [frame or None per column])], notes for summary.md on every run or panel left out and on frames
+    shown away from the instant."""
+    notes = []
+    with_frames = []
+    for r in runs:
+        if frames_of(r):
+            with_frames.append(r)
+        else:
+            notes.append(f"{r.label}: left out, it has no {what}")
+    columns = [t for t in PAPER_INSTANTS if any(nearest_frame(frames_of(r), t) for r in with_frames)]
+    n_cols = len(columns) if columns else min(OWN_INSTANTS, max((len(frames_of(r)) for r in with_frames), default=0))
+    rows = []
+    for r in with_frames:
+        frames = frames_of(r)
+        first, last, _ = span_of(frames)
+        chosen = [nearest_frame(frames, t) for t in columns]
+        if not any(chosen):
+            own = own_instants(frames, max(n_cols, 1))
+            chosen = [next(fr for fr in frames if fr[0] == t) for t in own] + [None] * max(0, n_cols - len(own))
+            notes.append(f"{r.label}: no {what} at the paper's instants (its frames run from {first:.3g} to "
+                         f"{last:.3g} s); its row shows its own instants " + ", ".join(f"{t:.3g}" for t in own) + " s")
+        else:
+            missing = [t for t, fr in zip(columns, chosen) if fr is None]
+            if missing:
+                notes.append(f"{r.label}: no panel at t = " + ", ".join(f"{t:g}" for t in missing)
+                             + f" s (its frames run from {first:.3g} to {last:.3g} s)")
+            off = [(t, fr[0]) for t, fr in zip(columns, chosen) if fr is not None and abs(fr[0] - t) > AT_INSTANT]
+            if off:
+                notes.append(f"{r.label}: no frame within {AT_INSTANT * 1e3:g} ms of every instant; the nearest are "
+                             "shown: " + ", ".join(f"{fr:.3g} s for {t:g} s" for t, fr in off))
+        rows.append((r, chosen))
+    return rows, n_cols, notes
 
 
 # ------------------------------------------------------------------------------------------------------- figures
@@ -219,135 +345,223 @@ def save(fig, path):
     plt.close(fig)
 
 
-def panel_grid(n_rows, n_cols, aspect):
-    w = 1.6
-    fig, axes = plt.subplots(n_rows, n_cols, figsize=(w * n_cols + 1.2, w * aspect * n_rows + 0.8), squeeze=False)
-    return fig, axes
+def panel_size(aspect):
+    """(width, height) in inches of one bed panel for a bed of height / width = aspect: the panel keeps the bed's
+    shape; tall narrow beds get narrow panels of bounded height, wide beds wider, shorter ones."""
+    w = PANEL_REF_W * math.sqrt(PANEL_REF_ASPECT / max(aspect, 1e-6))
+    w = min(max(w, PANEL_MIN_W), PANEL_MAX_W)
+    h = w * aspect
+    if h > PANEL_MAX_H:
+        h = PANEL_MAX_H
+        w = max(h / aspect, PANEL_MIN_W)
+    return w, h
 
 
-def figure_voidage(runs, path):
-    lists = [r.fields for r in runs]
-    instants, tol = choose_instants(lists)
-    if not instants:
+def bed_aspect(rows):
+    """The largest height / width of the runs' beds (a figure's panels share one size)."""
+    aspects = []
+    for r, _ in rows:
+        d = r.domain()
+        if d:
+            aspects.append((d[3] - d[2]) / max(d[1] - d[0], 1e-12))
+    return max(aspects) if aspects else PANEL_REF_ASPECT
+
+
+def panel_grid(n_rows, n_cols, aspect, side=1.4):
+    """A grid of bed panels; `side` inches on the right for a colour bar or a legend, and room for the row
+    labels, the y ticks of the first column, the titles and the x ticks of each panel."""
+    w, h = panel_size(aspect)
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=((w + 0.12) * n_cols + 0.9 + side, (h + 0.5) * n_rows + 0.5),
+                             squeeze=False, layout="constrained")
+    return fig, axes, (w, h)
+
+
+def time_text(t):
+    """A frame time as a panel title: 0.10 for the instants of a 0.01 s output, else three decimals."""
+    return f"{t:.2f}" if abs(t * 100 - round(t * 100)) < 1e-6 else f"{t:.3f}"
+
+
+def style_panel(ax, run, fr, column, n_rows, row, panel_w, domain):
+    narrow = panel_w < 1.0
+    ax.set_title(f"{time_text(fr[0])} s" if narrow else f"t = {time_text(fr[0])} s", fontsize=6 if narrow else 8)
+    ax.tick_params(labelsize=5 if narrow else 6, labelleft=column == 0)
+    if narrow and domain:
+        ax.set_xticks([domain[0], domain[1]])
+    else:
+        ax.xaxis.set_major_locator(MaxNLocator(3))
+    if column == 0:
+        ax.set_ylabel(f"{run.label}\ny (m)", fontsize=7)
+    if row == n_rows - 1:
+        ax.set_xlabel("x (m)", fontsize=6 if narrow else 7)
+
+
+def empty_panel(ax):
+    ax.set_axis_off()
+
+
+def figure_voidage(runs, path, notes):
+    rows, n_cols, why = choose_panels(runs, lambda r: r.fields, "field frames")
+    notes += why
+    if not rows or n_cols == 0:
         return "no fields.pvd frames in any run"
-    rows = [r for r in runs if r.fields]
-    first = read_vti(rows[0].fields[0][1])
-    if first is None:
-        return "fields have no voidage array"
-    aspect = (first["ny"] * first["dy"]) / (first["nx"] * first["dx"])
-    fig, axes = panel_grid(len(rows), len(instants), aspect)
+    fig, axes, (pw, _) = panel_grid(len(rows), n_cols, bed_aspect(rows))
     image = None
-    for a, run in enumerate(rows):
-        for b, t in enumerate(instants):
+    for a, (run, frames) in enumerate(rows):
+        for b in range(n_cols):
             ax = axes[a][b]
-            fr = nearest_frame(run.fields, t, tol)
+            fr = frames[b] if b < len(frames) else None
             f = read_vti(fr[1]) if fr else None
             if f is None:
-                ax.set_axis_off()
+                if fr is not None:
+                    notes.append(f"{run.label}: {os.path.basename(fr[1])} has no voidage array")
+                empty_panel(ax)
                 continue
             ext = [f["x0"], f["x0"] + f["nx"] * f["dx"], f["y0"], f["y0"] + f["ny"] * f["dy"]]
             image = ax.imshow(f["eps"], origin="lower", extent=ext, cmap=VOIDAGE_CMAP, vmin=0.35, vmax=1.0,
                               interpolation="nearest")
-            ax.set_title(f"t = {fr[0]:.2f} s", fontsize=8)
-            ax.tick_params(labelsize=6)
-            if b == 0:
-                ax.set_ylabel(f"{run.label()}\ny (m)", fontsize=7)
-            if a == len(rows) - 1:
-                ax.set_xlabel("x (m)", fontsize=7)
-    if image is not None:
-        cb = fig.colorbar(image, ax=axes.ravel().tolist(), shrink=0.8)
-        cb.set_label("voidage")
+            style_panel(ax, run, fr, b, len(rows), a, pw, run.domain())
+    if image is None:
+        plt.close(fig)
+        return "no field frame has a voidage array"
+    cb = fig.colorbar(image, ax=axes.ravel().tolist(), shrink=0.8)
+    cb.set_label("voidage")
     fig.suptitle("Voidage (layout of Gera et al. 1998, Fig. 3)", fontsize=10)
     save(fig, path)
     return None
 
 
-def scatter_layers(ax, x, y, layer, diameter_m, width_m, panel_w_in):
+def scatter_colours(ax, x, y, colours, diameter_m, scale_pt_per_m):
     # Marker area in points^2 from the physical diameter, so the balls look as large as they are.
-    pts_per_m = panel_w_in * 72.0 / max(width_m, 1e-12)
-    size = (np.asarray(diameter_m) * pts_per_m) ** 2
-    colours = np.array(LAYER_COLOURS)[np.asarray(layer) % 2]
+    size = (np.asarray(diameter_m) * scale_pt_per_m) ** 2
     ax.scatter(x, y, s=size, c=colours, linewidths=0)
 
 
-def domain_of(run):
-    if run.fields:
-        f = read_vti(run.fields[0][1])
-        if f is not None:
-            return f["x0"], f["x0"] + f["nx"] * f["dx"], f["y0"], f["y0"] + f["ny"] * f["dy"], f["dx"]
-    return None
+def points_per_metre(domain, panel):
+    """Display scale of a panel of `panel` inches showing `domain` with equal axes (the smaller of the two fits)."""
+    if not domain:
+        return panel[0] * 72.0 / 0.6
+    return 72.0 * 0.85 * min(panel[0] / max(domain[1] - domain[0], 1e-12), panel[1] / max(domain[3] - domain[2],
+                                                                                        1e-12))
 
 
-def figure_layers(runs, kind, path):
-    """kind 'particles': DEM particles by initial layer (Fig. 4a); 'tracers': cell balls (Fig. 4b/c)."""
-    rows = [r for r in runs if (r.particles if kind == "particles" else r.tracers)]
-    if not rows:
-        return f"no {kind} in any run"
-    instants, tol = choose_instants([r.particles if kind == "particles" else r.tracers for r in rows])
-    dom = domain_of(rows[0])
-    width = (dom[1] - dom[0]) if dom else 0.6
-    height = (dom[3] - dom[2]) if dom else 1.0
-    fig, axes = panel_grid(len(rows), len(instants), height / width)
-    panel_w = 1.6
-    for a, run in enumerate(rows):
-        d = domain_of(run)
-        frames = run.particles if kind == "particles" else run.tracers
-        for b, t in enumerate(instants):
+def species_of(run, k):
+    """'species k: d = 4 mm' from case.toml where it has the species."""
+    if k < len(run.species):
+        d = run.species[k].get("diameter")
+        rho = run.species[k].get("density")
+        bits = []
+        if isinstance(d, (int, float)):
+            bits.append(f"d = {d * 1e3:.3g} mm")
+        if isinstance(rho, (int, float)):
+            bits.append(f"{rho:.4g} kg/m^3")
+        if bits:
+            return f"species {k}: " + ", ".join(bits)
+    return f"species {k}"
+
+
+def figure_particles(runs, kind, path, notes):
+    """kind 'layers': DEM particles by initial layer (Fig. 4a); 'species': by species; 'tracers': cell balls
+    (Fig. 4b/c)."""
+    frames_of = (lambda r: r.tracers) if kind == "tracers" else (lambda r: r.particles)
+    what = "tracer frames" if kind == "tracers" else "particle frames"
+    candidates = runs
+    if kind == "species":
+        # Only worth a figure where some run mixes species.
+        candidates = [r for r in runs if r.particles]
+        mixed = []
+        for r in candidates:
+            p = read_vtu(r.particles[-1][1])
+            if (p is not None and len(np.unique(p["species"])) > 1) or len(r.species) > 1:
+                mixed.append(r)
+        if not mixed:
+            return "no run has particles of more than one species"
+        for r in candidates:
+            if r not in mixed:
+                notes.append(f"{r.label}: left out, its particles are all of one species")
+        candidates = mixed
+    rows, n_cols, why = choose_panels(candidates, frames_of, what)
+    notes += why
+    if not rows or n_cols == 0:
+        return f"no {what} in any run"
+    fig, axes, panel = panel_grid(len(rows), n_cols, bed_aspect(rows), side=2.7 if kind == "species" else 0.2)
+    species_seen = {}
+    drawn = 0
+    for a, (run, frames) in enumerate(rows):
+        d = run.domain()
+        scale = points_per_metre(d, panel)
+        for b in range(n_cols):
             ax = axes[a][b]
-            fr = nearest_frame(frames, t, tol)
+            fr = frames[b] if b < len(frames) else None
             if fr is None:
-                ax.set_axis_off()
+                empty_panel(ax)
                 continue
-            if kind == "particles":
-                p = read_vtu(fr[1])
-                if p is None:
-                    ax.set_axis_off()
-                    continue
-                scatter_layers(ax, p["x"], p["y"], p["layer"], p["diameter"], width, panel_w)
-            else:
+            if kind == "tracers":
                 c = read_csv(fr[1])
                 if c is None:
-                    ax.set_axis_off()
+                    empty_panel(ax)
                     continue
                 ball = d[4] if d else 0.02  # the paper's balls have the diameter of a cell
-                scatter_layers(ax, numeric(c, "x"), numeric(c, "y"), numeric(c, "layer").astype(int), ball, width,
-                               panel_w)
+                colours = np.array(LAYER_COLOURS)[numeric(c, "layer").astype(int) % 2]
+                scatter_colours(ax, numeric(c, "x"), numeric(c, "y"), colours, ball, scale)
+            else:
+                p = read_vtu(fr[1])
+                if p is None:
+                    empty_panel(ax)
+                    continue
+                if kind == "species":
+                    colours = np.array(SPECIES_COLOURS)[p["species"] % len(SPECIES_COLOURS)]
+                    for k in np.unique(p["species"]):
+                        species_seen.setdefault(int(k), species_of(run, int(k)))
+                else:
+                    colours = np.array(LAYER_COLOURS)[p["layer"] % 2]
+                scatter_colours(ax, p["x"], p["y"], colours, p["diameter"], scale)
+            drawn += 1
             if d:
                 ax.set_xlim(d[0], d[1])
                 ax.set_ylim(d[2], d[3])
             ax.set_aspect("equal")
-            ax.set_title(f"t = {fr[0]:.2f} s", fontsize=8)
-            ax.tick_params(labelsize=6)
-            if b == 0:
-                ax.set_ylabel(f"{run.label()}\ny (m)", fontsize=7)
-            if a == len(rows) - 1:
-                ax.set_xlabel("x (m)", fontsize=7)
-    title = ("Particles by initial layer (Fig. 4a)" if kind == "particles"
-             else "Cell tracer balls moved by the cell solids velocity (Fig. 4b/c)")
+            style_panel(ax, run, fr, b, len(rows), a, panel[0], d)
+    if drawn == 0:
+        plt.close(fig)
+        return f"no readable {what}"
+    if species_seen:
+        handles = [Line2D([], [], marker="o", linestyle="", color=SPECIES_COLOURS[k % len(SPECIES_COLOURS)],
+                          label=species_seen[k]) for k in sorted(species_seen)]
+        axes[0][-1].legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7, frameon=False)
+    title = {"layers": "Particles by initial layer (Fig. 4a)", "species": "Particles by species",
+             "tracers": "Cell tracer balls moved by the cell solids velocity (Fig. 4b/c)"}[kind]
     fig.suptitle(title, fontsize=10)
     save(fig, path)
     return None
 
 
-def figure_curves(runs, source, column, ylabel, title, path):
+def figure_curves(runs, source, column, ylabel, title, path, notes):
     """One curve per run of `column` against time; a column ending in '*' is a prefix (one curve per match)."""
     fig, ax = plt.subplots(figsize=(6, 4))
     drawn = 0
     for run in runs:
         cols = run.bubble if source == "bubble" else run.monitor
         if cols is None:
+            notes.append(f"{run.label}: left out, no {source}.csv")
             continue
         names = ([c for c in cols if c.startswith(column[:-1])] if column.endswith("*")
                  else [column] if column in cols else [])
         t = numeric(cols, "time_s")
+        shown = 0
         for name in names:
             v = numeric(cols, name)
             ok = np.isfinite(t) & np.isfinite(v)
             if not ok.any():
                 continue
-            label = run.label() if len(names) == 1 else f"{run.label()} {name}"
+            label = run.label if len(names) == 1 else f"{run.label} {name}"
             ax.plot(t[ok], v[ok], marker=".", markersize=3, label=label)
             drawn += 1
+            shown += 1
+        if shown == 0:
+            why = f"{source}.csv has no values of {column}" if names else f"{source}.csv has no column {column}"
+            if names and source == "bubble":
+                why += " (no bubble was detected)"
+            notes.append(f"{run.label}: left out, {why}")
     if drawn == 0:
         plt.close(fig)
         return f"no {column} values in any {source}.csv"
@@ -361,20 +575,22 @@ def figure_curves(runs, source, column, ylabel, title, path):
     return None
 
 
-def figure_rise_vs_correlation(runs, path):
+def figure_rise_vs_correlation(runs, path, notes):
     fig, ax = plt.subplots(figsize=(6, 4))
     d_max = 0.0
     g = G
     drawn = 0
     for run in runs:
         if run.bubble is None:
+            notes.append(f"{run.label}: left out, no bubble.csv")
             continue
         d = numeric(run.bubble, "equivalent_diameter_m")
         u = numeric(run.bubble, "rise_velocity_m_s")
         ok = np.isfinite(d) & np.isfinite(u)
         if not ok.any():
+            notes.append(f"{run.label}: left out, bubble.csv has no rows with both a diameter and a rise velocity")
             continue
-        ax.plot(d[ok], u[ok], "o", markersize=3, label=run.label())
+        ax.plot(d[ok], u[ok], "o", markersize=3, label=run.label)
         d_max = max(d_max, float(d[ok].max()))
         g = run.gravity
         drawn += 1
@@ -429,18 +645,33 @@ def cell(token, fmt=".2f"):
     return format(float(token), fmt)
 
 
+def jet_runs(runs):
+    """Runs the jet-bubble tables apply to, and a sentence naming those left out (beds without a jet)."""
+    with_jet = [r for r in runs if r.has_jet() is not False]
+    without = [r.label for r in runs if r.has_jet() is False]
+    note = []
+    if without:
+        note = [f"Left out, beds without a jet (case.toml has no [[inlet.jet]] that differs from the inlet, or the "
+                f"gas is off), so no jet-formed bubble to follow: {', '.join(without)}."]
+    return with_jet, note
+
+
 def table2(runs):
     lines = []
-    with_bubble = [r for r in runs if r.bubble is not None]
+    with_jet, note = jet_runs(runs)
+    if not with_jet:
+        return ["No run has a jet: Table 2 (the jet-formed bubble of the paper) does not apply."] + [""] + note
+    with_bubble = [r for r in with_jet if r.bubble is not None]
+    no_bubble = [r.label for r in with_jet if r.bubble is None]
     if not with_bubble:
-        return ["No run has a bubble.csv: Table 2 skipped."]
+        return ["No run with a jet has a bubble.csv: Table 2 skipped."] + [""] + note
     lines.append("Values are the bubble.csv rows nearest in time to each instant (the row's own time in brackets); "
                  "'–' where the row has no bubble.")
     lines.append("")
     head = "| t (s) |"
     sep = "|---|"
     for r in with_bubble:
-        head += f" {r.label()}: axial gas velocity (m/s) | rise velocity (m/s) | U_th/U_mf |"
+        head += f" {r.label}: axial gas velocity (m/s) | rise velocity (m/s) | U_th/U_mf |"
         sep += "---|---|---|"
     lines += [head, sep]
     for t in TABLE2_TIMES:
@@ -455,6 +686,29 @@ def table2(runs):
                      f" {cell(get('rise_velocity_m_s'))} |"
                      f" {cell(get('throughflow_ratio'))} |")
         lines.append(line)
+    if no_bubble:
+        lines += ["", f"Left out, no bubble.csv: {', '.join(no_bubble)}."]
+    if note:
+        lines += [""] + note
+    return lines
+
+
+def bubble_events(runs):
+    with_jet, note = jet_runs(runs)
+    if not with_jet:
+        return ["No run has a jet: no detachment of a jet-formed bubble to report."] + [""] + note
+    lines = ["| run | detachment time (s) | first eruption time (s) |", "|---|---|---|"]
+    for r in with_jet:
+        if r.bubble is None:
+            lines.append(f"| {r.label} | no bubble.csv | no bubble.csv |")
+            continue
+        t_det = detachment_time(r.bubble)
+        t_eru = first_time_where(r.bubble, 'erupted', '1')
+        lines.append(f"| {r.label} | {cell(t_det, '.3f') if t_det else 'none'} | "
+                     f"{cell(t_eru, '.3f') if t_eru else 'none'} |")
+    lines += ["", "Detachment: the first bubble.csv row with attached = 0 after a row with attached = 1."]
+    if note:
+        lines += [""] + note
     return lines
 
 
@@ -465,51 +719,61 @@ def cost_table(runs):
     keys = ["cells", "particles", "time_steps", "wall_s", "simulated_s"]
     lines = ["| run | " + " | ".join(keys) + " |", "|---" * (len(keys) + 1) + "|"]
     for r in with_cost:
-        lines.append(f"| {r.label()} | " + " | ".join(str(r.cost.get(k, "–")) for k in keys) + " |")
+        lines.append(f"| {r.label} | " + " | ".join(str(r.cost.get(k, "–")) for k in keys) + " |")
     return lines
 
 
 # -------------------------------------------------------------------------------------------------------- main
 
-def write_report(folders, out):
+def write_report(folders, out, labels=None):
     figdir = os.path.join(out, "figures")
     os.makedirs(figdir, exist_ok=True)
     runs = [Run(f) for f in folders]
+    for r, lab in zip(runs, labels or unique_labels(folders)):
+        r.label = lab
     figures = [
-        ("voidage.png", "Voidage maps at the paper's instants (Fig. 3 layout)", lambda p: figure_voidage(runs, p)),
+        ("voidage.png", "Voidage maps at the paper's instants (Fig. 3 layout)",
+         lambda p, n: figure_voidage(runs, p, n)),
         ("layers_particles.png", "Particles coloured by initial layer (Fig. 4a)",
-         lambda p: figure_layers(runs, "particles", p)),
+         lambda p, n: figure_particles(runs, "layers", p, n)),
+        ("species_particles.png", "Particles coloured by species",
+         lambda p, n: figure_particles(runs, "species", p, n)),
         ("layers_tracers.png", "Cell tracer balls coloured by initial layer (Fig. 4b/c)",
-         lambda p: figure_layers(runs, "tracers", p)),
+         lambda p, n: figure_particles(runs, "tracers", p, n)),
         ("nose_height.png", "Bubble nose height",
-         lambda p: figure_curves(runs, "bubble", "nose_height_m", "nose height (m)", "Bubble nose height", p)),
+         lambda p, n: figure_curves(runs, "bubble", "nose_height_m", "nose height (m)", "Bubble nose height", p, n)),
         ("rise_velocity.png", "Bubble rise velocity",
-         lambda p: figure_curves(runs, "bubble", "rise_velocity_m_s", "rise velocity (m/s)", "Bubble rise velocity",
-                                 p)),
+         lambda p, n: figure_curves(runs, "bubble", "rise_velocity_m_s", "rise velocity (m/s)",
+                                    "Bubble rise velocity", p, n)),
         ("throughflow_ratio.png", "Throughflow ratio U_th/U_mf",
-         lambda p: figure_curves(runs, "bubble", "throughflow_ratio", "U_th / U_mf", "Throughflow at the nose", p)),
+         lambda p, n: figure_curves(runs, "bubble", "throughflow_ratio", "U_th / U_mf", "Throughflow at the nose",
+                                    p, n)),
         ("equivalent_diameter.png", "Bubble equivalent diameter",
-         lambda p: figure_curves(runs, "bubble", "equivalent_diameter_m", "D = sqrt(4A/pi) (m)",
-                                 "Bubble equivalent diameter", p)),
+         lambda p, n: figure_curves(runs, "bubble", "equivalent_diameter_m", "D = sqrt(4A/pi) (m)",
+                                    "Bubble equivalent diameter", p, n)),
         ("rise_vs_correlation.png", "Rise velocity against the 2D correlation",
-         lambda p: figure_rise_vs_correlation(runs, p)),
+         lambda p, n: figure_rise_vs_correlation(runs, p, n)),
         ("pressure_drop.png", "Bed pressure drop",
-         lambda p: figure_curves(runs, "monitor", "pressure_drop_Pa", "pressure drop (Pa)", "Bed pressure drop", p)),
+         lambda p, n: figure_curves(runs, "monitor", "pressure_drop_Pa", "pressure drop (Pa)", "Bed pressure drop",
+                                    p, n)),
         ("mixing_index.png", "Lacey mixing index",
-         lambda p: figure_curves(runs, "monitor", "lacey*", "Lacey index M", "Mixing index", p)),
+         lambda p, n: figure_curves(runs, "monitor", "lacey*", "Lacey index M", "Mixing index", p, n)),
     ]
     md = ["# fluidbed report", ""]
     md.append("## Runs")
     md.append("")
-    md.append("| run | model | folder | notes |")
-    md.append("|---|---|---|---|")
+    md.append("| run | case | model | jet | folder | notes |")
+    md.append("|---|---|---|---|---|---|")
     for r in runs:
-        md.append(f"| {r.name} | {r.model} | {r.folder} | {'; '.join(r.notes) if r.notes else '–'} |")
+        jet = {True: "yes", False: "no", None: "unknown"}[r.has_jet()]
+        md.append(f"| {r.label} | {r.name} | {r.model} | {jet} | {r.folder} | "
+                  f"{'; '.join(r.notes) if r.notes else '–'} |")
     md += ["", "## Figures", ""]
     for fname, caption, make in figures:
         path = os.path.join(figdir, fname)
+        notes = []
         try:
-            why = make(path)
+            why = make(path, notes)
         except Exception as e:  # a broken input file skips its figure, never the report
             why = f"failed: {type(e).__name__}: {e}"
             plt.close("all")
@@ -517,21 +781,12 @@ def write_report(folders, out):
             md.append(f"- {caption}: ![{caption}](figures/{fname})")
         else:
             md.append(f"- {caption}: skipped ({why}).")
+        for n in notes:
+            md.append(f"  - {n}")
     md += ["", "## Table 2: axial gas velocity at the nose, rise velocity and U_th/U_mf", ""]
     md += table2(runs)
     md += ["", "## Bubble events", ""]
-    md.append("| run | detachment time (s) | first eruption time (s) |")
-    md.append("|---|---|---|")
-    for r in runs:
-        if r.bubble is None:
-            md.append(f"| {r.label()} | no bubble.csv | no bubble.csv |")
-            continue
-        t_det = detachment_time(r.bubble)
-        t_eru = first_time_where(r.bubble, 'erupted', '1')
-        md.append(f"| {r.label()} | {cell(t_det, '.3f') if t_det else 'none'} | "
-                  f"{cell(t_eru, '.3f') if t_eru else 'none'} |")
-    md.append("")
-    md.append("Detachment: the first bubble.csv row with attached = 0 after a row with attached = 1.")
+    md += bubble_events(runs)
     md += ["", "## Cost", ""]
     md += cost_table(runs)
     md.append("")
@@ -544,12 +799,25 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description="Figures and summary.md of fluidbed run folders.")
     ap.add_argument("runs", nargs="+", help="run output folders")
     ap.add_argument("--out", default="report", help="report folder (default: report)")
+    ap.add_argument("--label", action="append", default=None,
+                    help="label of a run in legends and tables, once per folder in the order of the folders "
+                         "(default: the folder name)")
     args = ap.parse_args(argv)
     missing = [d for d in args.runs if not os.path.isdir(d)]
     if missing:
         print(f"report: not a folder: {', '.join(missing)}", file=sys.stderr)
         return 2
-    write_report(args.runs, args.out)
+    if args.label is not None:
+        if len(args.label) != len(args.runs):
+            print(f"report: {len(args.label)} --label for {len(args.runs)} run folders: give one per folder, in "
+                  "their order", file=sys.stderr)
+            return 2
+        dup = sorted({lab for lab in args.label if args.label.count(lab) > 1})
+        if dup or any(not lab.strip() for lab in args.label):
+            print(f"report: --label values must be non-empty and differ (repeated: {', '.join(dup) or 'an empty one'})",
+                  file=sys.stderr)
+            return 2
+    write_report(args.runs, args.out, args.label)
     print(f"report written to {os.path.join(args.out, 'summary.md')}")
     return 0
 

@@ -7,6 +7,7 @@
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "core/error.hpp"
@@ -26,7 +27,7 @@ std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-int report(const std::vector<std::string>& dirs, const std::string& out) {
+int report(const std::vector<std::string>& dirs, const std::vector<std::string>& labels, const std::string& out) {
   const char* env = std::getenv("FLUIDBED_POST_DIR");
   const std::filesystem::path post = env ? env : FLUIDBED_POST_DIR;
   const std::filesystem::path script = post / "report.py";
@@ -39,10 +40,17 @@ int report(const std::vector<std::string>& dirs, const std::string& out) {
       throw fluidbed::Error(fluidbed::ErrorKind::BadInput, fmt::format("{}: not a run output folder", d));
     }
   }
+  if (!labels.empty() && labels.size() != dirs.size()) {
+    throw fluidbed::Error(fluidbed::ErrorKind::BadInput,
+                          fmt::format("{} --label for {} run folders: give one per folder, in their order",
+                                      labels.size(), dirs.size()));
+  }
   std::string cmd = "/usr/bin/python3 " + shell_quote(script.string());
   for (const auto& d : dirs) cmd += " " + shell_quote(d);
+  for (const auto& l : labels) cmd += " --label " + shell_quote(l);
   cmd += " --out " + shell_quote(out);
   const int rc = std::system(cmd.c_str());
+  if (rc != -1 && WIFEXITED(rc) && WEXITSTATUS(rc) == 2) return 2;  // the script named the bad input
   if (rc != 0) {
     std::cerr << "fluidbed report: the report script failed\n";
     return 3;
@@ -102,6 +110,9 @@ int main(int argc, char** argv) {
   auto* rep = app.add_subcommand("report", "figures and summary.md from one or more run folders");
   rep->add_option("dirs", report_dirs, "run output folders")->required();
   rep->add_option("--out", report_out, "report folder (default ./report)");
+  std::vector<std::string> report_labels;
+  rep->add_option("--label", report_labels,
+                  "label of a run in legends and tables, once per folder in their order (default: the folder name)");
 
   try {
     app.parse(argc, argv);
@@ -126,7 +137,7 @@ int main(int argc, char** argv) {
       fmt::print("{}: OK\n{}", check_file, fluidbed::describe_case(lc.config));
       return 0;
     }
-    if (*rep) return report(report_dirs, report_out);
+    if (*rep) return report(report_dirs, report_labels, report_out);
     if (*keys) {
       fmt::print("{}", fluidbed::case_keys_markdown());
       return 0;

@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """`fluidbed report` on short real runs of both models (issue 5, acceptance 3): every figure is written and not
 blank, and summary.md's Table 2 and detachment times are the bubble.csv values.
+Issue 11 (item 17): a --set sweep of one case in two folders gets one label per folder, --label renames runs
+(one per folder, else exit 2), a bed without a jet has no Table 2 column, and runs that end before the paper's
+first instant keep their rows in voidage.png with the reason in summary.md.
 argv[1]: the fluidbed binary, argv[2]: the repository root."""
 import csv
 import os
@@ -16,10 +19,69 @@ def fail(msg):
     sys.exit(1)
 
 
-def run(cmd):
+def run(cmd, expect=0):
     res = subprocess.run(cmd, capture_output=True, text=True)
-    if res.returncode != 0:
-        fail(f"{' '.join(cmd)} exited {res.returncode}\n{res.stdout}\n{res.stderr}")
+    if res.returncode != expect:
+        fail(f"{' '.join(cmd)} exited {res.returncode}, expected {expect}\n{res.stdout}\n{res.stderr}")
+    return res
+
+
+def runs_table(summary):
+    """{label: (case name, jet)} of summary.md's runs table."""
+    rows = {}
+    for line in summary.split("## Runs")[1].split("## Figures")[0].splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) >= 4 and cells[0] not in ("run", "---"):
+            rows[cells[0]] = (cells[1], cells[3])
+    return rows
+
+
+def check_sweep(binary, repo, tmp, small, dem, tfm):
+    """Labels, --label, a bed without a jet, runs shorter than the paper's instants."""
+    tfm_case = os.path.join(repo, "cases/gera1998/tfm.toml")
+    sweep = []
+    for e in ("0.9", "0.95"):
+        folder = os.path.join(tmp, "sweep", f"e{e}")
+        run([binary, "run", tfm_case, "--out", folder, "--end-time", "0.03", "--set", "tfm.packed_height=0.15",
+             "--set", f"tfm.restitution={e}"] + small)
+        sweep.append(folder)
+    free = os.path.join(tmp, "free")
+    no_jet = [a for k, a in enumerate(small) if "inlet.jet" not in a and "inlet.jet" not in (small + [""])[k + 1]]
+    run([binary, "run", tfm_case, "--out", free, "--end-time", "0.03", "--set", "tfm.packed_height=0.15",
+         "--set", "inlet.jet=[]", "--set", "inlet.velocity=0.5"] + no_jet)
+    out = os.path.join(tmp, "report-sweep")
+    run([binary, "report", *sweep, free, dem, "--out", out])
+    summary = open(os.path.join(out, "summary.md")).read()
+    table = runs_table(summary)
+    if table.get("e0.9") != ("gera1998-tfm", "yes") or table.get("e0.95") != ("gera1998-tfm", "yes"):
+        fail(f"the sweep's two folders of one case are not labelled by folder: {table}")
+    if table.get("free", ("", ""))[1] != "no":
+        fail(f"the run without a jet is not marked as such: {table}")
+    table2 = summary.split("## Table 2")[1].split("## Bubble events")[0]
+    events = summary.split("## Bubble events")[1].split("## Cost")[0]
+    if "free:" in table2 or "| free |" in events or "without a jet" not in table2:
+        fail(f"Table 2 or the bubble events of the bed without a jet:\n{table2}\n{events}")
+    for lab in ("e0.9", "e0.95", "dem"):
+        if f"| {lab}: axial gas velocity" not in table2:
+            fail(f"Table 2 has no column of {lab}:\n{table2}")
+    # Every run ended at 0.03-0.06 s, before the paper's first instant (0.1 s): each keeps its voidage row.
+    for lab in ("e0.9", "e0.95", "free", "dem"):
+        if f"{lab}: no field frames at the paper's instants" not in summary:
+            fail(f"summary.md does not say why {lab} is shown at its own instants:\n{summary}")
+    if "left out" in summary.split("Voidage maps")[1].split("\n- ")[0]:
+        fail("a run was left out of voidage.png")
+
+    labelled = os.path.join(tmp, "report-label")
+    run([binary, "report", dem, tfm, "--label", "CFD-DEM", "--label", "two-fluid", "--out", labelled])
+    table = runs_table(open(os.path.join(labelled, "summary.md")).read())
+    if set(table) != {"CFD-DEM", "two-fluid"}:
+        fail(f"--label not used: {table}")
+    res = run([binary, "report", dem, tfm, "--label", "one", "--out", labelled], expect=2)
+    if "--label" not in res.stderr or len(res.stderr.strip().splitlines()) != 1:
+        fail(f"a wrong number of --label: {res.stderr!r}")
+    res = run([binary, "report", dem, tfm, "--label", "same", "--label", "same", "--out", labelled], expect=2)
+    if "--label" not in res.stderr:
+        fail(f"repeated --label: {res.stderr!r}")
 
 
 def main():
@@ -29,11 +91,12 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         dem = os.path.join(tmp, "dem")
         run([binary, "run", os.path.join(repo, "cases/gera1998/dem.toml"), "--out", dem, "--end-time", "0.06",
-             "--set", "particles.count=600", "--set", "particles.fill_height=0.3", "--set", "settle.cache=",
+             "--set", "particles.count=600", "--set", "particles.fill_height=0.3", "--set", "settle.cache=\"\"",
              "--set", "settle.max_time=0.4", "--set", "bubble.u_mf=1.8"] + small)
         tfm = os.path.join(tmp, "tfm")
         run([binary, "run", os.path.join(repo, "cases/gera1998/tfm.toml"), "--out", tfm, "--end-time", "0.06",
              "--set", "tfm.packed_height=0.15"] + small)
+        check_sweep(binary, repo, tmp, small, dem, tfm)
         out = os.path.join(tmp, "report")
         run([binary, "report", dem, tfm, "--out", out])
 
