@@ -203,6 +203,20 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.settle.max_time = r.number("settle.max_time", 3.0, "s", "longest settling time", R::positive());
   c.settle.cache = r.string("settle.cache", "", "CSV of the settled bed: reused when present, written after "
                             "settling; relative to the case file");
+  if (!c.settle.cache.empty() && c.settle.enabled && c.particles.source == ParticleSource::Random) {
+    // A run refuses a cached bed of another size (dem_model.cpp); so does `check`.
+    const auto cache = std::filesystem::path(c.settle.cache).is_absolute()
+                           ? std::filesystem::path(c.settle.cache)
+                           : std::filesystem::path(r.file_name()).parent_path() / c.settle.cache;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(cache, ec)) {
+      const std::size_t n = particles_from_csv(cache.string(), c.dem).size();
+      if (static_cast<std::int64_t>(n) != c.particles.packing.count) {
+        r.fail("settle.cache", fmt::format("{}: the settled bed has {} particles but particles.count is {}; delete "
+                                           "the file to settle a new bed", cache.string(), n, c.particles.packing.count));
+      }
+    }
+  }
   c.gas_enabled = r.boolean("gas.enabled", true, "couple the particles to the gas (false: DEM alone, in vacuum)");
   c.max_overlap_fraction = r.number("dem.max_overlap_fraction", 0.1, "",
                                     "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
