@@ -431,7 +431,8 @@ void read_output(CaseReader& r, CaseConfig& c) {
   // from the frame counter alone.
   c.output.particle_interval = r.number("output.particle_interval", c.output.interval, "s",
                                         "interval of particle frames (particles/*.vtu and *.csv, DEM): a whole "
-                                        "multiple of output.interval; default output.interval", R::positive());
+                                        "multiple of output.interval", R::positive());
+  r.describe_default("output.particle_interval", "output.interval");
   const double every = c.output.particle_interval / c.output.interval;
   if (std::abs(every - std::round(every)) > 1e-9 * every || std::round(every) < 1.0) {
     const double lo = std::max(1.0, std::floor(every)), hi = std::max(lo + 1.0, std::ceil(every));
