@@ -75,6 +75,11 @@ expect 2 "gas/. has [0-9]+ values, the case's grid needs [0-9]+" "cfd: restart o
   "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-grid" --quiet --set grid.cell_width=0.005 --allow-changed grid \
   --restart "$WORK/mid.h5"
 
+# The run goes on until the model lands on the end time, also one the gas step (2e-4 s) does not divide: the last
+# step is shortened (the DEM's part is ModelRun::advance(t_end)); it used to stop at 0.01 s.
+run_ok "cfd: --end-time 0.0101" run "$WORK/cfd.toml" --out "$WORK/cfd-0101" --end-time 0.0101
+check "cfd: the run ended at t = 0.0101 s" grep -q "done: t = 0.0101 s" "$WORK/cfd-0101/log.txt"
+
 # A new run into a folder that holds results does not delete them: exit 2 naming the folder, unless --overwrite.
 cp "$WORK/cfd-full/monitor.csv" "$WORK/monitor-before.csv"
 expect 2 "cfd-full holds the results of an earlier run \(monitor.csv.*checkpoints/.*--overwrite" \
