@@ -262,6 +262,11 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
                               "shear production against collisional dissipation (~ 1 - e^2, Eqs. 25-26) has no "
                               "finite solution for elastic particles; use e < 1 (the paper: 0.9)");
   }
+  if (t.rheology == tfm::SolidsRheology::KineticTheory && t.e > 0.95) {
+    c.notes.push_back(fmt::format("tfm.restitution = {:g} is nearly elastic: the collisional dissipation (~ 1 - e^2) is "
+                                  "small and the granular temperature may run away (the paper's case runs at 0.97 "
+                                  "and stops at 0.12 s at 0.99); the run stops with a diagnosis if it does", t.e));
+  }
   t.mu_s_constant = r.number("tfm.solids_viscosity", 0.5, "Pa s", "solids viscosity of the constant-viscosity rheology "
                              "(the paper gives no value)", R::positive());
   t.mu_s_max = r.number("tfm.max_solids_viscosity", 100.0, "Pa s", "cap on the frictional viscosity", R::positive());

@@ -5,7 +5,10 @@ source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/reliability.bash"
 PAPER=$ROOT/cases/gera1998/tfm.toml
 
-# Nearly elastic particles: the granular temperature runs away within 0.2 s (it used to run on to 1 s at solids
+# Nearly elastic particles: check warns ...
+expect 0 "note: tfm.restitution = 0.99 is nearly elastic" "restitution 0.99: check notes the risk" \
+  "$FLUIDBED" check "$PAPER" --set tfm.restitution=0.99
+# ... and in the run the granular temperature runs away within 0.2 s (it used to run on to 1 s at solids
 # speeds of thousands of m/s and report "done").
 out=$WORK/e099
 expect 3 "run went bad at t = .* in cell \([0-9]+, [0-9]+\) at x = .*Likely cause: .*Remedy: lower tfm.restitution" \
