@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
   rep->add_option("--out", report_out, "report folder (default ./report)");
   std::vector<std::string> report_labels;
   rep->add_option("--label", report_labels,
-                  "label of a run in legends and tables, once per folder in their order (default: the folder name)");
+                  "label of a run in legends and tables, once per folder in their order (default: the folder name)")
+      ->allow_extra_args(false);  // one value per --label, so the folders may follow it
 
   try {
     app.parse(argc, argv);

@@ -72,7 +72,8 @@ def check_sweep(binary, repo, tmp, small, dem, tfm):
         fail("a run was left out of voidage.png")
 
     labelled = os.path.join(tmp, "report-label")
-    run([binary, "report", dem, tfm, "--label", "CFD-DEM", "--label", "two-fluid", "--out", labelled])
+    # Each --label takes one value, so it may also come before its folder.
+    run([binary, "report", "--label", "CFD-DEM", dem, "--label", "two-fluid", tfm, "--out", labelled])
     table = runs_table(open(os.path.join(labelled, "summary.md")).read())
     if set(table) != {"CFD-DEM", "two-fluid"}:
         fail(f"--label not used: {table}")
