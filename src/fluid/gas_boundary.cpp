@@ -14,6 +14,20 @@ double background_inlet_velocity(const GasBoundaryConfig& bc, double t) {
   return bc.ramp_from + f * (bc.inlet_velocity - bc.ramp_from);
 }
 
+namespace {
+/// Fraction of the face [x_lo, x_hi] not covered by an active jet at time t.
+double background_fraction(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t) {
+  double covered = 0.0;
+  for (const InletJet& jet : bc.jets) {
+    if (t < jet.t_start || t >= jet.t_end) continue;
+    const double lo = std::max(x_lo, jet.x_centre - 0.5 * jet.width);
+    const double hi = std::min(x_hi, jet.x_centre + 0.5 * jet.width);
+    if (hi > lo) covered += hi - lo;
+  }
+  return std::max(0.0, 1.0 - covered / (x_hi - x_lo));
+}
+}  // namespace
+
 double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t) {
   const double width = x_hi - x_lo;
   const double u_bg = background_inlet_velocity(bc, t);
@@ -27,11 +41,34 @@ double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, doub
   return flux / width;
 }
 
+std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx) {
+  std::vector<double> f(static_cast<std::size_t>(std::max(nx, 0)), 1.0);
+  if (bc.inlet_noise <= 0.0 || nx <= 0) return f;
+  double sum = 0.0;
+  for (int i = 0; i < nx; ++i) {
+    // splitmix64 of (seed, face): the same factors on every platform, independent of any other random stream.
+    std::uint64_t z = bc.noise_seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i + 1) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    const double u = static_cast<double>(z >> 11) * 0x1.0p-53;
+    f[static_cast<std::size_t>(i)] = 1.0 + bc.inlet_noise * (2.0 * u - 1.0);
+    sum += f[static_cast<std::size_t>(i)];
+  }
+  for (double& x : f) x *= static_cast<double>(nx) / sum;
+  return f;
+}
+
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out) {
   out.resize(static_cast<std::size_t>(grid.nx));
+  const std::vector<double> noise = inlet_noise_factors(bc, grid.nx);
+  const double u_bg = background_inlet_velocity(bc, t);
   for (int i = 0; i < grid.nx; ++i) {
     const double x_lo = grid.x0 + i * grid.dx;
-    out[static_cast<std::size_t>(i)] = inlet_superficial_velocity(bc, x_lo, x_lo + grid.dx, t);
+    // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
+    const double u = inlet_superficial_velocity(bc, x_lo, x_lo + grid.dx, t);
+    out[static_cast<std::size_t>(i)] = u + (noise[static_cast<std::size_t>(i)] - 1.0) * u_bg *
+                                               background_fraction(bc, x_lo, x_lo + grid.dx, t);
   }
 }
 
@@ -50,6 +87,7 @@ void validate(const GasConfig& c) {
   require(c.momentum_solver_max_iterations >= 1, "momentum_solver_max_iterations must be at least 1");
   require(c.boundary.ramp_time >= 0.0 && std::isfinite(c.boundary.ramp_time), "inlet ramp_time must be non-negative");
   require(std::isfinite(c.boundary.ramp_from), "inlet ramp_from must be finite");
+  require(c.boundary.inlet_noise >= 0.0 && c.boundary.inlet_noise < 1.0, "inlet noise must lie in [0, 1)");
   for (const InletJet& jet : c.boundary.jets) {
     require(jet.width > 0.0, "jet width must be positive");
     require(jet.t_end >= jet.t_start, "jet t_end must not precede t_start");

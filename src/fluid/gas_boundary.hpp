@@ -14,7 +14,11 @@ double background_inlet_velocity(const GasBoundaryConfig& bc, double t);
 /// replaced by each active jet over the fraction of the face it covers (so the jet's volume flux is exact).
 double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t);
 
-/// Superficial inlet velocity of every bottom face of the grid (size nx) at time t.
+/// The fixed distributor factors of the nx bottom faces (all 1 without inlet_noise), mean exactly 1 up to rounding.
+std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx);
+
+/// Superficial inlet velocity of every bottom face of the grid (size nx) at time t: inlet_superficial_velocity of
+/// each face, its background part scaled by the distributor factors.
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out);
 
 /// Throws an input error naming the offending setting.

@@ -1,5 +1,6 @@
 #pragma once
 // Configuration of the gas phase (Eqs. 11-12) and its boundaries; defaults are the paper's case (Table 1).
+#include <cstdint>
 #include <vector>
 
 #include "core/vec2.hpp"
@@ -45,6 +46,11 @@ struct GasBoundaryConfig {
   /// point by opening the valve.
   double ramp_from = 0.0;  ///< [m/s]
   double ramp_time = 0.0;  ///< [s]
+  /// Distributor non-uniformity: the background inflow of bottom face i is scaled by a fixed factor
+  /// 1 + inlet_noise (2 u_i - 1), u_i uniform in [0, 1) from noise_seed, renormalised so that the total inflow is
+  /// unchanged. A perfectly uniform distributor lifts a packed bed as a plug; real ones seed bubbles.
+  double inlet_noise = 0.0;
+  std::uint64_t noise_seed = 1998;
   /// Jets replacing the background inflow over their width; paper: one 0.02 m jet at the centre, 30 m/s, 0-0.4 s.
   std::vector<InletJet> jets = std::vector<InletJet>(1);
   TopBoundary top = TopBoundary::PressureOutlet;

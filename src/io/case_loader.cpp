@@ -364,6 +364,10 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   g.boundary.ramp_time = r.number("inlet.ramp_time", 0.0, "s", "the background inflow ramps linearly from "
                                   "inlet.ramp_from to inlet.velocity over this time (0: no ramp)", R::non_negative());
   g.boundary.ramp_from = r.number("inlet.ramp_from", 0.0, "m/s", "background inflow at t = 0 when inlet.ramp_time > 0");
+  g.boundary.inlet_noise = r.number("inlet.noise", 0.0, "", "distributor non-uniformity: the background inflow of "
+                                    "bottom cell i is scaled by 1 + noise (2u_i - 1), u_i seeded by case.seed, fixed in "
+                                    "time, total inflow unchanged", R::Range{0.0, 1.0, false, true});
+  g.boundary.noise_seed = c.seed;
   const std::size_t nj = r.table_count("inlet.jet", "jets through the bottom, replacing the background inflow");
   g.boundary.jets.clear();
   for (std::size_t k = 0; k < nj; ++k) {

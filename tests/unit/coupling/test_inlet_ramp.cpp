@@ -46,3 +46,47 @@ TEST(InletRamp, FacesCarryTheRampAndJetsKeepTheirFlux) {
 
 }  // namespace
 }  // namespace fluidbed
+
+namespace fluidbed {
+namespace {
+
+// A seeded distributor non-uniformity (inlet.noise): fixed factors within 1 -+ a, the total inflow unchanged,
+// the jets untouched, and none at all with a = 0 (bit for bit the uniform profile).
+TEST(InletNoise, FixedFactorsKeepTheTotalInflow) {
+  GasBoundaryConfig bc;
+  bc.inlet_velocity = 3.6;
+  bc.jets.clear();
+  const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
+  std::vector<double> uniform, noisy, later;
+  inlet_superficial_profile(bc, g, 0.1, uniform);
+  for (int i = 0; i < g.nx; ++i) {  // exactly the per-face value of the uniform distributor
+    EXPECT_EQ(uniform[static_cast<std::size_t>(i)], inlet_superficial_velocity(bc, g.x0 + i * g.dx, g.x0 + i * g.dx + g.dx, 0.1));
+  }
+  bc.inlet_noise = 0.1;
+  bc.noise_seed = 1998;
+  inlet_superficial_profile(bc, g, 0.1, noisy);
+  inlet_superficial_profile(bc, g, 1.7, later);
+  double flux = 0.0, lo = 1e300, hi = 0.0;
+  for (std::size_t i = 0; i < noisy.size(); ++i) {
+    flux += noisy[i] * g.dx;
+    lo = std::min(lo, noisy[i]);
+    hi = std::max(hi, noisy[i]);
+    EXPECT_EQ(noisy[i], later[i]) << "the distributor does not change in time";
+  }
+  EXPECT_NEAR(flux, 3.6 * 0.6, 1e-13);
+  // Within 1 -+ 0.1 of the mean (the renormalisation moves the bounds by at most the mean's deviation from 1).
+  EXPECT_GT(lo, 3.6 * 0.88);
+  EXPECT_LT(hi, 3.6 * 1.12);
+  EXPECT_GT(hi - lo, 3.6 * 0.1) << "30 draws should span most of the range";
+  bc.noise_seed = 1999;
+  std::vector<double> other;
+  inlet_superficial_profile(bc, g, 0.1, other);
+  EXPECT_NE(other, noisy);
+  // A jet keeps its velocity; only the background is perturbed.
+  bc.jets.push_back(InletJet{0.31, 0.02, 30.0, 0.0, 1.0});
+  inlet_superficial_profile(bc, g, 0.1, noisy);
+  EXPECT_NEAR(noisy[15], 30.0, 1e-14);
+}
+
+}  // namespace
+}  // namespace fluidbed
