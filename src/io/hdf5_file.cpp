@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
@@ -35,12 +36,19 @@ class Handle {
   herr_t (*closer_)(hid_t);
 };
 
-// Our own messages replace HDF5's stack dump on stderr. HDF5's exit handler is not installed: after a write
-// failed (disk full) the file cannot be closed, and that handler's second attempt crashes the program on exit
-// (HDF5 1.10.8); the operating system releases what is left.
+// Set when H5Fclose failed (a write failed: disk full). HDF5 cannot release such a file, and its own exit handler
+// crashes trying again (HDF5 1.10.8), so ours shuts the library down only when every file closed.
+std::atomic<bool> unclosed_file{false};
+
+extern "C" void close_hdf5_at_exit() {
+  if (!unclosed_file.load()) H5close();
+}
+
+// Our own messages replace HDF5's stack dump on stderr.
 void silence_hdf5() {
   static const bool once = [] {
     H5dont_atexit();
+    std::atexit(close_hdf5_at_exit);
     return true;
   }();
   (void)once;
@@ -232,7 +240,7 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
 Hdf5File::~Hdf5File() { close(); }
 
 void Hdf5File::close() noexcept {
-  if (file_ >= 0) H5Fclose(file_);
+  if (file_ >= 0 && H5Fclose(file_) < 0) unclosed_file.store(true);
   file_ = -1;
   if (!temp_.empty()) {
     ::unlink(temp_.c_str());
@@ -260,6 +268,7 @@ void Hdf5File::commit() {
   const hid_t file = checked_file();
   file_ = -1;
   if (H5Fclose(file) < 0) {
+    unclosed_file.store(true);
     const std::string reason = hdf5_reason();
     ::unlink(temp_.c_str());
     temp_.clear();
