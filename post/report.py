@@ -372,7 +372,7 @@ def panel_grid(n_rows, n_cols, aspect, side=1.4):
     labels, the y ticks of the first column, the titles and the x ticks of each panel."""
     w, h = panel_size(aspect)
     fig, axes = plt.subplots(n_rows, n_cols, figsize=((w + 0.12) * n_cols + 0.9 + side, (h + 0.5) * n_rows + 0.5),
-                             squeeze=False, layout="constrained")
+                             squeeze=False, layout="compressed")
     return fig, axes, (w, h)
 
 
