@@ -286,8 +286,6 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   t.solids_no_slip_walls = r.boolean("tfm.solids_no_slip_walls", false, "solids stick to the side walls");
   t.eps_noise = r.number("tfm.eps_noise", 0.0, "", "amplitude of the seeded (case.seed) initial voidage noise of the "
                          "bed: eps + a (2u - 1), kept in [eps*, 1]", R::Range{0.0, 0.5, false, true});
-  t.inlet_noise = r.number("tfm.inlet_noise", 0.0, "", "relative amplitude of a seeded (case.seed) distributor "
-                           "non-uniformity fixed per bottom cell, total inflow unchanged", R::Range{0.0, 1.0, false, true});
   t.seed = c.seed;
   try {
     tfm::validate(t);

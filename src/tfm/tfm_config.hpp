@@ -60,14 +60,12 @@ struct TfmConfig {
   /// (the TFM gas has no viscous stress, so the gas wall kinds do not enter; a moving lid is not supported).
   GasBoundaryConfig boundary;
   bool solids_no_slip_walls = false;  ///< solids tangential condition on the side walls (default free slip)
-  // Seeded symmetry breaking (a perfectly symmetric bed never bubbles): both default off, as in the paper.
+  // Seeded symmetry breaking (a perfectly symmetric bed never bubbles): off by default, as in the paper.
   /// Initial voidage noise: every cell of the initial bed gets eps + eps_noise (2u - 1), u uniform in [0, 1),
   /// kept within [eps*, 1].
   double eps_noise = 0.0;
-  /// Distributor non-uniformity: the superficial inflow of bottom cell i is scaled by 1 + inlet_noise (2u_i - 1),
-  /// a pattern fixed for the run, then renormalised so the total inflow is unchanged.
-  double inlet_noise = 0.0;
-  std::uint64_t seed = 1998;  ///< seed of both (case.seed)
+  /// (The distributor non-uniformity is the inlet's, boundary.inlet_noise, shared with the CFD-DEM gas.)
+  std::uint64_t seed = 1998;  ///< seed of eps_noise (case.seed)
   /// BiCGSTAB iterations of the solids-fraction correction and the implicit continuity at most; 0: Eigen's
   /// default (twice the cell count). A solve that stops short falls back to a sparse LU (tests cap it).
   int linear_max_iterations = 0;

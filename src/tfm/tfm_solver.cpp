@@ -117,7 +117,6 @@ void validate(const TfmConfig& c) {
        "against collisional dissipation (K4 ~ 1 - e^2, Eqs. 25-26), which vanishes for elastic particles, so Theta "
        "has no finite value; use e < 1 (the paper: 0.9)");
   need(c.eps_noise >= 0.0 && c.eps_noise < 0.5, "eps_noise must lie in [0, 0.5)");
-  need(c.inlet_noise >= 0.0 && c.inlet_noise < 1.0, "inlet_noise must lie in [0, 1)");
   need(c.linear_max_iterations >= 0, "linear_max_iterations must be non-negative");
   need(c.phi_deg > 0.0 && c.phi_deg < 90.0, "phi_deg must lie in (0, 90)");
   need(c.eps_star > 0.0 && c.eps_star < 1.0, "eps_star must lie in (0, 1)");
@@ -164,10 +163,6 @@ TfmSolver::TfmSolver(const TfmConfig& config)
         s_.eps(i, j) = std::clamp(s_.eps(i, j) + config_.eps_noise * (2.0 * u - 1.0), config_.eps_star, 1.0);
       }
     }
-  }
-  inlet_factor_.assign(static_cast<std::size_t>(nx), 1.0);
-  for (int i = 0; i < nx && config_.inlet_noise > 0.0; ++i) {
-    inlet_factor_[static_cast<std::size_t>(i)] = 1.0 + config_.inlet_noise * (2.0 * seeded_uniform(config_.seed, 2, i) - 1.0);
   }
   s_.ug = Field2(nx + 1, ny);
   s_.us = Field2(nx + 1, ny);
@@ -348,19 +343,8 @@ double TfmSolver::step(double t_stop) {
         s_.time, s_.steps, dt, c.dt_min, max_solids_speed(), s_.dense_change, remedy()));
   }
   std::vector<double> inlet;
+  // Jets, the start-up ramp and the distributor non-uniformity, as for the CFD-DEM gas (src/fluid/gas_boundary).
   inlet_superficial_profile(config_.boundary, grid_, s_.time + dt, inlet);
-  if (c.inlet_noise > 0.0) {
-    // The distributor pattern redistributes the inflow; the total volume flux stays that of the boundary.
-    double before = 0.0, after = 0.0;
-    for (int i = 0; i < nx; ++i) {
-      before += inlet[static_cast<std::size_t>(i)];
-      inlet[static_cast<std::size_t>(i)] *= inlet_factor_[static_cast<std::size_t>(i)];
-      after += inlet[static_cast<std::size_t>(i)];
-    }
-    if (after != 0.0) {
-      for (double& u : inlet) u *= before / after;
-    }
-  }
   linear_fallbacks_ = 0;
 
   const Field2& eps = s_.eps;
@@ -706,7 +690,7 @@ double TfmSolver::step(double t_stop) {
 
 double TfmSolver::reference_speed() const {
   const GasBoundaryConfig& b = config_.boundary;
-  double u_in = std::max(std::abs(b.inlet_velocity), std::abs(b.ramp_from));
+  double u_in = std::max(std::abs(b.inlet_velocity), std::abs(b.ramp_from)) * (1.0 + b.inlet_noise);
   for (const InletJet& j : b.jets) u_in = std::max(u_in, std::abs(j.velocity));
   return u_in / config_.eps_star + std::sqrt(2.0 * std::hypot(config_.gravity.x, config_.gravity.y) * grid_.height());
 }

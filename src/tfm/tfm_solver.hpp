@@ -118,7 +118,6 @@ class TfmSolver {
   Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
   int packing_sweeps_ = 0;
   int linear_fallbacks_ = 0;
-  std::vector<double> inlet_factor_;  ///< distributor non-uniformity per bottom cell (inlet_noise), fixed
   PressureCorrectionSolver pressure_solver_;  // shared with the gas solver (src/fluid)
   StencilMatrix e_matrix_;  ///< solids-fraction correction, five-point pattern fixed at construction
   CheckedSparseSolver solids_solver_;
