@@ -84,12 +84,30 @@ std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c) {
   return ergun_minimum_fluidisation_velocity(eps, d, rho, c.gas.rho_g, c.gas.mu_g, g);
 }
 
+void check_domain_plausible(const CaseReader& r, const DomainConfig& domain) {
+  // Industrial beds are some 10 m across; the largest benchmark case here is 27 m wide.
+  for (const auto& [key, v] : {std::pair{"domain.width", domain.width}, std::pair{"domain.height", domain.height}}) {
+    if (v > 100.0) {
+      r.fail(key, fmt::format("{} m is larger than any fluidised bed (industrial ones are some 10 m){}", v,
+                              v * 1e-3 <= 100.0 ? fmt::format(": a size in millimetres? {} mm is {:g} m", v, v * 1e-3)
+                                                : std::string()));
+    }
+  }
+}
+
 void check_particle_plausible(const CaseReader& r, const std::string& diameter_key, double d,
                               const std::string& density_key, double rho, const DomainConfig& domain,
                               const std::optional<Grid2>& cell) {
+  if (d < 1e-7) {
+    r.fail(diameter_key, fmt::format("{} m is smaller than any particle a bed is fluidised with (the finest powders are "
+                                     "some 1e-6 m): the diameter is in metres", d));
+  }
   if (d > std::min(domain.width, domain.height)) {
-    r.fail(diameter_key, fmt::format("a particle of {} m is larger than the domain ({} x {} m): a diameter in "
-                                     "millimetres? {} mm is {:g} m", d, domain.width, domain.height, d, d * 1e-3));
+    r.fail(diameter_key, fmt::format("a particle of {} m is larger than the domain ({} x {} m){}", d, domain.width,
+                                     domain.height,
+                                     d * 1e-3 <= std::min(domain.width, domain.height)
+                                         ? fmt::format(": a diameter in millimetres? {} mm is {:g} m", d, d * 1e-3)
+                                         : std::string()));
   }
   if (cell && d > std::min(cell->dx, cell->dy)) {
     r.fail(diameter_key, fmt::format("a particle of {} m is larger than a gas cell ({} x {} m): the gas sees the "

@@ -64,6 +64,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   // [domain]: the box and gravity of every model, read here only and copied into each model's config.
   c.domain.width = r.number("domain.width", 0.6, "m", "bed width (x)", R::positive());
   c.domain.height = r.number("domain.height", 1.0, "m", "domain height (y)", R::positive());
+  check_domain_plausible(r, c.domain);
   r.alias("dem.gravity", "domain.gravity");  // its name before the two-fluid model could set it
   const auto grav = r.numbers("domain.gravity", {0.0, -9.81}, "m/s^2", "gravitational acceleration (x, y) of every "
                               "model (dem.gravity is read as this key)", 2);
@@ -301,6 +302,10 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   const double dx = r.number("grid.cell_width", 0.02, "m", "gas cell width (the paper: 0.02 m)", R::positive());
   const double dy = r.number("grid.cell_height", dx, "m", "gas cell height", R::positive());
   const double fx = c.domain.width / dx, fy = c.domain.height / dy;
+  if (fx * fy > 1e8) {  // 40 fields of 8 bytes per cell (the TFM): 32 GB
+    r.fail("grid.cell_width", fmt::format("cells of {} x {} m make {:.3g} cells of the {} x {} m domain; at most 1e8 "
+                                          "fit in memory", dx, dy, fx * fy, c.domain.width, c.domain.height));
+  }
   if (std::abs(fx - std::round(fx)) > 1e-9 * fx) {
     r.fail("grid.cell_width", fmt::format("{} m does not divide the domain width {} m into whole cells", dx, c.domain.width));
   }

@@ -200,6 +200,14 @@ TEST(CasePlausibility, AParticleInMetresThatWasMeantInMillimetres) {
   EXPECT_TRUE(contains(error_of(kTfm + "tfm.particle_diameter = 0.03\n"), "larger than a gas cell"));
 }
 
+TEST(CasePlausibility, SizesNoBedHasAndGridsNoMemoryHolds) {
+  // Found by the fuzzer: a 1.1e307 m domain overflowed the packing's site count (undefined behaviour).
+  EXPECT_TRUE(contains(error_of(dem_case("domain.width = 1.1e307\n")), "domain.width: 1.1e+307 m is larger than any"));
+  EXPECT_TRUE(contains(error_of(dem_case("domain.width = 600.0\n")), "a size in millimetres? 600 mm is 0.6 m"));
+  EXPECT_TRUE(contains(error_of(dem_case("species = [{diameter = 1e-300}]\n")), "is smaller than any particle"));
+  EXPECT_TRUE(contains(error_of(dem_case("gas.enabled = false\ngrid.cell_width = 1e-6\n")), "at most 1e8"));
+}
+
 TEST(CasePlausibility, ADensityInGramsPerCubicCentimetre) {
   // Before: a time-step error (the 2.7 kg/m^3 particles are 1000 times too light for the spring).
   const std::string e = error_of(dem_case("species = [{density = 2.7}]\n"));
