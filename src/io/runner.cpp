@@ -7,11 +7,15 @@
 #include <filesystem>
 #include <limits>
 #include <span>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include "analysis/bed_surface.hpp"
@@ -201,6 +205,36 @@ int remove_stale_temporaries(const fs::path& out) {
   return removed;
 }
 
+/// An output folder belongs to one run at a time: two runs writing the same series would interleave them. The
+/// lock is flock() on <out>/.lock, which the kernel drops when the process ends (kill -9 included).
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& out) {
+    ensure_directory(out);
+    const fs::path file = out / ".lock";
+    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw_input_error(fmt::format("cannot write {}: {}", file.string(), std::strerror(errno)));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      char pid[32] = {};
+      const ssize_t n = ::pread(fd_, pid, sizeof pid - 1, 0);
+      ::close(fd_);
+      throw_input_error(fmt::format("{} is in use by another fluidbed run{}: wait for it to end, or stop it "
+                                    "(touch {})", out.string(), n > 0 ? fmt::format(" (pid {})", pid) : "",
+                                    (out / "STOP").string()));
+    }
+    const std::string me = std::to_string(static_cast<long long>(::getpid()));
+    if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, me.data(), me.size(), 0) < 0) {
+      // The pid is only for the message of a second run; the lock itself holds.
+    }
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock() { ::close(fd_); }
+
+ private:
+  int fd_ = -1;
+};
+
 /// The run: stages in the order they happen (execute()), the observers that write outputs, and the checkpoint.
 class Run {
  public:
@@ -212,6 +246,7 @@ class Run {
   }
 
   int execute() {
+    const FolderLock lock(out_);
     if (restart_) choose_checkpoint();  // before anything in the folder changes: a refused restart leaves it as it was
     prepare_folder();
     try {

@@ -29,7 +29,7 @@ expect 0 "" "dem: uninterrupted reference run" dem --out "$WORK/dem-ref"
 expect 0 "" "tfm: uninterrupted reference run" tfm --out "$WORK/tfm-ref"
 
 no_temporaries() {  # no_temporaries LABEL DIR: nothing left under a temporary or partial name
-  check "$1: no temporary file left" test -z "$(find "$2" -name '*.tmp.*' | head -1)"
+  check "$1: no temporary file left" bash -c "! find '$2' -name '*.tmp.*' | grep ."
 }
 
 # ---- kill -9 at random points, then --restart latest -----------------------------------------------------------
@@ -37,7 +37,13 @@ no_temporaries() {  # no_temporaries LABEL DIR: nothing left under a temporary o
 # restart from the newest valid checkpoint, compare with the reference.
 kill_and_resume() {
   local label=$1 model=$2 delay=$3 out=$WORK/$1 pid k
-  $model --out "$out" >/dev/null 2>&1 &
+  # The program itself in the background (a backgrounded shell function would be a subshell, and the kill would
+  # miss the run).
+  case $model in
+    dem) "$FLUIDBED" run "$WORK/cfd.toml" --end-time "$DEM_T" --quiet --out "$out" >/dev/null 2>&1 & ;;
+    tfm) "$FLUIDBED" run "$ROOT/cases/gera1998/tfm.toml" --end-time "$TFM_T" --quiet "${TFM_SETS[@]}" --out "$out" \
+      >/dev/null 2>&1 & ;;
+  esac
   pid=$!
   for ((k = 0; k < 600; ++k)); do
     ls "$out"/checkpoints/t*.h5 >/dev/null 2>&1 && break

@@ -22,6 +22,11 @@ stop_and_resume() {
     return
   fi
   sleep 0.5
+  if [[ $how == INT ]]; then
+    # One run per folder: a second one into it while the first is stepping is refused and changes nothing.
+    expect 2 "$out is in use by another fluidbed run \(pid $pid\)" "$label: a second run into the folder is refused" \
+      "$FLUIDBED" run "$WORK/cfd.toml" --out "$out" --quiet --restart latest
+  fi
   case $how in
     INT | TERM) kill -"$how" "$pid" ;;
     STOP) touch "$out/STOP" ;;
