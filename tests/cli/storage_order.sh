@@ -30,4 +30,9 @@ for v in first/settled shuffled; do
 done
 same_results "CSV in id order vs shuffled" "$WORK/file-first-settled" "$WORK/file-shuffled"
 
+# Ids are the canonical order: a CSV that gives one id twice is bad input, for `check` as for `run`.
+{ cat "$WORK/shuffled.csv"; sed -n 2p "$WORK/shuffled.csv"; } >"$WORK/twice.csv"
+expect 2 "duplicate id [0-9]+" "check: an id given twice" \
+  "$FLUIDBED" check "$WORK/settle.toml" --set particles.source=file --set particles.file="$WORK/twice.csv"
+
 finish
