@@ -198,7 +198,9 @@ int remove_stale_temporaries(const fs::path& out) {
       const std::size_t at = name.rfind(".tmp.");
       if (at == std::string::npos) continue;
       const long pid = std::strtol(name.c_str() + at + 5, nullptr, 10);
-      if (pid <= 0 || (pid != static_cast<long>(::getpid()) && ::kill(static_cast<pid_t>(pid), 0) == 0)) continue;
+      const bool alive = pid != static_cast<long>(::getpid()) &&
+                         (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+      if (pid <= 0 || alive) continue;
       if (fs::remove(e.path(), ec)) ++removed;
     }
   }
