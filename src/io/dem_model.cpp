@@ -169,7 +169,8 @@ class DemModel final : public ModelRun {
   DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
       : config_(c),
         sim_(DemSolver(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}),
-             c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid, c.gas)) : std::nullopt, c.coupling) {
+             c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid, c.gas)) : std::nullopt, c.coupling),
+        log_(&log) {
     if (fresh) sim_.initialize();
   }
 
@@ -191,6 +192,10 @@ class DemModel final : public ModelRun {
       // n dt within round-off of t_end reads t_end; the clock keeps its origin, so a continuation runs on as
       // the uninterrupted run does.
       if (remaining <= full * (1.0 + kLand)) sim_.dem().land_time(t_end);
+    }
+    if (sim_.dem().removed_count() != lost_seen_) {
+      lost_seen_ = sim_.dem().removed_count();
+      if (loss_level() > loss_level_) report_losses();
     }
     const double frac = sim_.dem().max_overlap_fraction();
     if (frac > config_.max_overlap_fraction) {
@@ -274,6 +279,8 @@ class DemModel final : public ModelRun {
 
   void load(const Hdf5File& f) override {
     sim_.dem().restore(load_dem(f, config_));
+    loss_level_ = loss_level();  // what the interrupted run has reported already
+    lost_seen_ = sim_.dem().removed_count();
     Field2 eps;
     if (sim_.has_gas()) {
       StaggeredFields& g = sim_.gas().fields();
@@ -382,8 +389,33 @@ class DemModel final : public ModelRun {
     return where;
   }
 
+  /// How much of the bed has left through an outflow top: 0 nothing, then above 0, 1%, 10%, 50% of its mass.
+  int loss_level() const {
+    const double lost = sim_.dem().removed_mass();
+    double left = 0.0;
+    for (double m : sim_.dem().particles().mass) left += m;
+    const double f = lost > 0.0 ? lost / (lost + left) : 0.0;
+    int level = 0;
+    for (const double mark : {0.0, 0.01, 0.1, 0.5}) level += f > mark ? 1 : 0;
+    return level;
+  }
+  /// A log line when the first particle leaves and when the loss passes 1%, 10% and 50% of the bed.
+  void report_losses() {
+    loss_level_ = loss_level();
+    const double lost = sim_.dem().removed_mass();
+    double left = 0.0;
+    for (double m : sim_.dem().particles().mass) left += m;
+    const std::uint64_t n = sim_.dem().removed_count();
+    log_->warn("t = {:.4g} s: {} particle{} ({:.3g} kg, {:.2g}% of the bed's mass) left through the outflow top so "
+               "far (domain.particle_top = \"outflow\"; monitor.csv columns particles_lost, mass_lost_kg)",
+               time(), n, n == 1 ? "" : "s", lost, 100.0 * lost / (lost + left));
+  }
+
   CaseConfig config_;
   CfdDemSimulation sim_;
+  spdlog::logger* log_;
+  int loss_level_ = 0;
+  std::uint64_t lost_seen_ = 0;
 };
 
 }  // namespace

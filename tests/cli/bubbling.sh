@@ -48,6 +48,9 @@ check "outflow: all 200 particles left by the end, none at the start" \
 check "outflow: some rows with particles both in the box and lost" \
   awk -F, '$2 > 0 && $2 < 200 { n++ } END { exit !(n > 3) }' "$WORK/mass.csv"
 
+check "outflow: log.txt says when particles start to leave and when half the bed is gone" \
+  bash -c "grep -q '1 particle (.*) left through the outflow top' '$WORK/outflow/log.txt' && grep -q '% of the bed.s mass) left' '$WORK/outflow/log.txt'"
+
 # The count survives a restart: 0 to 0.16 s (some particles out), then on to 0.3 s, as the uninterrupted run.
 run_ok "outflow: run to 0.16 s" run "$WORK/up.toml" --out "$WORK/split" --set domain.particle_top=outflow --end-time 0.16
 run_ok "outflow: restart to 0.3 s" run "$WORK/up.toml" --out "$WORK/split" --set domain.particle_top=outflow \
