@@ -344,6 +344,7 @@ class Run {
     threads_ = omp_get_max_threads();
     log().info("fluidbed run {} -> {}{}", cfg_.source_path, out_.string(),
                restart_ ? " (restart from " + restart_path_.string() + ")" : "");
+    for (const std::string& n : cfg_.notes) log().info("note: {}", n);  // what `check` prints: derived defaults
     if (!replaced.empty()) log().warn("--overwrite: replaced the earlier results in {}", out_.string());
     for (const auto& s : skipped_) log().warn("--restart latest: skipped {}", s);
     if (restart_ && options_.restart == "latest") log().info("--restart latest: took {}", restart_path_.string());
