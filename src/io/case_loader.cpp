@@ -400,7 +400,34 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   cc.depth = r.number("coupling.depth", c.model == Model::Dem ? c.dem.species[0].diameter : 0.004, "m",
                       "bed depth that turns particle volume into a volume fraction (one diameter: a monolayer)", R::positive());
   cc.eps_min = r.number("coupling.eps_min", 0.3, "", "smallest voidage the gas and the drag see", R::Range{0.0, 1.0, true, true});
-  cc.dem_substeps = static_cast<int>(r.integer("coupling.dem_substeps", 1, "DEM steps per gas step", R::between(1, 1000)));
+  const bool substeps_derived = c.model == Model::Dem && !r.has("dem.time_step") && !r.has("coupling.dem_substeps");
+  int substeps_default = 1;
+  double gas_dt_max = 0.0;
+  if (substeps_derived) {
+    // A derived DEM step (t_c / 20) is far below what the gas needs; step the gas at the largest multiple of it
+    // within a Courant number of 0.5 on the fastest interstitial inflow (superficial / eps_min) and within half the
+    // Stokes relaxation time rho_p d^2 / (18 mu_g) of the smallest particle, so the drag stays resolved.
+    double u_max = std::max(std::abs(g.boundary.inlet_velocity), std::abs(g.boundary.ramp_from));
+    for (const InletJet& j : g.boundary.jets) u_max = std::max(u_max, std::abs(j.velocity));
+    const double courant = u_max > 0.0 ? 0.5 * std::min(c.grid.dx, c.grid.dy) * cc.eps_min / u_max : 1e300;
+    double stokes = 1e300;
+    for (const Species& sp : c.dem.species) {
+      stokes = std::min(stokes, sp.density * sp.diameter * sp.diameter / (18.0 * g.mu_g));
+    }
+    gas_dt_max = std::min(courant, 0.5 * stokes);
+    substeps_default = static_cast<int>(std::clamp(std::floor(gas_dt_max / c.dem.dt * (1.0 + 1e-12)), 1.0, 1000.0));
+  }
+  cc.dem_substeps = static_cast<int>(r.integer("coupling.dem_substeps", substeps_default,
+                                               "DEM steps per gas step; default 1 when dem.time_step is given, else "
+                                               "the most whose gas step keeps a Courant number of 0.5 on the fastest "
+                                               "interstitial inflow and half the Stokes time of the smallest particle",
+                                               R::between(1, 1000)));
+  if (substeps_derived) {
+    r.describe_default("coupling.dem_substeps", "1, or derived with dem.time_step");
+    c.notes.push_back(fmt::format("coupling.dem_substeps not given: {} DEM steps per gas step (gas step {:g} s, at "
+                                  "most {:.3g} s for a Courant number of 0.5 on the inflow and half the Stokes time "
+                                  "of the smallest particle)", cc.dem_substeps, cc.dem_substeps * c.dem.dt, gas_dt_max));
+  }
   const std::string sw = r.string("coupling.drag_switch", "sharp", "Ergun to Wen-Yu at eps = 0.8: the paper's step or "
                                   "a smooth blend", {"sharp", "smooth"});
   cc.drag_switch = sw == "smooth" ? DragSwitch::Smooth : DragSwitch::Sharp;
