@@ -44,6 +44,29 @@ double equal_pair_contact_duration(double d, double rho, double k, double e) {
 
 // ---- item 11: defaults tied to the bed, not to the paper
 
+TEST(CaseDefaults, TheGasStepOfADerivedTimeStepIsAMultipleWithinCourantAndStokes) {
+  // 4 mm particles, the paper's grid (0.02 m) and a 30 m/s jet: Courant 0.5 on 30 m/s / eps_min 0.3 gives
+  // 1e-4 s; the Stokes time of 4 mm particles (133 s) does not bind.
+  const CaseConfig c = load_case_text(dem_case("inlet.jet = [{centre = 0.31, velocity = 30.0}]\n"), "t.toml").config;
+  const double gas_dt_max = 0.5 * 0.02 * 0.3 / 30.0;
+  const double gas_dt = c.coupling.dem_substeps * c.dem.dt;
+  EXPECT_GT(c.coupling.dem_substeps, 1);
+  EXPECT_LE(gas_dt, gas_dt_max * (1 + 1e-12));
+  EXPECT_GT(gas_dt + c.dem.dt, gas_dt_max);  // the largest such multiple
+  // Without the jet the background 1.8 m/s sets the limit.
+  const CaseConfig b = load_case_text(dem_case(), "t.toml").config;
+  EXPECT_LE(b.coupling.dem_substeps * b.dem.dt, 0.5 * 0.02 * 0.3 / 1.8 * (1 + 1e-12));
+  EXPECT_GT((b.coupling.dem_substeps + 1) * b.dem.dt, 0.5 * 0.02 * 0.3 / 1.8);
+  // 50 um particles at 1 cm/s: the gas step of 1000 DEM steps (the key's upper bound) is within both limits.
+  const CaseConfig f = load_case_text(dem_case("species = [{diameter = 5e-5}]\ninlet.velocity = 0.01\n"
+                                               "grid.cell_width = 0.005\ndomain.width = 0.05\ndomain.height = 0.1\n", 200),
+                                      "t.toml").config;
+  EXPECT_EQ(f.coupling.dem_substeps, 1000);
+  EXPECT_LE(f.coupling.dem_substeps * f.dem.dt, 0.5 * 2700.0 * 5e-5 * 5e-5 / (18.0 * 1.8e-5));
+  // A given time step keeps the old default of one DEM step per gas step.
+  EXPECT_EQ(load_case_text(dem_case("dem.time_step = 1e-4\n"), "t.toml").config.coupling.dem_substeps, 1);
+}
+
 TEST(CaseDefaults, TheTimeStepOfASmallerParticleIsDerivedFromItsContactDuration) {
   // Before: the paper's 2e-4 s was the default and failed the stability check for 1 mm particles.
   const CaseConfig c = load_case_text(dem_case("species = [{diameter = 0.001}]\n"), "t.toml").config;
