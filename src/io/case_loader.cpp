@@ -10,6 +10,8 @@
 #include "io/case_check.hpp"
 #include "io/dem_model.hpp"
 #include <filesystem>
+#include <sstream>
+#include <fstream>
 
 namespace fluidbed {
 
@@ -202,19 +204,23 @@ void read_case(CaseReader& r, CaseConfig& c) {
                                                   "the bed is settled when the mean kinetic energy per particle falls below this",
                                                   R::positive());
   c.settle.max_time = r.number("settle.max_time", 3.0, "s", "longest settling time", R::positive());
-  c.settle.cache = r.string("settle.cache", "", "CSV of the settled bed: reused when present, written after "
-                            "settling; relative to the case file");
+  c.settle.cache = r.string("settle.cache", "", "CSV of the settled bed, relative to the case file: reused when "
+                            "its record (<file>.record: particles, placement, contact law, time step, settling) matches "
+                            "this bed, else settled anew and replaced");
   if (!c.settle.cache.empty() && c.settle.enabled && c.particles.source == ParticleSource::Random) {
-    // A run refuses a cached bed of another size (dem_model.cpp); so does `check`.
+    // A run reuses the cache only when its record matches this bed (dem_model.cpp); `check` says which way it goes.
     const auto cache = std::filesystem::path(c.settle.cache).is_absolute()
                            ? std::filesystem::path(c.settle.cache)
                            : std::filesystem::path(r.file_name()).parent_path() / c.settle.cache;
     std::error_code ec;
     if (std::filesystem::is_regular_file(cache, ec)) {
-      const std::size_t n = particles_from_csv(cache.string(), c.dem).size();
-      if (static_cast<std::int64_t>(n) != c.particles.packing.count) {
-        r.fail("settle.cache", fmt::format("{}: the settled bed has {} particles but particles.count is {}; delete "
-                                           "the file to settle a new bed", cache.string(), n, c.particles.packing.count));
+      std::ifstream in(cache.string() + ".record");
+      std::stringstream found;
+      found << in.rdbuf();
+      const std::string diff = in ? settled_bed_record_difference(settled_bed_record(c), found.str()) : "no record";
+      if (!diff.empty()) {
+        c.notes.push_back(fmt::format("settle.cache {} will not be reused ({}): the run settles the bed anew and "
+                                      "replaces it", cache.string(), diff));
       }
     }
   }

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -12,6 +14,7 @@
 #include "dem/dem_solver.hpp"
 #include "dem/packing.hpp"
 #include "dem/settle.hpp"
+#include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 
@@ -35,6 +38,56 @@ ParticleStore particles_from_csv(const std::string& path, const DemConfig& dem) 
     p.add(row.id, row.species, s, {row.x, row.y}, {row.vx, row.vy}, row.omega);
   }
   return p;
+}
+
+std::string settled_bed_record(const CaseConfig& c) {
+  const DemConfig& d = c.dem;
+  const PackingConfig& pk = c.particles.packing;
+  std::string s;
+  auto line = [&](const std::string& key, double v) { s += fmt::format("{} = {:.17g}\n", key, v); };
+  line("particles.count", static_cast<double>(pk.count));
+  line("case.seed", static_cast<double>(pk.seed));
+  line("particles.gap", pk.min_gap);
+  line("placement.x_min", pk.x_min);
+  line("placement.x_max", pk.x_max);
+  line("placement.y_min", pk.y_min);
+  line("placement.y_max", pk.y_max);
+  for (std::size_t k = 0; k < pk.species_fraction.size(); ++k) line(fmt::format("species[{}].fraction", k), pk.species_fraction[k]);
+  for (std::size_t k = 0; k < d.species.size(); ++k) {
+    line(fmt::format("species[{}].diameter", k), d.species[k].diameter);
+    line(fmt::format("species[{}].density", k), d.species[k].density);
+  }
+  line("contact.stiffness", d.stiffness);
+  line("contact.tangential_stiffness_ratio", d.tangential_stiffness_ratio);
+  for (std::size_t k = 0; k < d.pair.size(); ++k) {
+    line(fmt::format("contact.pair({},{}).restitution", k / d.species.size(), k % d.species.size()), d.pair[k].restitution);
+    line(fmt::format("contact.pair({},{}).friction", k / d.species.size(), k % d.species.size()), d.pair[k].friction);
+  }
+  for (std::size_t k = 0; k < d.wall.size(); ++k) {
+    line(fmt::format("contact.wall({}).restitution", k), d.wall[k].restitution);
+    line(fmt::format("contact.wall({}).friction", k), d.wall[k].friction);
+  }
+  line("domain.width", d.width);
+  line("domain.gravity.x", d.gravity.x);
+  line("domain.gravity.y", d.gravity.y);
+  if (d.walls.top) line("domain.height (top wall)", d.height);
+  line("dem.time_step", d.dt);
+  line("dem.skin", d.skin);
+  line("settle.kinetic_energy_per_particle", c.settle.kinetic_energy_per_particle);
+  line("settle.max_time", c.settle.max_time);
+  return s;
+}
+
+std::string settled_bed_record_difference(const std::string& wanted, const std::string& found) {
+  std::istringstream a(wanted), b(found);
+  std::string la, lb;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
+    if (!ga && !gb) return "";
+    if (!ga || !gb || la != lb) {
+      return fmt::format("{} (the cache: {})", ga ? la : std::string("nothing"), gb ? lb : std::string("nothing"));
+    }
+  }
 }
 
 namespace {
@@ -322,15 +375,12 @@ class DemModel final : public ModelRun {
     if (c.particles.source == ParticleSource::File) {
       p = particles_from_csv(resolve(c.particles.file).string(), c.dem);
       log.info("read {} particles from {}", p.size(), resolve(c.particles.file).string());
-    } else if (!c.settle.cache.empty() && c.settle.enabled && fs::exists(resolve(c.settle.cache))) {
+    } else if (const std::string stale = stale_cache_reason(c, resolve); !c.settle.cache.empty() && c.settle.enabled &&
+               fs::exists(resolve(c.settle.cache)) && stale.empty()) {
       p = particles_from_csv(resolve(c.settle.cache).string(), c.dem);
-      if (static_cast<std::int64_t>(p.size()) != c.particles.packing.count) {
-        throw_input_error(fmt::format("{}: the settled bed has {} particles but particles.count is {}; delete the "
-                                      "file to settle a new bed", resolve(c.settle.cache).string(), p.size(),
-                                      c.particles.packing.count));
-      }
       log.info("reusing the settled bed {} ({} particles)", resolve(c.settle.cache).string(), p.size());
     } else {
+      if (!stale.empty()) log.info("not reusing the settled bed {}: {}; settling anew", resolve(c.settle.cache).string(), stale);
       p = place_random(c.dem, c.particles.packing);
       log.info("placed {} particles at random (seed {})", p.size(), c.particles.packing.seed);
       if (c.settle.enabled) {
@@ -347,6 +397,7 @@ class DemModel final : public ModelRun {
         if (!c.settle.cache.empty()) {
           fs::create_directories(resolve(c.settle.cache).parent_path());
           write_particles_csv(resolve(c.settle.cache), p);
+          write_file_atomic(record_path(resolve(c.settle.cache)), settled_bed_record(c));
           log.info("saved the settled bed to {}", resolve(c.settle.cache).string());
         }
       }
@@ -355,6 +406,23 @@ class DemModel final : public ModelRun {
     assign_layers(p, c.particles.layers, h);
     log.info("bed height {:.4f} m, {} colour layers", h, c.particles.layers);
     return p;
+  }
+
+  static std::filesystem::path record_path(const std::filesystem::path& cache) {
+    return std::filesystem::path(cache.string() + ".record");
+  }
+  /// Why the settle cache cannot stand for this case's bed ("" when it can, or when there is none).
+  template <class Resolve>
+  static std::string stale_cache_reason(const CaseConfig& c, const Resolve& resolve) {
+    namespace fs = std::filesystem;
+    if (c.settle.cache.empty() || !c.settle.enabled || !fs::exists(resolve(c.settle.cache))) return "";
+    const fs::path rec = record_path(resolve(c.settle.cache));
+    std::ifstream in(rec);
+    if (!in) return fmt::format("it has no record of what it was settled with ({})", rec.string());
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string diff = settled_bed_record_difference(settled_bed_record(c), ss.str());
+    return diff.empty() ? "" : "it was settled with other parameters: " + diff;
   }
 
   /// Where the deepest contact (relative to its own diameter) is, for the overlap diagnosis: the particle pair
