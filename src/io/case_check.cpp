@@ -267,12 +267,25 @@ std::string describe_case(const CaseConfig& c) {
     line("memory estimate", fmt::format("{:.1f} MB for the particles (plus about 25 MB for the program)",
                                         static_cast<double>(n) * bytes_per_particle / 1e6));
   }
+  if (c.model == Model::Dem) {
+    line("top of the domain (particles)", c.dem.walls.top ? "wall"
+                                          : c.dem.walls.top_outflow ? "outflow: leaving particles are removed and counted"
+                                                                    : "open: a particle crossing it fails the run");
+  }
   if (c.model == Model::Tfm || c.gas_enabled) {
     line("gas grid", fmt::format("{} x {} cells of {} x {} m", c.grid.nx, c.grid.ny, c.grid.dx, c.grid.dy));
     if (c.model == Model::Dem) {
       line("gas time step", fmt::format("{:g} s ({} DEM steps)", c.dem.dt * c.coupling.dem_substeps, c.coupling.dem_substeps));
     }
-    line("inlet (superficial)", fmt::format("{} m/s through the bottom", c.gas.boundary.inlet_velocity));
+    const GasBoundaryConfig& bc = c.gas.boundary;
+    line("inlet (superficial)",
+         bc.ramp_time > 0.0 ? fmt::format("{} m/s through the bottom, ramped from {} m/s over 0 <= t < {} s",
+                                          bc.inlet_velocity, bc.ramp_from, bc.ramp_time)
+                            : fmt::format("{} m/s through the bottom", bc.inlet_velocity));
+    if (bc.inlet_noise > 0.0) {
+      line("distributor non-uniformity", fmt::format("+-{:g}% per bottom cell, fixed in time (seed {}), total inflow "
+                                                     "unchanged", 100.0 * bc.inlet_noise, bc.noise_seed));
+    }
     for (const InletJet& j : c.gas.boundary.jets) {
       line("jet", fmt::format("{} m/s over [{}, {}] m for {} <= t < {} s", j.velocity, j.x_centre - 0.5 * j.width,
                               j.x_centre + 0.5 * j.width, j.t_start, j.t_end));

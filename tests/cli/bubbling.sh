@@ -72,4 +72,8 @@ check "bubbling: monitor.csv counts the particles lost" \
   bash -c "head -1 '$WORK/bubbling/monitor.csv' | grep -q 'particles_lost,mass_lost_kg'"
 check "bubbling: the run ended on 0.0101 s, not a gas step short" grep -q 'done: t = 0.0101 s' "$WORK/bubbling/log.txt"
 
+# `check` shows the choices that make this bed (the ramp, the distributor noise, the particle top).
+expect 0 "ramped from 1.8 m/s over 0 <= t < 0.5 s" "check prints the inlet ramp" "$FLUIDBED" check "$ROOT/cases/bubbling/dem.toml"
+expect 0 "distributor non-uniformity +\+-10%" "check prints the distributor noise" "$FLUIDBED" check "$ROOT/cases/bubbling/dem.toml"
+expect 0 "top of the domain \(particles\) +outflow" "check prints the particle top" "$FLUIDBED" check "$ROOT/cases/bubbling/dem.toml"
 finish
