@@ -142,6 +142,13 @@ void DemSolver::link_mirrors() {
 }
 
 double DemSolver::compute_forces(double dt) {
+  // With one species every contact has the same diameter: the largest overlap fraction is the largest overlap over
+  // it, taken once after the loops; only a mixture pays for a division per contact (5% of the force loop).
+  return config_.n_species() > 1 ? compute_forces_of<true>(dt) : compute_forces_of<false>(dt);
+}
+
+template <bool Mixed>
+double DemSolver::compute_forces_of(double dt) {
   const std::size_t n = p_.size();
   const double W = config_.width;
   const double H = config_.height;
@@ -200,7 +207,7 @@ double DemSolver::compute_forces(double dt) {
       max_ov = std::max(max_ov, overlap);
       // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
       // no longer a small perturbation of two touching spheres.
-      max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, p_.radius[j])));
+      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, p_.radius[j])));
     }
   }
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
@@ -229,7 +236,7 @@ double DemSolver::compute_forces(double dt) {
       f += cf.f;
       torque += ri * cross(nrm, cf.f_t);
       max_ov = std::max(max_ov, overlap);
-      max_frac = std::max(max_frac, overlap / (2.0 * ri));
+      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
     };
     wall(Wall::Left, walls.left, ri - xi, {-1.0, 0.0});
     wall(Wall::Right, walls.right, ri - (W - xi), {1.0, 0.0});
@@ -240,7 +247,7 @@ double DemSolver::compute_forces(double dt) {
     p_.torque[i] = torque;
   }
   max_overlap_ = max_ov;
-  max_overlap_fraction_ = max_frac;
+  max_overlap_fraction_ = Mixed || n == 0 ? max_frac : max_ov / (2.0 * p_.radius[0]);
   return max_ov;
 }
 

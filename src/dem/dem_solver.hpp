@@ -115,6 +115,8 @@ class DemSolver {
  private:
   DemStepInfo advance(double h);
   double compute_forces(double dt);
+  template <bool Mixed>
+  double compute_forces_of(double dt);
   void rebuild();
   void link_mirrors();
   /// Drop the particles whose centre is above the top (an outflow top), keeping the order of the others, their
