@@ -11,6 +11,7 @@
 #include "fluid/gas_solver.hpp"
 #include "io/case_check.hpp"
 #include "io/case_loader.hpp"
+#include "unit/case/case_errors.hpp"
 
 namespace fluidbed {
 namespace {
@@ -20,17 +21,6 @@ std::string dem_case(const std::string& extra = "", int count = 1000) {
   return "case.name = \"x\"\nsettle.enabled = false\nparticles.count = " + std::to_string(count) + "\n" + extra;
 }
 const std::string kTfm = "case.name = \"x\"\ncase.model = \"tfm\"\n";
-
-std::string error_of(const std::string& text, const std::vector<std::string>& sets = {}) {
-  try {
-    load_case_text(text, "t.toml", sets);
-  } catch (const Error& e) {
-    EXPECT_EQ(e.exit_code(), 2);
-    return e.what();
-  }
-  ADD_FAILURE() << "accepted: " << text;
-  return "";
-}
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 

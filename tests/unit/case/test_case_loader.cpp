@@ -4,19 +4,10 @@
 #include "core/error.hpp"
 #include "io/case_loader.hpp"
 #include "io/case_reader.hpp"
+#include "unit/case/case_errors.hpp"
 
 namespace fluidbed {
 namespace {
-
-std::string error_of(const std::string& text, const std::vector<std::string>& sets = {}) {
-  try {
-    load_case_text(text, "t.toml", sets);
-  } catch (const Error& e) {
-    EXPECT_EQ(e.exit_code(), 2);
-    return e.what();
-  }
-  return "";
-}
 
 TEST(CaseLoader, DefaultsAreThePapersTable1) {
   const LoadedCase lc = load_case_text("case.name = \"x\"\n", "t.toml");
