@@ -501,8 +501,13 @@ class Run {
     }
     if (bubbles_) {
       const auto fmt_time = [](std::optional<double> t) { return t ? fmt::format("{:.3f} s", *t) : std::string("none"); };
-      log().info("bubble: detachment {}, eruption {}", fmt_time(bubbles_->detachment_time()),
-                 fmt_time(bubbles_->eruption_time()));
+      // Detachment is from a jet: a bed without one has only eruptions to report.
+      if (cfg_.gas.boundary.jets.empty()) {
+        log().info("bubble: first eruption {} (no jet: no detachment)", fmt_time(bubbles_->eruption_time()));
+      } else {
+        log().info("bubble: detachment {}, eruption {}", fmt_time(bubbles_->detachment_time()),
+                   fmt_time(bubbles_->eruption_time()));
+      }
     }
     log().info("done: t = {:.6g} s; outputs in {}", model_->time(), out_.string());
     return 0;

@@ -76,4 +76,8 @@ check "bubbling: the run ended on 0.0101 s, not a gas step short" grep -q 'done:
 expect 0 "ramped from 1.8 m/s over 0 <= t < 0.5 s" "check prints the inlet ramp" "$FLUIDBED" check "$ROOT/cases/bubbling/dem.toml"
 expect 0 "distributor non-uniformity +\+-10%" "check prints the distributor noise" "$FLUIDBED" check "$ROOT/cases/bubbling/dem.toml"
 expect 0 "top of the domain \(particles\) +outflow" "check prints the particle top" "$FLUIDBED" check "$ROOT/cases/bubbling/dem.toml"
+# A bed without a jet has no detachment to report, only eruptions (the log said "detachment 1.180 s" before).
+expect 0 "" "a short run of a bed without a jet" \
+  "$FLUIDBED" run "$ROOT/cases/bubbling/tfm.toml" --quiet --out "$WORK/nojet" --end-time 0.02
+expect 0 "bubble: first eruption none \(no jet" "log.txt has it" cat "$WORK/nojet/log.txt"
 finish
