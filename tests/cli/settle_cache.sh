@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The settle cache stands only for the bed it was settled as (issue 11): a run with other particles, contact law,
+# Settling (issue 11). The settle cache stands only for the bed it was settled as: a run with other particles, contact law,
 # time step or placement settles anew and replaces it, a run with the same bed reuses it and equals a run that
 # settled its own bed, bit for bit.
 source "$(dirname "$0")/lib.sh"
@@ -41,4 +41,21 @@ expect 0 "" "cache-replaced run equals the uncached run" diff "$WORK/c/particles
 expect 0 "" "back to 4 mm" run --out "$WORK/e"
 expect 0 "not reusing the settled bed .*settled with other parameters" "4 mm is not served the 3 mm bed" cat "$WORK/e/log.txt"
 expect 0 "" "and equals the first run" diff "$WORK/a/particles/000002.csv" "$WORK/e/particles/000002.csv"
+
+# A binary bed placed up to the top: 2 mm particles rebound off the pile above the fill height. Settling happens
+# under a lid (before: exit 3, "particle 1171 left through the open top" at t = 0.47 s of settling).
+cat > "$WORK/lid.toml" <<TOML
+case.name = "lid"
+case.end_time = 0.0002
+domain.width = 0.1
+domain.height = 0.6
+species = [{diameter = 0.004, fraction = 0.5}, {diameter = 0.002, fraction = 0.5}]
+particles.count = 1300
+dem.time_step = 5e-5
+gas.enabled = false
+settle.max_time = 1.0
+output.checkpoint_interval = 0.0
+TOML
+expect 0 "" "a binary bed settles under a lid" "$FLUIDBED" run "$WORK/lid.toml" --quiet --threads 1 --out "$WORK/lid"
+expect 0 "settled in vacuum" "its log says it settled" cat "$WORK/lid/log.txt"
 finish
