@@ -10,8 +10,6 @@
 #include "io/case_check.hpp"
 #include "io/dem_model.hpp"
 #include <filesystem>
-#include <sstream>
-#include <fstream>
 
 namespace fluidbed {
 
@@ -183,9 +181,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
     }
   } else {
     // Read the file now, so that `check` reports a bad row before any run.
-    const auto path = std::filesystem::path(c.particles.file).is_absolute()
-                          ? std::filesystem::path(c.particles.file)
-                          : std::filesystem::path(r.file_name()).parent_path() / c.particles.file;
+    const auto path = case_relative_path(r.file_name(), c.particles.file);
     const ParticleStore from_file = particles_from_csv(path.string(), c.dem);
     c.particles.packing.count = static_cast<std::int64_t>(from_file.size());
     // The bed is the file's: its species make up the mixture `check` and the U_mf default describe.
@@ -209,16 +205,10 @@ void read_case(CaseReader& r, CaseConfig& c) {
                             "this bed, else settled anew and replaced");
   if (!c.settle.cache.empty() && c.settle.enabled && c.particles.source == ParticleSource::Random) {
     // A run reuses the cache only when its record matches this bed (dem_model.cpp); `check` says which way it goes.
-    const auto cache = std::filesystem::path(c.settle.cache).is_absolute()
-                           ? std::filesystem::path(c.settle.cache)
-                           : std::filesystem::path(r.file_name()).parent_path() / c.settle.cache;
+    const auto cache = case_relative_path(r.file_name(), c.settle.cache);
     std::error_code ec;
     if (std::filesystem::is_regular_file(cache, ec)) {
-      std::ifstream in(cache.string() + ".record");
-      std::stringstream found;
-      found << in.rdbuf();
-      const std::string diff = in ? settled_bed_record_difference(settled_bed_record(c), found.str()) : "no record";
-      if (!diff.empty()) {
+      if (const std::string diff = settle_cache_mismatch(c, cache); !diff.empty()) {
         c.notes.push_back(fmt::format("settle.cache {} will not be reused ({}): the run settles the bed anew and "
                                       "replaces it", cache.string(), diff));
       }

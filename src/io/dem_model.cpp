@@ -78,8 +78,16 @@ std::string settled_bed_record(const CaseConfig& c) {
   return s;
 }
 
-std::string settled_bed_record_difference(const std::string& wanted, const std::string& found) {
-  std::istringstream a(wanted), b(found);
+std::filesystem::path settled_bed_record_path(const std::filesystem::path& cache) {
+  return std::filesystem::path(cache.string() + ".record");
+}
+
+std::string settle_cache_mismatch(const CaseConfig& config, const std::filesystem::path& cache) {
+  std::ifstream in(settled_bed_record_path(cache));
+  if (!in) return "no record";
+  std::stringstream found;
+  found << in.rdbuf();
+  std::istringstream a(settled_bed_record(config)), b(found.str());
   std::string la, lb;
   while (true) {
     const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
@@ -88,6 +96,11 @@ std::string settled_bed_record_difference(const std::string& wanted, const std::
       return fmt::format("{} (the cache: {})", ga ? la : std::string("nothing"), gb ? lb : std::string("nothing"));
     }
   }
+}
+
+std::filesystem::path case_relative_path(const std::string& case_file, const std::string& path) {
+  return std::filesystem::path(path).is_absolute() ? std::filesystem::path(path)
+                                                   : std::filesystem::path(case_file).parent_path() / path;
 }
 
 namespace {
@@ -369,18 +382,24 @@ class DemModel final : public ModelRun {
  private:
   static ParticleStore initial_particles(const CaseConfig& c, const std::string& out_dir, spdlog::logger& log) {
     namespace fs = std::filesystem;
-    const fs::path case_dir = fs::path(c.source_path).parent_path();
-    auto resolve = [&](const std::string& f) { return fs::path(f).is_absolute() ? fs::path(f) : case_dir / f; };
+    auto resolve = [&](const std::string& f) { return case_relative_path(c.source_path, f); };
     ParticleStore p;
+    const fs::path cache = c.settle.cache.empty() ? fs::path() : resolve(c.settle.cache);
+    const bool cached = !cache.empty() && c.settle.enabled && fs::exists(cache);
+    const std::string stale = cached ? settle_cache_mismatch(c, cache) : std::string();
     if (c.particles.source == ParticleSource::File) {
       p = particles_from_csv(resolve(c.particles.file).string(), c.dem);
       log.info("read {} particles from {}", p.size(), resolve(c.particles.file).string());
-    } else if (const std::string stale = stale_cache_reason(c, resolve); !c.settle.cache.empty() && c.settle.enabled &&
-               fs::exists(resolve(c.settle.cache)) && stale.empty()) {
-      p = particles_from_csv(resolve(c.settle.cache).string(), c.dem);
-      log.info("reusing the settled bed {} ({} particles)", resolve(c.settle.cache).string(), p.size());
+    } else if (cached && stale.empty()) {
+      p = particles_from_csv(cache.string(), c.dem);
+      log.info("reusing the settled bed {} ({} particles)", cache.string(), p.size());
     } else {
-      if (!stale.empty()) log.info("not reusing the settled bed {}: {}; settling anew", resolve(c.settle.cache).string(), stale);
+      if (cached) {
+        log.info("not reusing the settled bed {}: {}; settling anew", cache.string(),
+                 stale == "no record" ? "it has no record of what it was settled with (" +
+                                            settled_bed_record_path(cache).string() + ")"
+                                      : "it was settled with other parameters: " + stale);
+      }
       p = place_random(c.dem, c.particles.packing);
       log.info("placed {} particles at random (seed {})", p.size(), c.particles.packing.seed);
       if (c.settle.enabled) {
@@ -406,10 +425,10 @@ class DemModel final : public ModelRun {
                  r.converged ? "" : " (max_time reached before the threshold)");
         write_particles_csv(fs::path(out_dir) / "settled.csv", p);
         if (!c.settle.cache.empty()) {
-          fs::create_directories(resolve(c.settle.cache).parent_path());
-          write_particles_csv(resolve(c.settle.cache), p);
-          write_file_atomic(record_path(resolve(c.settle.cache)), settled_bed_record(c));
-          log.info("saved the settled bed to {}", resolve(c.settle.cache).string());
+          fs::create_directories(cache.parent_path());
+          write_particles_csv(cache, p);
+          write_file_atomic(settled_bed_record_path(cache), settled_bed_record(c));
+          log.info("saved the settled bed to {}", cache.string());
         }
       }
     }
@@ -417,23 +436,6 @@ class DemModel final : public ModelRun {
     assign_layers(p, c.particles.layers, h);
     log.info("bed height {:.4f} m, {} colour layers", h, c.particles.layers);
     return p;
-  }
-
-  static std::filesystem::path record_path(const std::filesystem::path& cache) {
-    return std::filesystem::path(cache.string() + ".record");
-  }
-  /// Why the settle cache cannot stand for this case's bed ("" when it can, or when there is none).
-  template <class Resolve>
-  static std::string stale_cache_reason(const CaseConfig& c, const Resolve& resolve) {
-    namespace fs = std::filesystem;
-    if (c.settle.cache.empty() || !c.settle.enabled || !fs::exists(resolve(c.settle.cache))) return "";
-    const fs::path rec = record_path(resolve(c.settle.cache));
-    std::ifstream in(rec);
-    if (!in) return fmt::format("it has no record of what it was settled with ({})", rec.string());
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string diff = settled_bed_record_difference(settled_bed_record(c), ss.str());
-    return diff.empty() ? "" : "it was settled with other parameters: " + diff;
   }
 
   /// Where the deepest contact (relative to its own diameter) is, for the overlap diagnosis: the particle pair
@@ -468,12 +470,16 @@ class DemModel final : public ModelRun {
     return where;
   }
 
-  /// How much of the bed has left through an outflow top: 0 nothing, then above 0, 1%, 10%, 50% of its mass.
-  int loss_level() const {
+  /// Fraction of the bed's initial mass that has left through an outflow top.
+  double lost_fraction() const {
     const double lost = sim_.dem().removed_mass();
     double left = 0.0;
     for (double m : sim_.dem().particles().mass) left += m;
-    const double f = lost > 0.0 ? lost / (lost + left) : 0.0;
+    return lost > 0.0 ? lost / (lost + left) : 0.0;
+  }
+  /// How much of the bed has left: 0 nothing, then above 0, 1%, 10%, 50% of its mass.
+  int loss_level() const {
+    const double f = lost_fraction();
     int level = 0;
     for (const double mark : {0.0, 0.01, 0.1, 0.5}) level += f > mark ? 1 : 0;
     return level;
@@ -481,13 +487,10 @@ class DemModel final : public ModelRun {
   /// A log line when the first particle leaves and when the loss passes 1%, 10% and 50% of the bed.
   void report_losses() {
     loss_level_ = loss_level();
-    const double lost = sim_.dem().removed_mass();
-    double left = 0.0;
-    for (double m : sim_.dem().particles().mass) left += m;
     const std::uint64_t n = sim_.dem().removed_count();
     log_->warn("t = {:.4g} s: {} particle{} ({:.3g} kg, {:.2g}% of the bed's mass) left through the outflow top so "
                "far (domain.particle_top = \"outflow\"; monitor.csv columns particles_lost, mass_lost_kg)",
-               time(), n, n == 1 ? "" : "s", lost, 100.0 * lost / (lost + left));
+               time(), n, n == 1 ? "" : "s", sim_.dem().removed_mass(), 100.0 * lost_fraction());
   }
 
   CaseConfig config_;

@@ -1,5 +1,6 @@
 #pragma once
 // The discrete-particle model behind the run driver: DEM alone, or CFD-DEM when the case has gas.
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -20,8 +21,15 @@ std::unique_ptr<ModelRun> make_dem_model(const CaseConfig& config, const std::st
 /// before the cache is reused, so a bed settled with other parameters is never taken for this one.
 std::string settled_bed_record(const CaseConfig& config);
 
-/// The first line in which two settled-bed records differ ("" when they are equal), for messages.
-std::string settled_bed_record_difference(const std::string& wanted, const std::string& found);
+/// Where the record of the settle cache `cache` is kept.
+std::filesystem::path settled_bed_record_path(const std::filesystem::path& cache);
+
+/// Why the existing settle cache `cache` cannot stand for the bed of `config`: "" when its record matches, "no
+/// record" when it has none, else the first differing line and the cache's ("key = v (the cache: key = w)").
+std::string settle_cache_mismatch(const CaseConfig& config, const std::filesystem::path& cache);
+
+/// A path of the case file (particles.file, settle.cache): absolute as given, else relative to the case's folder.
+std::filesystem::path case_relative_path(const std::string& case_file, const std::string& path);
 
 /// Particles of a CSV file (`id,x,y,vx,vy,omega,species`), checked against the case (species, domain).
 ParticleStore particles_from_csv(const std::string& path, const DemConfig& dem);
