@@ -281,9 +281,8 @@ DemStepInfo DemSolver::advance(double dt) {
   const std::size_t n = p_.size();
   const Vec2 g = config_.gravity;
   const double half_skin2 = 0.25 * config_.skin * config_.skin;
-  const double W = config_.width;
   const double H = config_.height;
-  const bool outflow = config_.walls.top_outflow && !config_.walls.top;
+  const DomainTest in_domain = domain_test();
   int moved_far = 0;
   int bad = 0;
   int escaped = 0;
@@ -301,11 +300,8 @@ DemStepInfo DemSolver::advance(double dt) {
     const double ddx = p_.x[i] - x_build_[i];
     const double ddy = p_.y[i] - y_build_[i];
     if (ddx * ddx + ddy * ddy >= half_skin2) moved_far = 1;
-    const bool out_top = outflow && p_.y[i] > H;
-    const bool inside = p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && (p_.y[i] <= H || out_top) &&
-                        std::isfinite(p_.vx[i]) && std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
-    if (!inside) bad = 1;
-    if (out_top) escaped = 1;
+    if (!in_domain(p_, i)) bad = 1;
+    if (in_domain.outflow && p_.y[i] > H) escaped = 1;
   }
   need_rebuild_ = moved_far != 0;
   ++steps_;
@@ -371,23 +367,13 @@ void DemSolver::check_particles() const {
   const std::size_t n = p_.size();
   const double W = config_.width;
   const double H = config_.height;
-  const bool outflow = config_.walls.top_outflow && !config_.walls.top;
-  const auto inside = [&](std::size_t i) {
-    return p_.x[i] >= 0.0 && p_.x[i] <= W && p_.y[i] >= 0.0 && (p_.y[i] <= H || outflow) && std::isfinite(p_.vx[i]) &&
-           std::isfinite(p_.vy[i]) && std::isfinite(p_.omega[i]);
-  };
-  int bad = 0;
-  const auto sn = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static) reduction(max : bad)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    if (!inside(static_cast<std::size_t>(ii))) bad = 1;
-  }
-  if (bad == 0) return;
   // Report the offending particle with the smallest id, so the message does not depend on threads.
+  const DomainTest in_domain = domain_test();
   std::size_t worst = n;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!inside(i) && (worst == n || p_.id[i] < p_.id[worst])) worst = i;
+    if (!in_domain(p_, i) && (worst == n || p_.id[i] < p_.id[worst])) worst = i;
   }
+  if (worst == n) return;
   const bool finite = std::isfinite(p_.x[worst]) && std::isfinite(p_.y[worst]) && std::isfinite(p_.vx[worst]) &&
                       std::isfinite(p_.vy[worst]) && std::isfinite(p_.omega[worst]);
   if (finite && p_.y[worst] > H && p_.x[worst] >= 0.0 && p_.x[worst] <= W) {

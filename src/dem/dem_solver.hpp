@@ -2,6 +2,7 @@
 // The soft-sphere DEM of the paper's section 2.1: contact forces (Eqs. 2-8), torques (Eq. 9) and the explicit
 // update of Eq. 10, with walls and a Verlet neighbour list carrying the contact history across rebuilds.
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -123,7 +124,21 @@ class DemSolver {
   /// neighbour entries and contact springs; counts them and their mass.
   std::size_t remove_escaped();
   static constexpr std::uint64_t kSortEvery = 16;
+  /// The step found a particle outside the domain or not finite: fail naming the one with the smallest id.
   void check_particles() const;
+  /// Inside the domain (above the top counts as inside with an outflow top: it is removed) with a finite state.
+  /// The bounds are copied out of the config so that the step's loop keeps them in registers.
+  struct DomainTest {
+    double width, height;
+    bool outflow;
+    bool operator()(const ParticleStore& p, std::size_t i) const {
+      return p.x[i] >= 0.0 && p.x[i] <= width && p.y[i] >= 0.0 && (p.y[i] <= height || outflow) &&
+             std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]) && std::isfinite(p.omega[i]);
+    }
+  };
+  DomainTest domain_test() const {
+    return {config_.width, config_.height, config_.walls.top_outflow && !config_.walls.top};
+  }
 
   DemConfig config_;
   ParticleStore p_;
