@@ -1,5 +1,6 @@
 #include "io/runner.hpp"
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -175,14 +176,18 @@ std::string shell_word(const std::string& s) {
   return q + "'";
 }
 
+/// The results a run writes into its folder: the series files and the folders of frames and checkpoints.
+constexpr std::array<const char*, 5> kResultFiles{"monitor.csv", "fields.pvd", "particles.pvd", "bubble.csv", "cost.json"};
+constexpr std::array<const char*, 4> kResultFolders{"checkpoints", "fields", "particles", "tracers"};
+
 /// What in `out` is the result of an earlier run, for the refusal to overwrite it.
 std::vector<std::string> earlier_results(const fs::path& out) {
   std::vector<std::string> found;
   std::error_code ec;
-  for (const char* file : {"monitor.csv", "fields.pvd", "particles.pvd", "bubble.csv", "cost.json"}) {
+  for (const char* file : kResultFiles) {
     if (fs::exists(out / file, ec)) found.push_back(file);
   }
-  for (const char* sub : {"checkpoints", "fields", "particles", "tracers"}) {
+  for (const char* sub : kResultFolders) {
     if (fs::is_directory(out / sub, ec) && !fs::is_empty(out / sub, ec)) found.push_back(std::string(sub) + "/");
   }
   return found;
@@ -192,7 +197,9 @@ std::vector<std::string> earlier_results(const fs::path& out) {
 int remove_stale_temporaries(const fs::path& out) {
   int removed = 0;
   std::error_code ec;
-  for (const fs::path& dir : {out, out / "checkpoints", out / "fields", out / "particles", out / "tracers"}) {
+  std::vector<fs::path> dirs{out};
+  for (const char* sub : kResultFolders) dirs.push_back(out / sub);
+  for (const fs::path& dir : dirs) {
     for (const auto& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
       const std::size_t at = name.rfind(".tmp.");
@@ -335,10 +342,10 @@ class Run {
                                       "that run with --restart latest, or replace them with --overwrite",
                                       out_.string(), list));
       }
-      for (const char* sub : {"fields", "particles", "tracers", "checkpoints"}) fs::remove_all(out_ / sub);
-      for (const char* file : {"fields.pvd", "particles.pvd", "monitor.csv", "bubble.csv", "cost.json"}) fs::remove(out_ / file);
+      for (const char* sub : kResultFolders) fs::remove_all(out_ / sub);
+      for (const char* file : kResultFiles) fs::remove(out_ / file);
     }
-    for (const char* sub : {"fields", "particles", "tracers", "checkpoints"}) ensure_directory(out_ / sub);
+    for (const char* sub : kResultFolders) ensure_directory(out_ / sub);
     log_ptr_ = make_logger(out_, options_.quiet, restart_);
     if (options_.threads > 0) omp_set_num_threads(options_.threads);
     threads_ = omp_get_max_threads();
