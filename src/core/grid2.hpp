@@ -1,6 +1,7 @@
 #pragma once
 // Geometry of a uniform Cartesian 2D grid: cell (i, j) spans [x0 + i dx, x0 + (i+1) dx) x [y0 + j dy, ...).
-// Index ranges are explicit (i0..i1) so that a later MPI decomposition can own a sub-block with ghost layers.
+// The 2D grid without ghost layers used by the two-fluid model; the dimension-generic Grid<Dim> (core/grid.hpp)
+// carries the owned block and ghost layers of a sub-domain.
 #include <cstddef>
 #include <algorithm>
 #include <cmath>
