@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "analysis/bubble_tracker.hpp"
+#include "core/domain.hpp"
 #include "core/grid2.hpp"
 #include "core/vec2.hpp"
 #include "coupling/coupling_config.hpp"
@@ -17,14 +18,6 @@ namespace fluidbed {
 
 enum class Model { Dem, Tfm };
 enum class ParticleSource { Random, File };
-
-/// The box every model lives in, and gravity: read once from [domain] and copied into DemConfig, GasConfig and
-/// TfmConfig, so the models cannot disagree on them.
-struct DomainConfig {
-  double width = 0.6;         ///< x, m (Table 1)
-  double height = 1.0;        ///< y, m
-  Vec2 gravity{0.0, -9.81};   ///< m/s^2
-};
 
 /// Settling of the random placement under gravity in vacuum (the paper's initial packed bed).
 struct SettleConfig {

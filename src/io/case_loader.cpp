@@ -68,10 +68,10 @@ void read_case(CaseReader& r, CaseConfig& c) {
   r.alias("dem.gravity", "domain.gravity");  // its name before the two-fluid model could set it
   const auto grav = r.numbers("domain.gravity", {0.0, -9.81}, "m/s^2", "gravitational acceleration (x, y) of every "
                               "model (dem.gravity is read as this key)", 2);
-  c.domain.gravity = {grav[0], grav[1]};
+  c.domain.gravity = {grav[0], grav[1], 0.0};
   c.dem.width = c.domain.width;
   c.dem.height = c.domain.height;
-  c.dem.gravity = c.domain.gravity;
+  c.dem.gravity = c.domain.gravity_vector<2>();
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
                                     "outflow (they leave, removed and counted in monitor.csv)", {"open", "wall", "outflow"});
@@ -230,7 +230,7 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   t.cell_size = c.grid.dx;
   t.rho_g = c.gas.rho_g;
   t.mu_g = c.gas.mu_g;
-  t.gravity = c.domain.gravity;
+  t.gravity = c.domain.gravity_vector<2>();
   t.boundary = c.gas.boundary;
   t.drag_switch = c.coupling.drag_switch;
   t.d_p = r.number("tfm.particle_diameter", 0.004, "m", "particle diameter d_p", R::positive());
@@ -334,7 +334,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
       }
     }
   }
-  g.gravity = c.domain.gravity;
+  g.gravity = c.domain.gravity_vector<2>();
   const std::string visc = r.string("gas.viscous_stress", "off", "gas viscous stress (off in the paper's Eq. 12): "
                                     "laplacian div(eps mu grad u), or full div(eps mu (grad u + grad u^T))",
                                     {"off", "laplacian", "full"});
