@@ -29,10 +29,17 @@ enum class ViscousStress {
 /// Pressure-velocity coupling of the outer iterations.
 enum class PressureCoupling { Simple, Simplec };
 
+/// The region of the bottom face a jet blows through: a slot across the whole depth (2D, or a 3D slab's slot),
+/// a rectangle or a disc of the bottom face of a 3D bed.
+enum class InletShape { Slot, Rectangle, Disc };
+
 /// A jet through the bottom distributor, active for t_start <= t < t_end.
 struct InletJet {
+  InletShape shape = InletShape::Slot;
   double x_centre = 0.3;  ///< [m]
-  double width = 0.02;    ///< [m]
+  double z_centre = 0.0;  ///< [m], Rectangle and Disc (3D)
+  double width = 0.02;    ///< x extent of a Slot or Rectangle, diameter of a Disc [m]
+  double depth = 0.0;     ///< z extent of a Rectangle [m]
   double velocity = 30.0; ///< superficial velocity through the jet [m/s]
   double t_start = 0.0;   ///< [s]
   double t_end = 0.4;     ///< [s]
