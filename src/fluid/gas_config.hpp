@@ -35,14 +35,14 @@ enum class InletShape { Slot, Rectangle, Disc };
 
 /// A jet through the bottom distributor, active for t_start <= t < t_end.
 struct InletJet {
-  InletShape shape = InletShape::Slot;
   double x_centre = 0.3;  ///< [m]
-  double z_centre = 0.0;  ///< [m], Rectangle and Disc (3D)
   double width = 0.02;    ///< x extent of a Slot or Rectangle, diameter of a Disc [m]
-  double depth = 0.0;     ///< z extent of a Rectangle [m]
   double velocity = 30.0; ///< superficial velocity through the jet [m/s]
   double t_start = 0.0;   ///< [s]
   double t_end = 0.4;     ///< [s]
+  InletShape shape = InletShape::Slot;
+  double z_centre = 0.0;  ///< [m], Rectangle and Disc (3D)
+  double depth = 0.0;     ///< z extent of a Rectangle [m]
 };
 
 struct GasBoundaryConfig {
