@@ -4,14 +4,38 @@
 
 namespace fluidbed {
 
-int bed_surface_row(const Grid2& grid, const Field2& eps, double surface_eps) {
-  if (eps.nx != grid.nx || eps.ny != grid.ny) throw_input_error("bed surface: voidage field does not match the grid");
-  for (int j = grid.ny - 1; j >= 0; --j) {
+template <int Dim>
+int bed_surface_row(const CellView<Dim>& eps, double surface_eps) {
+  const CellGeometry<Dim>& g = eps.geometry;
+  const int nx = g.n[0], ny = g.n[1];
+  const int nz = Dim == 3 ? g.n[Dim - 1] : 1;
+  const std::size_t layer = static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz);
+  for (int j = ny - 1; j >= 0; --j) {
     double sum = 0.0;
-    for (int i = 0; i < grid.nx; ++i) sum += eps(i, j);
-    if (sum / grid.nx < surface_eps) return j;
+    for (int k = 0; k < nz; ++k) {
+      for (int i = 0; i < nx; ++i) {
+        Index<Dim> c{};
+        c[0] = i;
+        c[1] = j;
+        if constexpr (Dim == 3) c[2] = k;
+        sum += eps[c];
+      }
+    }
+    if (sum / static_cast<double>(layer) < surface_eps) return j;
   }
   return -1;
+}
+
+template <int Dim>
+std::optional<double> bed_surface_height(const CellView<Dim>& eps, double surface_eps) {
+  const int j = bed_surface_row(eps, surface_eps);
+  if (j < 0) return std::nullopt;
+  return eps.geometry.face(1, j + 1);
+}
+
+int bed_surface_row(const Grid2& grid, const Field2& eps, double surface_eps) {
+  if (eps.nx != grid.nx || eps.ny != grid.ny) throw_input_error("bed surface: voidage field does not match the grid");
+  return bed_surface_row(cell_view(grid, eps, "eps"), surface_eps);
 }
 
 std::optional<double> bed_surface_height(const Grid2& grid, const Field2& eps, double surface_eps) {
@@ -19,5 +43,10 @@ std::optional<double> bed_surface_height(const Grid2& grid, const Field2& eps, d
   if (j < 0) return std::nullopt;
   return grid.y0 + (j + 1) * grid.dy;
 }
+
+template int bed_surface_row(const CellView<2>&, double);
+template int bed_surface_row(const CellView<3>&, double);
+template std::optional<double> bed_surface_height(const CellView<2>&, double);
+template std::optional<double> bed_surface_height(const CellView<3>&, double);
 
 }  // namespace fluidbed

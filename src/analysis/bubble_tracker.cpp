@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "analysis/bed_surface.hpp"
+#include "analysis/rise_velocity.hpp"
 #include "core/error.hpp"
 
 namespace fluidbed {
@@ -18,49 +19,79 @@ double threshold_crossing(double y_lo, double eps_lo, double y_hi, double eps_hi
   return y_lo + s * (y_hi - y_lo);
 }
 
-double interpolate_cell_centred(const Grid2& grid, const Field2& f, double x, double y) {
+template <int Dim>
+double interpolate_cell_centred(const CellView<Dim>& f, const std::array<double, Dim>& x) {
+  const CellGeometry<Dim>& g = f.geometry;
   // Position in units of cells measured from the first cell centre; clamped so the stencil stays on the grid.
-  const double sx = std::clamp((x - grid.x0) / grid.dx - 0.5, 0.0, static_cast<double>(grid.nx - 1));
-  const double sy = std::clamp((y - grid.y0) / grid.dy - 0.5, 0.0, static_cast<double>(grid.ny - 1));
-  const int i0 = std::min(static_cast<int>(sx), grid.nx - 1);
-  const int j0 = std::min(static_cast<int>(sy), grid.ny - 1);
-  const int i1 = std::min(i0 + 1, grid.nx - 1);
-  const int j1 = std::min(j0 + 1, grid.ny - 1);
-  const double wx = sx - i0;
-  const double wy = sy - j0;
-  return (1.0 - wy) * ((1.0 - wx) * f(i0, j0) + wx * f(i1, j0)) + wy * ((1.0 - wx) * f(i0, j1) + wx * f(i1, j1));
+  std::array<int, Dim> lo{}, hi{};
+  std::array<double, Dim> w{};
+  for (int a = 0; a < Dim; ++a) {
+    const double s = std::clamp((x[a] - g.origin[a]) / g.h[a] - 0.5, 0.0, static_cast<double>(g.n[a] - 1));
+    lo[a] = std::min(static_cast<int>(s), g.n[a] - 1);
+    hi[a] = std::min(lo[a] + 1, g.n[a] - 1);
+    w[a] = s - lo[a];
+  }
+  const auto value = [&](int i, int j, int k) {
+    Index<Dim> c{};
+    c[0] = i;
+    c[1] = j;
+    if constexpr (Dim == 3) c[2] = k;
+    return f[c];
+  };
+  const auto bilinear = [&](int k) {
+    const double wx = w[0], wy = w[1];
+    const int i0 = lo[0], i1 = hi[0], j0 = lo[1], j1 = hi[1];
+    return (1.0 - wy) * ((1.0 - wx) * value(i0, j0, k) + wx * value(i1, j0, k)) +
+           wy * ((1.0 - wx) * value(i0, j1, k) + wx * value(i1, j1, k));
+  };
+  if constexpr (Dim == 2) {
+    return bilinear(0);
+  } else {
+    return (1.0 - w[2]) * bilinear(lo[2]) + w[2] * bilinear(hi[2]);
+  }
 }
 
-int label_regions(int nx, int ny, const std::vector<std::uint8_t>& mask, std::vector<int>& label) {
-  const std::size_t n = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
-  label.assign(n, -1);
+double interpolate_cell_centred(const Grid2& grid, const Field2& f, double x, double y) {
+  return interpolate_cell_centred<2>(cell_view(grid, f, "interpolated"), {x, y});
+}
+
+template <int Dim>
+int label_regions(const Index<Dim>& n, const std::vector<std::uint8_t>& mask, std::vector<int>& label) {
+  const CellGeometry<Dim> g{n, {}, {}};
+  const std::size_t cells = g.cells();
+  if (mask.size() != cells)
+    throw_input_error(fmt::format("label regions: mask of {} cells for a grid of {}", mask.size(), cells));
+  label.assign(cells, -1);
   std::vector<std::size_t> stack;
   int count = 0;
-  for (std::size_t start = 0; start < n; ++start) {
+  for (std::size_t start = 0; start < cells; ++start) {
     if (!mask[start] || label[start] >= 0) continue;
     label[start] = count;
     stack.push_back(start);
     while (!stack.empty()) {
-      const std::size_t k = stack.back();
+      const Index<Dim> c = g.cell_of(stack.back());
       stack.pop_back();
-      const int i = static_cast<int>(k % static_cast<std::size_t>(nx));
-      const int j = static_cast<int>(k / static_cast<std::size_t>(nx));
-      const auto visit = [&](int ii, int jj) {
-        if (ii < 0 || ii >= nx || jj < 0 || jj >= ny) return;
-        const std::size_t kk = static_cast<std::size_t>(jj) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ii);
-        if (mask[kk] && label[kk] < 0) {
-          label[kk] = count;
-          stack.push_back(kk);
+      // Face neighbours only: 4 in 2D, 6 in 3D; cells touching along an edge or a corner are not connected.
+      for (int a = 0; a < Dim; ++a) {
+        for (const int step : {-1, 1}) {
+          Index<Dim> d = c;
+          d[a] += step;
+          if (d[a] < 0 || d[a] >= n[a]) continue;
+          const std::size_t kk = g.index(d);
+          if (mask[kk] && label[kk] < 0) {
+            label[kk] = count;
+            stack.push_back(kk);
+          }
         }
-      };
-      visit(i - 1, j);
-      visit(i + 1, j);
-      visit(i, j - 1);
-      visit(i, j + 1);
+      }
     }
     ++count;
   }
   return count;
+}
+
+int label_regions(int nx, int ny, const std::vector<std::uint8_t>& mask, std::vector<int>& label) {
+  return label_regions<2>({nx, ny}, mask, label);
 }
 
 BubbleTracker::BubbleTracker(const BubbleConfig& config) : config_(config) {
@@ -68,24 +99,25 @@ BubbleTracker::BubbleTracker(const BubbleConfig& config) : config_(config) {
     throw_input_error(fmt::format("bubble threshold voidage must lie in (0, 1), got {}", config_.eps_threshold));
   if (!(config_.u_mf > 0.0)) throw_input_error(fmt::format("bubble u_mf must be positive, got {}", config_.u_mf));
   if (!(config_.jet_width >= 0.0)) throw_input_error("bubble jet width must not be negative");
+  if (!(config_.jet_depth >= 0.0)) throw_input_error("bubble jet depth must not be negative");
+  if (!(config_.gravity >= 0.0)) throw_input_error("bubble gravity must not be negative");
   if (config_.rise_velocity_samples < 2) throw_input_error("bubble rise_velocity_samples must be at least 2");
 }
 
 namespace {
 
+template <int Dim>
 struct RegionStats {
   std::size_t cells = 0;
   bool freeboard = false;
   bool attached = false;
-  double sum_x = 0.0, sum_y = 0.0;
-  int top_i = -1, top_j = -1;
+  std::array<double, Dim> sum{};  // of the cell centres, for the centroid
+  Index<Dim> top = [] {
+    Index<Dim> c{};
+    c.fill(-1);
+    return c;
+  }();
 };
-
-void check_field(const Grid2& grid, const Field2& f, const char* name) {
-  if (f.nx != grid.nx || f.ny != grid.ny || f.size() != grid.cells())
-    throw_input_error(fmt::format("bubble tracker: field {} is {}x{}, the grid {}x{}", name, f.nx, f.ny, grid.nx,
-                                  grid.ny));
-}
 
 // Least-squares slope of h(t); exact for a nose moving at constant speed.
 double lsq_slope(const std::vector<double>& t, const std::vector<double>& h) {
@@ -105,65 +137,117 @@ double lsq_slope(const std::vector<double>& t, const std::vector<double>& h) {
   return den > 0.0 ? num / den : 0.0;
 }
 
+// Length of the overlap of [a, b] and [lo, hi] exceeds a sliver of the cell size h.
+bool overlaps(double a, double b, double lo, double hi, double h) { return std::min(b, hi) - std::max(a, lo) > 1e-9 * h; }
+
+// The horizontal axes of a bed: x, and z in 3D (y is up).
+template <int Dim>
+constexpr std::array<int, Dim - 1> horizontal_axes() {
+  if constexpr (Dim == 2) {
+    return {0};
+  } else {
+    return {0, 2};
+  }
+}
+
 }  // namespace
 
-BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& eps, const Field2& ug_cc,
-                                    const Field2& vg_cc) {
-  if (config_.grid.nx > 0 && (config_.grid.nx != grid.nx || config_.grid.ny != grid.ny))
+template <int Dim>
+BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const CellView<Dim>& vg) {
+  static_assert(Dim == 2 || Dim == 3);
+  const CellGeometry<Dim>& g = eps.geometry;
+  if (vg.geometry.n != g.n) throw_input_error("bubble tracker: the gas velocity and voidage grids differ");
+  if (config_.grid.nx > 0 && (config_.grid.nx != g.n[0] || config_.grid.ny != g.n[1]))
     throw_input_error(fmt::format("bubble tracker: configured for a {}x{} grid, given {}x{}", config_.grid.nx,
-                                  config_.grid.ny, grid.nx, grid.ny));
-  check_field(grid, eps, "eps");
-  check_field(grid, ug_cc, "ug");
-  check_field(grid, vg_cc, "vg");
-  const int nx = grid.nx;
-  const int ny = grid.ny;
+                                  config_.grid.ny, g.n[0], g.n[1]));
+  if constexpr (Dim == 3) {
+    if (config_.nz > 0 && config_.nz != g.n[2])
+      throw_input_error(fmt::format("bubble tracker: configured for {} cells in depth, given {}", config_.nz, g.n[2]));
+  }
+  constexpr std::array<int, Dim - 1> horizontal = horizontal_axes<Dim>();
+  const int nx = g.n[0];
+  const int ny = g.n[1];
+  const int nz = Dim == 3 ? g.n[Dim - 1] : 1;
   const double thr = config_.eps_threshold;
+  // The nose line and the jet centre: (jet_x) in 2D, (jet_x, jet_z) in 3D.
+  std::array<double, Dim> line{};
+  line[0] = config_.jet_x;
+  if constexpr (Dim == 3) line[2] = config_.jet_z.value_or(g.origin[2] + 0.5 * g.length(2));
+  const auto horizontal_distance = [&](const Index<Dim>& c) {
+    if constexpr (Dim == 2) {
+      return std::abs(g.centre(0, c[0]) - line[0]);
+    } else {
+      return std::hypot(g.centre(0, c[0]) - line[0], g.centre(2, c[2]) - line[2]);
+    }
+  };
 
   BubbleSample s;
   s.time = t;
+  s.dimension = Dim;
 
-  // Bed surface: highest row whose mean voidage is still that of a bed; rows above it are freeboard.
-  const int j_surf = bed_surface_row(grid, eps, config_.surface_eps);
-  if (j_surf >= 0) s.bed_height = grid.y0 + (j_surf + 1) * grid.dy;
+  // Bed surface: highest layer whose mean voidage is still that of a bed; layers above it are freeboard.
+  const int j_surf = bed_surface_row(eps, config_.surface_eps);
+  if (j_surf >= 0) s.bed_height = g.origin[1] + (j_surf + 1) * g.h[1];
 
-  std::vector<std::uint8_t> mask(grid.cells());
-  for (std::size_t k = 0; k < mask.size(); ++k) mask[k] = eps.v[k] > thr ? 1 : 0;
+  const std::size_t n_cells = g.cells();
+  std::vector<std::uint8_t> mask(n_cells);
+  for (std::size_t k = 0; k < n_cells; ++k) mask[k] = eps.at(k) > thr ? 1 : 0;
   std::vector<int> label;
-  const int n_regions = label_regions(nx, ny, mask, label);
+  const int n_regions = label_regions<Dim>(g.n, mask, label);
 
-  // Bottom cells "above the jet": every column whose span overlaps the jet opening, at least the one holding jet_x.
+  // Bottom cells "above the jet": every cell of the bottom layer whose face overlaps the jet's footprint, at
+  // least the one holding the jet centre. Stored per (i, k), i fastest.
   const double jet_lo = config_.jet_x - 0.5 * config_.jet_width;
   const double jet_hi = config_.jet_x + 0.5 * config_.jet_width;
-  std::vector<std::uint8_t> jet_column(static_cast<std::size_t>(nx), 0);
-  for (int i = 0; i < nx; ++i) {
-    const double a = grid.x0 + i * grid.dx;
-    const double b = a + grid.dx;
-    if (std::min(b, jet_hi) - std::max(a, jet_lo) > 1e-9 * grid.dx) jet_column[static_cast<std::size_t>(i)] = 1;
-  }
-  jet_column[static_cast<std::size_t>(grid.cell_i(config_.jet_x))] = 1;
-
-  std::vector<RegionStats> region(static_cast<std::size_t>(n_regions));
-  for (int j = 0; j < ny; ++j) {
+  std::vector<std::uint8_t> jet_cell(static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz), 0);
+  for (int k = 0; k < nz; ++k) {
     for (int i = 0; i < nx; ++i) {
-      const int l = label[grid.index(i, j)];
-      if (l < 0) continue;
-      RegionStats& r = region[static_cast<std::size_t>(l)];
-      ++r.cells;
-      r.sum_x += grid.xc(i);
-      r.sum_y += grid.yc(j);
-      if (j_surf < 0 || j > j_surf) r.freeboard = true;
-      if (j == 0 && jet_column[static_cast<std::size_t>(i)]) r.attached = true;
-      const bool closer = r.top_j == j && std::abs(grid.xc(i) - config_.jet_x) < std::abs(grid.xc(r.top_i) - config_.jet_x);
-      if (j > r.top_j || closer) {
-        r.top_i = i;
-        r.top_j = j;
+      const double a = g.origin[0] + i * g.h[0];
+      const double b = a + g.h[0];
+      bool over = false;
+      if (Dim == 2 || config_.jet_shape == InletShape::Slot) {
+        over = overlaps(a, b, jet_lo, jet_hi, g.h[0]);
+      } else if (config_.jet_shape == InletShape::Rectangle) {
+        const double c = g.face(Dim - 1, k), d = c + g.h[Dim - 1];
+        over = overlaps(a, b, jet_lo, jet_hi, g.h[0]) &&
+               overlaps(c, d, line[Dim - 1] - 0.5 * config_.jet_depth, line[Dim - 1] + 0.5 * config_.jet_depth,
+                        g.h[Dim - 1]);
+      } else {
+        // Disc: the face's point nearest the centre lies inside the disc (by more than a sliver).
+        const double c = g.face(Dim - 1, k), d = c + g.h[Dim - 1];
+        const double px = std::clamp(line[0], a, b), pz = std::clamp(line[Dim - 1], c, d);
+        over = std::hypot(px - line[0], pz - line[Dim - 1]) < 0.5 * config_.jet_width - 1e-9 * g.h[0];
       }
+      if (over) jet_cell[static_cast<std::size_t>(k) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)] = 1;
     }
   }
-  const double cell_area = grid.dx * grid.dy;
+  {
+    const int ic = g.cell(0, line[0]);
+    const int kc = Dim == 3 ? g.cell(Dim - 1, line[Dim - 1]) : 0;
+    jet_cell[static_cast<std::size_t>(kc) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ic)] = 1;
+  }
+
+  std::vector<RegionStats<Dim>> region(static_cast<std::size_t>(n_regions));
+  for (std::size_t cell = 0; cell < n_cells; ++cell) {
+    const int l = label[cell];
+    if (l < 0) continue;
+    const Index<Dim> c = g.cell_of(cell);
+    const int j = c[1];
+    const int kz = Dim == 3 ? c[Dim - 1] : 0;
+    RegionStats<Dim>& r = region[static_cast<std::size_t>(l)];
+    ++r.cells;
+    for (int a = 0; a < Dim; ++a) r.sum[a] += g.centre(a, c[a]);
+    if (j_surf < 0 || j > j_surf) r.freeboard = true;
+    if (j == 0 && jet_cell[static_cast<std::size_t>(kz) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(c[0])])
+      r.attached = true;
+    const bool closer = r.top[1] == j && horizontal_distance(c) < horizontal_distance(r.top);
+    if (j > r.top[1] || closer) r.top = c;
+  }
+  const double cell_measure = g.cell_measure();
+  const double min_measure = Dim == 2 ? config_.min_area : config_.min_volume;
   const auto is_candidate = [&](int l) {
-    const RegionStats& r = region[static_cast<std::size_t>(l)];
-    return !r.freeboard && static_cast<double>(r.cells) * cell_area >= config_.min_area;
+    const RegionStats<Dim>& r = region[static_cast<std::size_t>(l)];
+    return !r.freeboard && static_cast<double>(r.cells) * cell_measure >= min_measure;
   };
 
   int chosen = -1;
@@ -199,7 +283,7 @@ BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& e
     bool best_attached = false;
     for (int l = 0; l < n_regions; ++l) {
       if (!is_candidate(l)) continue;
-      const RegionStats& r = region[static_cast<std::size_t>(l)];
+      const RegionStats<Dim>& r = region[static_cast<std::size_t>(l)];
       if ((r.attached && !best_attached) || (r.attached == best_attached && r.cells > best)) {
         best = r.cells;
         best_attached = r.attached;
@@ -219,12 +303,21 @@ BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& e
     return s;
   }
 
-  const RegionStats& r = region[static_cast<std::size_t>(chosen)];
+  const RegionStats<Dim>& r = region[static_cast<std::size_t>(chosen)];
   s.bubble_id = bubble_count_ - 1;
-  s.area = static_cast<double>(r.cells) * cell_area;
-  s.equivalent_diameter = std::sqrt(4.0 * *s.area / std::numbers::pi);
-  s.centroid_x = r.sum_x / static_cast<double>(r.cells);
-  s.centroid_y = r.sum_y / static_cast<double>(r.cells);
+  const double measure = static_cast<double>(r.cells) * cell_measure;
+  if constexpr (Dim == 2) {
+    s.area = measure;
+    s.equivalent_diameter = std::sqrt(4.0 * measure / std::numbers::pi);
+  } else {
+    // Sphere of the same volume: V = pi d^3 / 6.
+    s.volume = measure;
+    s.equivalent_diameter = std::cbrt(6.0 * measure / std::numbers::pi);
+  }
+  s.theory_rise_velocity = rise_constant<Dim>() * std::sqrt(config_.gravity * *s.equivalent_diameter);
+  s.centroid_x = r.sum[0] / static_cast<double>(r.cells);
+  s.centroid_y = r.sum[1] / static_cast<double>(r.cells);
+  if constexpr (Dim == 3) s.centroid_z = r.sum[2] / static_cast<double>(r.cells);
   s.attached = r.attached;
   if (was_attached_ && !r.attached) {
     s.detached = true;
@@ -232,37 +325,70 @@ BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& e
   }
   was_attached_ = r.attached;
 
-  // Nose: top of the bubble on the vertical line x = jet_x, eps linearly interpolated between the two nearest
-  // columns of cell centres; if the bubble has drifted off that line, on the column of its highest cell.
-  const double sx = (config_.jet_x - grid.x0) / grid.dx - 0.5;
-  int i0 = static_cast<int>(std::floor(sx));
-  double wx = sx - i0;
-  if (i0 < 0) {
-    i0 = 0;
-    wx = 0.0;
-  } else if (i0 >= nx - 1) {
-    i0 = nx - 1;
-    wx = 0.0;
+  // Nose: top of the bubble on the vertical line through the jet centre, eps interpolated (linearly in 2D,
+  // bilinearly over x and z in 3D) between the nearest columns of cell centres; if the bubble has drifted off that
+  // line, on the column of its highest cell.
+  std::array<int, Dim> c0{}, c1{};
+  std::array<double, Dim> wl{};
+  for (const int a : horizontal) {
+    const double sa = (line[a] - g.origin[a]) / g.h[a] - 0.5;
+    c0[a] = static_cast<int>(std::floor(sa));
+    wl[a] = sa - c0[a];
+    if (c0[a] < 0) {
+      c0[a] = 0;
+      wl[a] = 0.0;
+    } else if (c0[a] >= g.n[a] - 1) {
+      c0[a] = g.n[a] - 1;
+      wl[a] = 0.0;
+    }
+    c1[a] = std::min(c0[a] + 1, g.n[a] - 1);
   }
-  const int i1 = std::min(i0 + 1, nx - 1);
-  const auto line_eps = [&](int j) { return (1.0 - wx) * eps(i0, j) + wx * eps(i1, j); };
+  const auto at = [&](int i, int j, int k) {
+    Index<Dim> c{};
+    c[0] = i;
+    c[1] = j;
+    if constexpr (Dim == 3) c[2] = k;
+    return g.index(c);
+  };
+  const auto line_eps = [&](int j) {
+    const double wx = wl[0];
+    const auto row = [&](int k) { return (1.0 - wx) * eps.at(at(c0[0], j, k)) + wx * eps.at(at(c1[0], j, k)); };
+    if constexpr (Dim == 2) {
+      return row(0);
+    } else {
+      return (1.0 - wl[2]) * row(c0[2]) + wl[2] * row(c1[2]);
+    }
+  };
+  const auto line_in_bubble = [&](int j) {
+    // Every column of the stencil with a nonzero weight counts.
+    const auto in = [&](int i, int k) { return label[at(i, j, k)] == chosen; };
+    const bool row0 = in(c0[0], Dim == 3 ? c0[Dim - 1] : 0) || (wl[0] > 0.0 && in(c1[0], Dim == 3 ? c0[Dim - 1] : 0));
+    if constexpr (Dim == 2) {
+      return row0;
+    } else {
+      return row0 || (wl[2] > 0.0 && (in(c0[0], c1[2]) || (wl[0] > 0.0 && in(c1[0], c1[2]))));
+    }
+  };
   int j_top = -1;
   for (int j = ny - 1; j >= 0 && j_top < 0; --j) {
-    const bool in_bubble = label[grid.index(i0, j)] == chosen || (wx > 0.0 && label[grid.index(i1, j)] == chosen);
-    if (in_bubble && line_eps(j) > thr) j_top = j;
+    if (line_in_bubble(j) && line_eps(j) > thr) j_top = j;
   }
   double nose = 0.0;
   if (j_top >= 0) {
-    s.nose_x = config_.jet_x;
+    s.nose_x = line[0];
+    if constexpr (Dim == 3) s.nose_z = line[2];
     nose = (j_top + 1 < ny && line_eps(j_top + 1) <= thr)
-               ? threshold_crossing(grid.yc(j_top), line_eps(j_top), grid.yc(j_top + 1), line_eps(j_top + 1), thr)
-               : grid.y0 + (j_top + 1) * grid.dy;
+               ? threshold_crossing(g.centre(1, j_top), line_eps(j_top), g.centre(1, j_top + 1), line_eps(j_top + 1), thr)
+               : g.origin[1] + (j_top + 1) * g.h[1];
   } else {
-    const int it = r.top_i;
-    const int jt = r.top_j;
-    s.nose_x = grid.xc(it);
-    nose = (jt + 1 < ny) ? threshold_crossing(grid.yc(jt), eps(it, jt), grid.yc(jt + 1), eps(it, jt + 1), thr)
-                         : grid.y0 + (jt + 1) * grid.dy;
+    Index<Dim> top = r.top;
+    s.nose_x = g.centre(0, top[0]);
+    if constexpr (Dim == 3) s.nose_z = g.centre(2, top[2]);
+    const int jt = top[1];
+    Index<Dim> above = top;
+    above[1] = jt + 1;
+    nose = (jt + 1 < ny) ? threshold_crossing(g.centre(1, jt), eps[top], g.centre(1, jt + 1), eps[above], thr)
+                         : g.origin[1] + (jt + 1) * g.h[1];
   }
   s.nose_height = nose;
 
@@ -277,7 +403,11 @@ BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& e
   if (nose_t_.size() >= 2) s.rise_velocity = lsq_slope(nose_t_, nose_h_);
 
   // Axial interstitial gas velocity in the emulsion just above the roof: half a cell above the nose.
-  s.nose_gas_velocity = interpolate_cell_centred(grid, vg_cc, *s.nose_x, nose + 0.5 * grid.dy);
+  std::array<double, Dim> probe{};
+  probe[0] = *s.nose_x;
+  probe[1] = nose + 0.5 * g.h[1];
+  if constexpr (Dim == 3) probe[2] = *s.nose_z;
+  s.nose_gas_velocity = interpolate_cell_centred<Dim>(vg, probe);
   // Throughflow relative to the rising nose, in units of U_mf (Table 2).
   if (s.rise_velocity) s.throughflow_ratio = (*s.nose_gas_velocity - *s.rise_velocity) / config_.u_mf;
 
@@ -286,13 +416,36 @@ BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& e
   return s;
 }
 
+BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& eps, const Field2& ug_cc,
+                                    const Field2& vg_cc) {
+  const auto checked = [&](const Field2& f, const char* name) {
+    if (f.nx != grid.nx || f.ny != grid.ny || f.size() != grid.cells())
+      throw_input_error(fmt::format("bubble tracker: field {} is {}x{}, the grid {}x{}", name, f.nx, f.ny, grid.nx,
+                                    grid.ny));
+    return cell_view(grid, f, name);
+  };
+  const CellView<2> e = checked(eps, "eps");
+  checked(ug_cc, "ug");
+  return observe<2>(t, e, checked(vg_cc, "vg"));
+}
+
+template BubbleSample BubbleTracker::observe<2>(double, const CellView<2>&, const CellView<2>&);
+template BubbleSample BubbleTracker::observe<3>(double, const CellView<3>&, const CellView<3>&);
+template double interpolate_cell_centred<2>(const CellView<2>&, const std::array<double, 2>&);
+template double interpolate_cell_centred<3>(const CellView<3>&, const std::array<double, 3>&);
+template int label_regions<2>(const Index<2>&, const std::vector<std::uint8_t>&, std::vector<int>&);
+template int label_regions<3>(const Index<3>&, const std::vector<std::uint8_t>&, std::vector<int>&);
+
 namespace {
 
 std::string opt(const std::optional<double>& v) { return v ? fmt::format("{}", *v) : std::string(); }
 
 }  // namespace
 
-std::string bubble_csv_header() {
+std::string bubble_csv_header(int dimension) {
+  if (dimension == 3)
+    return "time_s,nose_height_m,rise_velocity_m_s,nose_gas_velocity_m_s,throughflow_ratio,bubble_volume_m3,attached,"
+           "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m,nose_z_m,theory_rise_velocity_m_s";
   return "time_s,nose_height_m,rise_velocity_m_s,nose_gas_velocity_m_s,throughflow_ratio,bubble_area_m2,attached,"
          "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m";
 }
@@ -302,6 +455,10 @@ std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s) {
   if (s.attached) attached = *s.attached ? 1.0 : 0.0;
   std::optional<double> id;
   if (s.bubble_id >= 0) id = static_cast<double>(s.bubble_id);
+  if (s.dimension == 3)
+    return {s.time, s.nose_height, s.rise_velocity, s.nose_gas_velocity, s.throughflow_ratio, s.volume, attached,
+            s.equivalent_diameter, s.bed_height, s.erupted ? 1.0 : 0.0, id, s.nose_x, s.nose_z,
+            s.theory_rise_velocity};
   return {s.time, s.nose_height, s.rise_velocity, s.nose_gas_velocity, s.throughflow_ratio, s.area, attached,
           s.equivalent_diameter, s.bed_height, s.erupted ? 1.0 : 0.0, id, s.nose_x};
 }
@@ -309,9 +466,12 @@ std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s) {
 std::string bubble_csv_row(const BubbleSample& s) {
   const std::string attached = s.attached ? (*s.attached ? "1" : "0") : "";
   const std::string id = s.bubble_id >= 0 ? fmt::format("{}", s.bubble_id) : std::string();
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", s.time, opt(s.nose_height), opt(s.rise_velocity),
-                     opt(s.nose_gas_velocity), opt(s.throughflow_ratio), opt(s.area), attached,
-                     opt(s.equivalent_diameter), opt(s.bed_height), s.erupted ? 1 : 0, id, opt(s.nose_x));
+  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", s.time, opt(s.nose_height), opt(s.rise_velocity),
+                                opt(s.nose_gas_velocity), opt(s.throughflow_ratio),
+                                opt(s.dimension == 3 ? s.volume : s.area), attached, opt(s.equivalent_diameter),
+                                opt(s.bed_height), s.erupted ? 1 : 0, id, opt(s.nose_x));
+  if (s.dimension == 3) row += fmt::format(",{},{}", opt(s.nose_z), opt(s.theory_rise_velocity));
+  return row;
 }
 
 }  // namespace fluidbed

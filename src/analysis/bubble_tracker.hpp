@@ -1,14 +1,18 @@
 #pragma once
 // Bubble analytics of the paper's Section 3 (Table 2): nose, rise velocity, gas velocity at the nose, throughflow,
-// attachment to the jet, detachment and eruption. Works on plain cell-centred fields, so CFD-DEM and TFM share it.
+// attachment to the jet, detachment and eruption. Works on plain cell-centred fields (CellView), so CFD-DEM and TFM,
+// 2D and 3D share it: bubbles are 4-connected regions of cells in 2D, 6-connected (face neighbours) in 3D.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "analysis/cell_view.hpp"
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
+#include "fluid/gas_config.hpp"
 
 namespace fluidbed {
 
@@ -22,6 +26,15 @@ struct BubbleConfig {
   double u_mf = 1.8;             ///< m/s, minimum fluidization velocity (Table 1), scales the throughflow
   double surface_eps = 0.7;      ///< a row whose mean eps is below this belongs to the bed (bed surface)
   int rise_velocity_samples = 3; ///< least-squares slope of the nose over this many samples (2: backward difference)
+  double gravity = 9.81;         ///< m/s^2, magnitude, for the single-bubble rise velocity of the theory
+  // 3D only (the 2D tracker ignores them):
+  int nz = 0;                    ///< cells along z of the fields passed to observe() (checked when > 0)
+  double min_volume = 1.6e-5;    ///< m^3, smaller voids are not counted as bubbles (two 2 cm cubes)
+  /// The jet's footprint on the bottom face: Slot spans the whole depth, Rectangle is jet_width x jet_depth, Disc
+  /// has the diameter jet_width; all centred on (jet_x, jet_z).
+  InletShape jet_shape = InletShape::Slot;
+  std::optional<double> jet_z;   ///< m, depth of the jet centre and of the nose line; empty: mid-depth
+  double jet_depth = 0.0;        ///< m, z extent of a Rectangle
 };
 
 /// One observation; optional values are empty when there is no bubble (or, for velocities, too few samples).
@@ -32,14 +45,19 @@ struct BubbleSample {
   std::optional<double> rise_velocity;            ///< m/s
   std::optional<double> nose_gas_velocity;        ///< m/s, interstitial, half a cell above the nose
   std::optional<double> throughflow_ratio;        ///< U_th / U_mf
-  std::optional<double> area;                     ///< m^2
-  std::optional<double> equivalent_diameter;      ///< m, sqrt(4 A / pi)
+  std::optional<double> area;                     ///< m^2 (2D)
+  std::optional<double> volume;                   ///< m^3 (3D)
+  std::optional<double> equivalent_diameter;      ///< m: circle sqrt(4 A / pi) in 2D, sphere (6 V / pi)^(1/3) in 3D
+  std::optional<double> theory_rise_velocity;     ///< m/s, C sqrt(g D) of rise_velocity.hpp for the dimension
   std::optional<double> centroid_x, centroid_y;   ///< m
+  std::optional<double> centroid_z;               ///< m (3D)
+  std::optional<double> nose_z;                   ///< m (3D), where the nose was sought
   std::optional<bool> attached;                   ///< touches the bottom cells above the jet
   std::optional<double> bed_height;               ///< m, top of the highest bed row; empty without a bed
   bool erupted = false;                           ///< the tracked bubble merged with the freeboard at this sample
   bool detached = false;                          ///< the tracked bubble left the jet at this sample
   int bubble_id = -1;                             ///< 0 for the first bubble tracked, 1 for the next...; -1 none
+  int dimension = 2;                              ///< of the fields observed
 };
 
 /// Follows one bubble at a time: the jet bubble, then, once it detached, the same region as it rises, until it
@@ -48,6 +66,12 @@ class BubbleTracker {
  public:
   explicit BubbleTracker(const BubbleConfig& config);
 
+  /// One sample of the voidage eps and the vertical (axis 1) interstitial gas velocity vg at the cell centres,
+  /// both over the same geometry; Dim is 2 or 3. Throws Error(BadInput) when the geometries differ or do not match
+  /// the configured cell counts.
+  template <int Dim>
+  BubbleSample observe(double t, const CellView<Dim>& eps, const CellView<Dim>& vg);
+  /// The 2D fields of a Field2 model (ug_cc is not used: the nose gas velocity is the vertical one).
   BubbleSample observe(double t, const Grid2& grid, const Field2& eps, const Field2& ug_cc, const Field2& vg_cc);
 
   /// Time of the first sample at which a bubble that had been attached was no longer attached.
@@ -93,19 +117,28 @@ class BubbleTracker {
 /// (linear interpolation; exact for a linear profile).
 double threshold_crossing(double y_lo, double eps_lo, double y_hi, double eps_hi, double threshold);
 
-/// Bilinear interpolation of a cell-centred field at (x, y), clamped to the outermost cell centres.
+/// Multilinear (bi- in 2D, tri- in 3D) interpolation of a cell-centred field at x, clamped to the outermost cell
+/// centres.
+template <int Dim>
+double interpolate_cell_centred(const CellView<Dim>& f, const std::array<double, Dim>& x);
+/// Bilinear interpolation of a cell-centred Field2 at (x, y), clamped to the outermost cell centres.
 double interpolate_cell_centred(const Grid2& grid, const Field2& f, double x, double y);
 
-/// Connected regions (4-neighbours) of the cells where mask != 0; label -1 outside the mask, labels 0..n-1 in
-/// order of the first cell met in i-fastest order. Returns the number of regions.
+/// Connected regions of the cells where mask != 0, neighbours sharing a face (4 in 2D, 6 in 3D); mask and label
+/// are axis 0 fastest over n cells per axis; label -1 outside the mask, labels 0..n-1 in order of the first cell met
+/// in storage order. Returns the number of regions.
+template <int Dim>
+int label_regions(const Index<Dim>& n, const std::vector<std::uint8_t>& mask, std::vector<int>& label);
+/// The 2D form over nx x ny cells, i fastest.
 int label_regions(int nx, int ny, const std::vector<std::uint8_t>& mask, std::vector<int>& label);
 
 /// bubble.csv header: the columns of docs/interface.md, then equivalent_diameter_m, bed_height_m, erupted,
-/// bubble_id, nose_x_m.
-std::string bubble_csv_header();
-/// One bubble.csv line (no newline); empty values where the sample has none.
+/// bubble_id, nose_x_m. For dimension 3, bubble_area_m2 is bubble_volume_m3 and nose_z_m and
+/// theory_rise_velocity_m_s follow.
+std::string bubble_csv_header(int dimension = 2);
+/// One bubble.csv line (no newline); empty values where the sample has none; columns for s.dimension.
 std::string bubble_csv_row(const BubbleSample& s);
-/// The same row as numbers (empty optionals where there is no value), in bubble_csv_header() order.
+/// The same row as numbers (empty optionals where there is no value), in bubble_csv_header(s.dimension) order.
 std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s);
 
 }  // namespace fluidbed

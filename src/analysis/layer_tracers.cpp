@@ -16,65 +16,121 @@ int layer_of(double y, double y_bottom, double bed_height, int n_layers) {
   return std::clamp(l, 0, n_layers - 1);
 }
 
+void assign_layers(std::span<const double> y, std::span<std::int32_t> layer, int n_layers, double bed_height) {
+  if (n_layers < 1) throw_input_error(fmt::format("number of tracer layers must be at least 1, got {}", n_layers));
+  if (!(bed_height > 0.0)) throw_input_error(fmt::format("layer bed height must be positive, got {}", bed_height));
+  if (y.size() != layer.size())
+    throw_input_error(fmt::format("assign layers: {} heights for {} layers", y.size(), layer.size()));
+  for (std::size_t k = 0; k < y.size(); ++k) layer[k] = layer_of(y[k], 0.0, bed_height, n_layers);
+}
+
 void assign_layers(ParticleStore& particles, int n_layers, double bed_height) {
   if (n_layers < 1) throw_input_error(fmt::format("number of tracer layers must be at least 1, got {}", n_layers));
   if (!(bed_height > 0.0)) throw_input_error(fmt::format("layer bed height must be positive, got {}", bed_height));
   particles.layer.resize(particles.size());
-  for (std::size_t k = 0; k < particles.size(); ++k)
-    particles.layer[k] = layer_of(particles.y[k], 0.0, bed_height, n_layers);
+  assign_layers(particles.y, particles.layer, n_layers, bed_height);
 }
 
-CellTracers::CellTracers(const Grid2& grid, double bed_height, int n_layers) : grid_(grid) {
+template <int Dim>
+BallTracers<Dim>::BallTracers(const CellGeometry<Dim>& grid, double bed_height, int n_layers) : geometry_(grid) {
   if (n_layers < 1) throw_input_error(fmt::format("number of tracer layers must be at least 1, got {}", n_layers));
   if (!(bed_height > 0.0)) throw_input_error(fmt::format("tracer bed height must be positive, got {}", bed_height));
+  const double top = grid.origin[1] + bed_height;
   std::int64_t next = 0;
-  for (int j = 0; j < grid.ny; ++j) {
-    if (grid.yc(j) >= grid.y0 + bed_height) break;
-    for (int i = 0; i < grid.nx; ++i) {
-      id.push_back(next++);
-      x.push_back(grid.xc(i));
-      y.push_back(grid.yc(j));
-      layer.push_back(layer_of(grid.yc(j), grid.y0, bed_height, n_layers));
+  for (std::size_t k = 0; k < grid.cells(); ++k) {
+    const Index<Dim> c = grid.cell_of(k);
+    const double yc = grid.centre(1, c[1]);
+    if (yc >= top) continue;
+    id.push_back(next++);
+    for (int a = 0; a < Dim; ++a) coord(a).push_back(grid.centre(a, c[a]));
+    layer.push_back(layer_of(yc, grid.origin[1], bed_height, n_layers));
+  }
+}
+
+template <int Dim>
+BallTracers<Dim>::BallTracers(const CellGeometry<Dim>& grid, std::vector<std::int64_t> ids,
+                              std::array<std::vector<double>, Dim> pos, std::vector<std::int32_t> layers)
+    : id(std::move(ids)), layer(std::move(layers)), geometry_(grid) {
+  for (int a = 0; a < Dim; ++a) coord(a) = std::move(pos[static_cast<std::size_t>(a)]);
+  bool same = layer.size() == id.size();
+  for (int a = 0; a < Dim; ++a) same = same && coord(a).size() == id.size();
+  if (!same) {
+    if constexpr (Dim == 2) {
+      throw_input_error(fmt::format("cell tracers: {} ids, {} x, {} y and {} layers", id.size(), x.size(), y.size(),
+                                    layer.size()));
+    } else {
+      throw_input_error(fmt::format("cell tracers: {} ids, {} x, {} y, {} z and {} layers", id.size(), x.size(),
+                                    y.size(), z.size(), layer.size()));
+    }
+  }
+  for (std::size_t k = 0; k < id.size(); ++k) {
+    bool inside = true;
+    for (int a = 0; a < Dim; ++a) {
+      const double v = coord(a)[k];
+      inside = inside && v >= grid.origin[a] && v <= grid.origin[a] + grid.length(a);
+    }
+    if (inside) continue;
+    if constexpr (Dim == 2) {
+      throw_input_error(fmt::format("cell tracers: ball {} at ({}, {}) m lies outside the grid", id[k], x[k], y[k]));
+    } else {
+      throw_input_error(
+          fmt::format("cell tracers: ball {} at ({}, {}, {}) m lies outside the grid", id[k], x[k], y[k], z[k]));
     }
   }
 }
+
+template <int Dim>
+void BallTracers<Dim>::advance(const std::array<CellView<Dim>, Dim>& velocity, double dt) {
+  for (const CellView<Dim>& v : velocity) {
+    if (v.geometry.n != geometry_.n)
+      throw_input_error("cell tracers: solids velocity field does not match the tracer grid");
+  }
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(x.size());
+  // A serial loop: one ball per cell is ~10^3 balls in 2D, far too little work to share between threads.
+  for (std::ptrdiff_t b = 0; b < n; ++b) {
+    const std::size_t k = static_cast<std::size_t>(b);
+    Index<Dim> c{};
+    for (int a = 0; a < Dim; ++a) c[a] = geometry_.cell(a, coord(a)[k]);
+    // Paper, Section 3 (Fig. 4b/c): the ball takes the solids velocity of the cell it is in, no collisions.
+    for (int a = 0; a < Dim; ++a) {
+      const double lo = geometry_.origin[a], hi = geometry_.origin[a] + geometry_.length(a);
+      coord(a)[k] = std::clamp(coord(a)[k] + velocity[static_cast<std::size_t>(a)][c] * dt, lo, hi);
+    }
+  }
+}
+
+CellTracers::CellTracers(const Grid2& grid, double bed_height, int n_layers)
+    : BallTracers<2>(cell_geometry(grid), bed_height, n_layers), grid_(grid) {}
 
 CellTracers::CellTracers(const Grid2& grid, std::vector<std::int64_t> ids, std::vector<double> xs,
                          std::vector<double> ys, std::vector<std::int32_t> layers)
-    : id(std::move(ids)), x(std::move(xs)), y(std::move(ys)), layer(std::move(layers)), grid_(grid) {
-  if (x.size() != id.size() || y.size() != id.size() || layer.size() != id.size()) {
-    throw_input_error(fmt::format("cell tracers: {} ids, {} x, {} y and {} layers", id.size(), x.size(), y.size(),
-                                  layer.size()));
-  }
-  const double x_hi = grid_.x0 + grid_.width(), y_hi = grid_.y0 + grid_.height();
-  for (std::size_t k = 0; k < id.size(); ++k) {
-    if (!(x[k] >= grid_.x0 && x[k] <= x_hi && y[k] >= grid_.y0 && y[k] <= y_hi)) {
-      throw_input_error(fmt::format("cell tracers: ball {} at ({}, {}) m lies outside the grid", id[k], x[k], y[k]));
-    }
-  }
-}
+    : BallTracers<2>(cell_geometry(grid), std::move(ids), {std::move(xs), std::move(ys)}, std::move(layers)),
+      grid_(grid) {}
 
 void CellTracers::advance(const Field2& us, const Field2& vs, double dt) {
   if (us.nx != grid_.nx || us.ny != grid_.ny || vs.nx != grid_.nx || vs.ny != grid_.ny)
     throw_input_error("cell tracers: solids velocity field does not match the tracer grid");
-  const double x_lo = grid_.x0, x_hi = grid_.x0 + grid_.width();
-  const double y_lo = grid_.y0, y_hi = grid_.y0 + grid_.height();
-  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(x.size());
-  // A serial loop: one ball per cell is ~10^3 balls, far too little work to share between threads.
-  for (std::ptrdiff_t k = 0; k < n; ++k) {
-    const int i = grid_.cell_i(x[k]);
-    const int j = grid_.cell_j(y[k]);
-    // Paper, Section 3 (Fig. 4b/c): the ball takes the solids velocity of the cell it is in, no collisions.
-    x[k] = std::clamp(x[k] + us(i, j) * dt, x_lo, x_hi);
-    y[k] = std::clamp(y[k] + vs(i, j) * dt, y_lo, y_hi);
-  }
+  BallTracers<2>::advance({cell_view(grid_, us, "us"), cell_view(grid_, vs, "vs")}, dt);
 }
 
-std::string tracer_csv(const CellTracers& tracers) {
-  std::string out = "ball_id,x,y,layer\n";
-  for (std::size_t k = 0; k < tracers.size(); ++k)
-    out += fmt::format("{},{},{},{}\n", tracers.id[k], tracers.x[k], tracers.y[k], tracers.layer[k]);
+template <int Dim>
+std::string tracer_csv(const BallTracers<Dim>& tracers) {
+  std::string out = Dim == 2 ? "ball_id,x,y,layer\n" : "ball_id,x,y,z,layer\n";
+  for (std::size_t k = 0; k < tracers.size(); ++k) {
+    if constexpr (Dim == 2) {
+      out += fmt::format("{},{},{},{}\n", tracers.id[k], tracers.x[k], tracers.y[k], tracers.layer[k]);
+    } else {
+      out += fmt::format("{},{},{},{},{}\n", tracers.id[k], tracers.x[k], tracers.y[k], tracers.z[k], tracers.layer[k]);
+    }
+  }
   return out;
 }
+
+std::string tracer_csv(const CellTracers& tracers) { return tracer_csv<2>(tracers); }
+
+template class BallTracers<2>;
+template class BallTracers<3>;
+template std::string tracer_csv(const BallTracers<2>&);
+template std::string tracer_csv(const BallTracers<3>&);
 
 }  // namespace fluidbed

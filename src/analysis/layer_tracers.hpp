@@ -1,10 +1,14 @@
 #pragma once
 // Coloured layers of the paper's Fig. 4: (a) DEM particles by initial layer, (b)/(c) one ball per initial bed cell
-// moved by the cell-averaged solids velocity of the cell it is in.
+// moved by the cell-averaged solids velocity of the cell it is in. Layers are horizontal: slabs of height y in 2D
+// and 3D alike (the depth coordinate z of a 3D bed rides along).
+#include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "analysis/cell_view.hpp"
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
@@ -15,36 +19,68 @@ namespace fluidbed {
 /// are put in the nearest layer.
 int layer_of(double y, double y_bottom, double bed_height, int n_layers);
 
-/// Sets ParticleStore::layer from the current heights (call once, at t = 0), bed from y = 0 to bed_height.
+/// layer[k] = the layer of height y[k] in a bed from y = 0 to bed_height (call once, at t = 0); any dimension,
+/// since only the height counts. Throws Error(BadInput) for n_layers < 1, bed_height <= 0 or spans of different
+/// lengths.
+void assign_layers(std::span<const double> y, std::span<std::int32_t> layer, int n_layers, double bed_height);
+/// Sets ParticleStore::layer from the current heights (the 2D store).
 void assign_layers(ParticleStore& particles, int n_layers, double bed_height);
 
-/// Balls of the paper's Fig. 4b/c: one per grid cell whose centre lies below the initial bed height.
-class CellTracers {
+/// Balls of the paper's Fig. 4b/c: one per grid cell whose centre lies below the initial bed height, in 2D or 3D.
+template <int Dim>
+class BallTracers {
  public:
-  /// bed_height: initial bed height above grid.y0, m (e.g. bed_surface_height() of the initial voidage).
-  CellTracers(const Grid2& grid, double bed_height, int n_layers);
-  /// The balls of a checkpoint: ids, positions and initial layers as saved (a restart must not recolour them
-  /// from the bed it restarts in). Throws Error(BadInput) when the arrays differ in length or a ball lies
+  /// bed_height: initial bed height above the grid's origin along y, m (e.g. bed_surface_height() of the initial
+  /// voidage). The balls are numbered in the cells' storage order (axis 0 fastest).
+  BallTracers(const CellGeometry<Dim>& grid, double bed_height, int n_layers);
+  /// The balls of a checkpoint: ids, positions (x, y[, z]) and initial layers as saved (a restart must not recolour
+  /// them from the bed it restarts in). Throws Error(BadInput) when the arrays differ in length or a ball lies
   /// outside the grid.
-  CellTracers(const Grid2& grid, std::vector<std::int64_t> ids, std::vector<double> xs, std::vector<double> ys,
+  BallTracers(const CellGeometry<Dim>& grid, std::vector<std::int64_t> ids, std::array<std::vector<double>, Dim> pos,
               std::vector<std::int32_t> layers);
 
-  /// x += us dt, y += vs dt with the velocity of the cell holding the ball (piecewise constant, no collisions, as
-  /// the paper); the centre is then clamped to the domain [x0, x0 + width] x [y0, y0 + height].
-  void advance(const Field2& us, const Field2& vs, double dt);
+  /// x_a += u_a dt along every axis with the solids velocity components (velocity[a] along axis a) of the cell
+  /// holding the ball (piecewise constant, no collisions, as the paper); the centre is then clamped to the domain.
+  /// Throws Error(BadInput) when a velocity field's cells differ from the tracers' grid.
+  void advance(const std::array<CellView<Dim>, Dim>& velocity, double dt);
 
   std::size_t size() const { return x.size(); }
-  const Grid2& grid() const { return grid_; }
+  const CellGeometry<Dim>& geometry() const { return geometry_; }
+  /// The coordinate array of axis a: x, y or z.
+  std::vector<double>& coord(int a) { return a == 0 ? x : (a == 1 ? y : z); }
+  const std::vector<double>& coord(int a) const { return a == 0 ? x : (a == 1 ? y : z); }
 
   std::vector<std::int64_t> id;
   std::vector<double> x, y;          ///< m
+  std::vector<double> z;             ///< m, 3D only (empty in 2D)
   std::vector<std::int32_t> layer;   ///< initial layer
+
+ private:
+  CellGeometry<Dim> geometry_;
+};
+
+/// The 2D balls on a Grid2 moved by Field2 velocities, as the 2D models hand them over.
+class CellTracers : public BallTracers<2> {
+ public:
+  CellTracers(const Grid2& grid, double bed_height, int n_layers);
+  CellTracers(const Grid2& grid, std::vector<std::int64_t> ids, std::vector<double> xs, std::vector<double> ys,
+              std::vector<std::int32_t> layers);
+
+  /// x += us dt, y += vs dt with the velocity of the cell holding the ball; the centre is then clamped to the
+  /// domain [x0, x0 + width] x [y0, y0 + height].
+  void advance(const Field2& us, const Field2& vs, double dt);
+  using BallTracers<2>::advance;
+
+  const Grid2& grid() const { return grid_; }
 
  private:
   Grid2 grid_;
 };
 
-/// tracers/NNNNNN.csv content: header ball_id,x,y,layer and one line per ball (shortest round-trip numbers).
+/// tracers/NNNNNN.csv content: header ball_id,x,y,layer (ball_id,x,y,z,layer in 3D) and one line per ball
+/// (shortest round-trip numbers).
+template <int Dim>
+std::string tracer_csv(const BallTracers<Dim>& tracers);
 std::string tracer_csv(const CellTracers& tracers);
 
 }  // namespace fluidbed

@@ -11,21 +11,28 @@
 
 namespace fluidbed {
 
-LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, std::span<const std::uint8_t> in_group,
-                        const Grid2& domain, const MixingConfig& config) {
-  if (x.size() != y.size() || x.size() != in_group.size())
-    throw_input_error("lacey index: positions and colours differ in length");
-  const double sdx = config.sample_dx > 0.0 ? config.sample_dx : domain.dx;
-  const double sdy = config.sample_dy > 0.0 ? config.sample_dy : domain.dy;
-  if (!(sdx > 0.0) || !(sdy > 0.0)) throw_input_error("lacey index: sample size must be positive");
-  const int nsx = std::max(1, static_cast<int>(std::lround(domain.width() / sdx)));
-  const int nsy = std::max(1, static_cast<int>(std::lround(domain.height() / sdy)));
-  const Grid2 samples{nsx, nsy, domain.width() / nsx, domain.height() / nsy, domain.x0, domain.y0};
+template <int Dim>
+LaceyResult lacey_index(const std::array<std::span<const double>, Dim>& pos, std::span<const std::uint8_t> in_group,
+                        const CellGeometry<Dim>& domain, const MixingConfig& config) {
+  for (const auto& p : pos) {
+    if (p.size() != in_group.size()) throw_input_error("lacey index: positions and colours differ in length");
+  }
+  const std::array<double, 3> wanted{config.sample_dx, config.sample_dy, config.sample_dz};
+  CellGeometry<Dim> samples;
+  for (int a = 0; a < Dim; ++a) {
+    const double sd = wanted[static_cast<std::size_t>(a)] > 0.0 ? wanted[static_cast<std::size_t>(a)] : domain.h[a];
+    if (!(sd > 0.0)) throw_input_error("lacey index: sample size must be positive");
+    samples.n[a] = std::max(1, static_cast<int>(std::lround(domain.length(a) / sd)));
+    samples.h[a] = domain.length(a) / samples.n[a];
+    samples.origin[a] = domain.origin[a];
+  }
 
   std::vector<double> count(samples.cells(), 0.0), coloured(samples.cells(), 0.0);
   double total = 0.0, total_coloured = 0.0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const std::size_t c = samples.index(samples.cell_i(x[k]), samples.cell_j(y[k]));
+  for (std::size_t k = 0; k < in_group.size(); ++k) {
+    Index<Dim> cell{};
+    for (int a = 0; a < Dim; ++a) cell[a] = samples.cell(a, pos[static_cast<std::size_t>(a)][k]);
+    const std::size_t c = samples.index(cell);
     count[c] += 1.0;
     total += 1.0;
     if (in_group[k]) {
@@ -54,17 +61,44 @@ LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, st
   return r;
 }
 
-std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::span<const double> y,
-                                               std::span<const std::int32_t> group, int n_groups, const Grid2& domain,
-                                               const MixingConfig& config) {
-  if (group.size() != x.size()) throw_input_error("lacey index: positions and colours differ in length");
+template <int Dim>
+std::vector<LaceyResult> lacey_index_per_group(const std::array<std::span<const double>, Dim>& pos,
+                                               std::span<const std::int32_t> group, int n_groups,
+                                               const CellGeometry<Dim>& domain, const MixingConfig& config) {
+  for (const auto& p : pos) {
+    if (p.size() != group.size()) throw_input_error("lacey index: positions and colours differ in length");
+  }
   std::vector<LaceyResult> out;
   std::vector<std::uint8_t> in(group.size());
   for (int g = 0; g < n_groups; ++g) {
     for (std::size_t k = 0; k < group.size(); ++k) in[k] = group[k] == g ? 1 : 0;
-    out.push_back(lacey_index(x, y, in, domain, config));
+    out.push_back(lacey_index<Dim>(pos, in, domain, config));
   }
   return out;
+}
+
+template <int Dim>
+LaceyResult lacey_index(const BallTracers<Dim>& tracers, int split_layer, const CellGeometry<Dim>& domain,
+                        const MixingConfig& config) {
+  std::vector<std::uint8_t> lower(tracers.size());
+  for (std::size_t k = 0; k < tracers.size(); ++k) lower[k] = tracers.layer[k] < split_layer ? 1 : 0;
+  std::array<std::span<const double>, Dim> pos;
+  for (int a = 0; a < Dim; ++a) pos[static_cast<std::size_t>(a)] = tracers.coord(a);
+  return lacey_index<Dim>(pos, lower, domain, config);
+}
+
+LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, std::span<const std::uint8_t> in_group,
+                        const Grid2& domain, const MixingConfig& config) {
+  if (x.size() != y.size() || x.size() != in_group.size())
+    throw_input_error("lacey index: positions and colours differ in length");
+  return lacey_index<2>({x, y}, in_group, cell_geometry(domain), config);
+}
+
+std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::span<const double> y,
+                                               std::span<const std::int32_t> group, int n_groups, const Grid2& domain,
+                                               const MixingConfig& config) {
+  if (group.size() != x.size()) throw_input_error("lacey index: positions and colours differ in length");
+  return lacey_index_per_group<2>({x, y}, group, n_groups, cell_geometry(domain), config);
 }
 
 LaceyResult lacey_index(const ParticleStore& particles, int split_layer, const Grid2& domain,
@@ -75,9 +109,20 @@ LaceyResult lacey_index(const ParticleStore& particles, int split_layer, const G
 }
 
 LaceyResult lacey_index(const CellTracers& tracers, int split_layer, const Grid2& domain, const MixingConfig& config) {
-  std::vector<std::uint8_t> lower(tracers.size());
-  for (std::size_t k = 0; k < tracers.size(); ++k) lower[k] = tracers.layer[k] < split_layer ? 1 : 0;
-  return lacey_index(tracers.x, tracers.y, lower, domain, config);
+  return lacey_index<2>(tracers, split_layer, cell_geometry(domain), config);
 }
+
+template LaceyResult lacey_index<2>(const std::array<std::span<const double>, 2>&, std::span<const std::uint8_t>,
+                                    const CellGeometry<2>&, const MixingConfig&);
+template LaceyResult lacey_index<3>(const std::array<std::span<const double>, 3>&, std::span<const std::uint8_t>,
+                                    const CellGeometry<3>&, const MixingConfig&);
+template std::vector<LaceyResult> lacey_index_per_group<2>(const std::array<std::span<const double>, 2>&,
+                                                           std::span<const std::int32_t>, int, const CellGeometry<2>&,
+                                                           const MixingConfig&);
+template std::vector<LaceyResult> lacey_index_per_group<3>(const std::array<std::span<const double>, 3>&,
+                                                           std::span<const std::int32_t>, int, const CellGeometry<3>&,
+                                                           const MixingConfig&);
+template LaceyResult lacey_index<2>(const BallTracers<2>&, int, const CellGeometry<2>&, const MixingConfig&);
+template LaceyResult lacey_index<3>(const BallTracers<3>&, int, const CellGeometry<3>&, const MixingConfig&);
 
 }  // namespace fluidbed

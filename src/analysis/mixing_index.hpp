@@ -1,20 +1,27 @@
 #pragma once
-// Lacey mixing index of coloured particles or tracer balls, on a grid of sample cells of a chosen size.
+// Lacey mixing index of coloured particles or tracer balls, on a grid of sample cells of a chosen size, in 2D
+// (sample rectangles) or 3D (sample boxes).
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "analysis/cell_view.hpp"
 #include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
 
 namespace fluidbed {
 
+template <int Dim>
+class BallTracers;
 class CellTracers;
 
-/// Sample cells: the domain of `domain` cut into cells of about sample_dx x sample_dy (0: the grid's dx, dy).
+/// Sample cells: the domain cut into cells of about sample_dx x sample_dy (x sample_dz in 3D); 0: the grid's cell
+/// size along that axis.
 struct MixingConfig {
   double sample_dx = 0.0;  ///< m
   double sample_dy = 0.0;  ///< m
+  double sample_dz = 0.0;  ///< m, 3D only
 };
 
 struct LaceyResult {
@@ -28,11 +35,24 @@ struct LaceyResult {
   bool valid = false;            ///< false when the index is undefined (one colour only, n <= 1, no particles)
 };
 
-/// Lacey index of the two-colour mixture in_group != 0 vs == 0 at positions (x, y).
+/// Lacey index of the two-colour mixture in_group != 0 vs == 0 at positions pos[a][k] (axis a, particle k), over
+/// the box of `domain`.
+template <int Dim>
+LaceyResult lacey_index(const std::array<std::span<const double>, Dim>& pos, std::span<const std::uint8_t> in_group,
+                        const CellGeometry<Dim>& domain, const MixingConfig& config);
+/// More than two colours: the index of each group g in [0, n_groups) against all the others, in group order.
+template <int Dim>
+std::vector<LaceyResult> lacey_index_per_group(const std::array<std::span<const double>, Dim>& pos,
+                                               std::span<const std::int32_t> group, int n_groups,
+                                               const CellGeometry<Dim>& domain, const MixingConfig& config);
+/// Lower part (layer < split_layer) vs upper part of the initial bed, for the tracer balls of either dimension.
+template <int Dim>
+LaceyResult lacey_index(const BallTracers<Dim>& tracers, int split_layer, const CellGeometry<Dim>& domain,
+                        const MixingConfig& config);
+
+/// The 2D forms: positions (x, y) over the domain of a Grid2.
 LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, std::span<const std::uint8_t> in_group,
                         const Grid2& domain, const MixingConfig& config);
-
-/// More than two colours: the index of each group g in [0, n_groups) against all the others, in group order.
 std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::span<const double> y,
                                                std::span<const std::int32_t> group, int n_groups, const Grid2& domain,
                                                const MixingConfig& config);
