@@ -18,7 +18,7 @@ namespace fluidbed {
 
 /// Settings of the bubble tracker; defaults are the paper's bed (Table 1) and bubble boundary (Section 3).
 struct BubbleConfig {
-  Grid2 grid;                    ///< grid of the fields passed to observe() (checked when nx > 0)
+  Grid2 grid;                    ///< grid of the fields passed to observe(): cells along x, y checked when nx > 0
   double eps_threshold = 0.8;    ///< a cell belongs to a bubble when eps > this (paper, Section 3)
   double jet_x = 0.3;            ///< m, horizontal centre of the jet
   double jet_width = 0.02;       ///< m

@@ -273,6 +273,38 @@ TEST(BubbleTracker3d, DetachmentFromADiscJetAtTheExactSample) {
   EXPECT_DOUBLE_EQ(*tracker.detachment_time(), expected * dt);
 }
 
+TEST(BubbleTracker3d, EruptionAtTheBedSurfaceThenNextBubble) {
+  // Bed up to 0.4 m, freeboard above: the sphere's void joins the freeboard once the centre of the top bed slab
+  // (every cell of it borders the freeboard) lies inside the eps = thr contour on the nose line, as in 2D.
+  Voxels f({30, 60, 30}, {0.01, 0.01, 0.01}, eps_bed);
+  const Voxels zero({30, 60, 30}, {0.01, 0.01, 0.01}, 0.0);
+  const double xl = f.g.centre(0, 15), zl = f.g.centre(2, 14), bed_top = 0.4, dt = 0.01, u_b = 1.0;
+  BubbleTracker tracker(config_3d(f.g, xl, zl));
+  int erupted_at = -1;
+  for (int n = 0; n < 40 && erupted_at < 0; ++n) {
+    const RampSphere d{xl, 0.15 + u_b * n * dt, zl, 0.04, 0.06};
+    f.set([&](double x, double y, double z) { return y < bed_top ? d.eps(x, y, z) : 1.0; });
+    const BubbleSample s = tracker.observe<3>(n * dt, f.view(), zero.view());
+    const bool joined = d.nose() > bed_top - 0.5 * f.g.h[1];
+    EXPECT_EQ(s.erupted, joined) << "sample " << n;
+    if (s.erupted) {
+      erupted_at = n;
+      EXPECT_FALSE(s.nose_height.has_value());
+    } else {
+      ASSERT_TRUE(s.nose_height.has_value()) << n;
+      EXPECT_NEAR(*s.bed_height, bed_top, 1e-12);
+    }
+  }
+  ASSERT_GT(erupted_at, 0);
+  EXPECT_DOUBLE_EQ(*tracker.eruption_time(), erupted_at * dt);
+  const RampSphere next{xl, 0.03, zl, 0.04, 0.06};
+  f.set([&](double x, double y, double z) { return y < bed_top ? next.eps(x, y, z) : 1.0; });
+  const BubbleSample s = tracker.observe<3>(1.0, f.view(), zero.view());
+  ASSERT_TRUE(s.nose_height.has_value());
+  EXPECT_EQ(s.bubble_id, 1);
+  EXPECT_TRUE(*s.attached);
+}
+
 TEST(BubbleTracker3d, RectangleFootprintAndItsCorners) {
   // A Rectangle jet 2 cm x 4 cm centred on a cell corner covers exactly 2 x 4 bottom cells; a one-cell void in a
   // bottom cell is attached only inside that footprint (corner cells included, the next ones out not).
