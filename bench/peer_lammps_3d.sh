@@ -45,8 +45,10 @@ python3 "$here/lammps/place3d.py" --count "$((2 * n))" --width "$width" --height
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 end_time="$(python3 -c "print($steps * $dt)")"
-sets=(--set "dem.skin=$skin" --set output.interval=100 --set output.monitor_interval=0.01 --set output.particles=false
-      --set particles.source=file --set "particles.file=$bed.csv")
+common=(--set "dem.skin=$skin" --set output.interval=100 --set output.monitor_interval=0.01 --set output.particles=false
+        --set particles.source=file)
+sets=("${common[@]}" --set "particles.file=$bed.csv")
+sets_2n=("${common[@]}" --set "particles.file=$bed-2n.csv" --set "domain.height=$height2")
 
 if [ "$lammps_only" != 1 ]; then
   # A fluidbed from before issue 12's 3D DEM refuses case.dimension = 3 (or the 3-component gravity): say so plainly.
@@ -79,19 +81,22 @@ import csv; r = list(csv.DictReader(open('$work/fluidbed.$r/monitor.csv'))); pri
 done
 
 # Bytes per particle: peak RSS of 10 steps with N and with 2N spheres, (RSS_2N - RSS_N) / N.
-peak_kb() { /usr/bin/time -v -o "$work/rss.time" "$@" >/dev/null 2>&1; awk -F': ' '/Maximum resident set size/ {print $2}' "$work/rss.time"; }
+peak_kb() {
+  "/usr/bin/time" -v -o "$work/rss.time" "$@" >"$work/rss.out" 2>&1 || { echo "memory run failed: $*" >&2; cat "$work/rss.out" >&2; exit 4; }
+  awk -F': ' '/Maximum resident set size/ {print $2}' "$work/rss.time"
+}
 short="$(python3 -c "print(10 * $dt)")"
 lm_rss1="$(cd "$work" && peak_kb lmp -in "$here/lammps/settle-100k-3d.in" -var data "$bed.data" -var steps 10 -var skin "$skin" -log none -screen none)"
 lm_rss2="$(cd "$work" && peak_kb lmp -in "$here/lammps/settle-100k-3d.in" -var data "$bed-2n.data" -var steps 10 -var skin "$skin" -log none -screen none)"
 fb_rss1="" fb_rss2=""
 if [ "$lammps_only" != 1 ]; then
   fb_rss1="$(peak_kb "$fluidbed" run "$case_file" --out "$work/rss1" --end-time "$short" --threads 1 --quiet "${sets[@]}")"
-  fb_rss2="$(peak_kb "$fluidbed" run "$case_file" --out "$work/rss2" --end-time "$short" --threads 1 --quiet "${sets[@]}" \
-    --set "domain.height=$height2" --set "particles.file=$bed-2n.csv")"
+  fb_rss2="$(peak_kb "$fluidbed" run "$case_file" --out "$work/rss2" --end-time "$short" --threads 1 --quiet "${sets_2n[@]}")"
 fi
 
 compiler="$(c++ -v 2>&1 | grep -q '^gcc version' && echo g++ || echo clang++)"
-stem="$here/log.$(date -u +%d%b%y).settle-100k-3d$([ "$lammps_only" = 1 ] && echo -lammps-only)"
+tag=settle-100k-3d; [ "$lammps_only" != 1 ] || tag=settle-100k-3d-lammps-only
+stem="$here/log.$(date -u +%d%b%y).$tag"
 log="$stem.$compiler.1"
 for r in $(seq 1 "$repeats"); do cp "$work/lammps.$r.log" "$stem.lammps.$r"; done
 {
@@ -111,12 +116,14 @@ import sys
 n, steps = int(sys.argv[1]), int(sys.argv[2])
 lm, lm_cpu, lm_r1, lm_r2 = (float(v) for v in sys.argv[3:7])
 fb, fb_cpu, fb_r1, fb_r2 = sys.argv[7:11]
-print(f"lammps_particle_steps_per_s {n * steps / lm:.4g}")
+print(f"lammps_particle_steps_per_s {n * steps / lm:.4g}  (loop wall)")
+print(f"lammps_particle_steps_per_cpu_s {n * steps / lm_cpu:.4g}")
 print(f"lammps_peak_rss_kb_N_2N {lm_r1:.0f} {lm_r2:.0f}")
 print(f"lammps_bytes_per_particle {(lm_r2 - lm_r1) * 1024 / n:.0f}  (peak RSS difference, 2N - N, over N)")
 if fb:
     fb, fb_cpu, fb_r1, fb_r2 = float(fb), float(fb_cpu), float(fb_r1), float(fb_r2)
-    print(f"fluidbed_particle_steps_per_s {n * steps / fb:.4g}")
+    print(f"fluidbed_particle_steps_per_s {n * steps / fb:.4g}  (loop wall)")
+    print(f"fluidbed_particle_steps_per_cpu_s {n * steps / fb_cpu:.4g}")
     print(f"lammps_over_fluidbed {lm / fb:.3f}  (loop wall times)")
     print(f"lammps_over_fluidbed_cpu {lm_cpu / fb_cpu:.3f}  (whole-process CPU times: robust on a shared machine)")
     print(f"fluidbed_peak_rss_kb_N_2N {fb_r1:.0f} {fb_r2:.0f}")
