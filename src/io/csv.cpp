@@ -213,21 +213,6 @@ std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
   return order;
 }
 
-ParticleArrays particle_arrays(const ParticleStore& p) {
-  ParticleArrays a;
-  a.dimension = 2;
-  a.id = p.id;
-  a.x[0] = p.x;
-  a.x[1] = p.y;
-  a.v[0] = p.vx;
-  a.v[1] = p.vy;
-  a.omega[2] = p.omega;
-  a.radius = p.radius;
-  a.species = p.species;
-  a.layer = p.layer;
-  return a;
-}
-
 void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles, Sync sync) {
   write_particles_csv(path, particle_arrays(particles), sync);
 }

@@ -78,9 +78,6 @@ inline const char* particle_csv_header_of(int dimension) {
 /// depend on how the store happens to be sorted.
 std::vector<std::size_t> order_by_id(const ParticleStore& particles);
 
-/// The 2D store seen as plain arrays (for the writers).
-ParticleArrays particle_arrays(const ParticleStore& particles);
-
 /// Write `particles` sorted by id at full precision, atomically. Throws Error(BadInput) when it cannot write.
 void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles,
                          Sync sync = Sync::Durable);

@@ -26,4 +26,32 @@ struct ParticleArrays {
   std::vector<std::size_t> order_by_id() const;
 };
 
+/// The view of a particle store with members id, species, layer, radius, x, y, vx, vy and, for a 2D store, omega
+/// (spin about z), for a 3D one z, vz, omega_x, omega_y, omega_z (vectors of one value per particle). The store
+/// must outlive the view.
+template <class Store>
+ParticleArrays particle_arrays(const Store& s) {
+  ParticleArrays a;
+  a.id = s.id;
+  a.x[0] = s.x;
+  a.x[1] = s.y;
+  a.v[0] = s.vx;
+  a.v[1] = s.vy;
+  if constexpr (requires { s.z; }) {
+    a.dimension = 3;
+    a.x[2] = s.z;
+    a.v[2] = s.vz;
+    a.omega[0] = s.omega_x;
+    a.omega[1] = s.omega_y;
+    a.omega[2] = s.omega_z;
+  } else {
+    a.dimension = 2;
+    a.omega[2] = s.omega;
+  }
+  a.radius = s.radius;
+  a.species = s.species;
+  a.layer = s.layer;
+  return a;
+}
+
 }  // namespace fluidbed

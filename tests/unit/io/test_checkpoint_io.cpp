@@ -93,5 +93,22 @@ TEST(CheckpointIo, ParticleArraysByComponentName) {
   EXPECT_THROW(read_particle_arrays(h, "dem", 3), Error);
 }
 
+// particle_arrays() views a 3D store by its member names (those of ParticleStore<3>).
+TEST(CheckpointIo, ViewOfAThreeDimensionalStore) {
+  struct Store3 {
+    std::vector<std::int64_t> id{7, 3};
+    std::vector<std::int32_t> species{0, 1}, layer{2, 0};
+    std::vector<double> radius{0.002, 0.001}, x{0.1, 0.2}, y{0.3, 0.4}, z{0.5, 0.6}, vx{1, 2}, vy{3, 4}, vz{5, 6},
+        omega_x{7, 8}, omega_y{9, 10}, omega_z{11, 12};
+  } s;
+  const ParticleArrays a = particle_arrays(s);
+  EXPECT_EQ(a.dimension, 3);
+  EXPECT_EQ(a.x[2][1], 0.6);
+  EXPECT_EQ(a.v[2][0], 5.0);
+  EXPECT_EQ(a.omega[1][1], 10.0);
+  EXPECT_EQ(a.order_by_id(), (std::vector<std::size_t>{1, 0}));
+  EXPECT_EQ(particle_arrays(test::sample_particles(0.0)).dimension, 2);
+}
+
 }  // namespace
 }  // namespace fluidbed
