@@ -280,6 +280,14 @@ PvdCollection open_series(const std::filesystem::path& out_dir, const std::strin
 FieldSeries::FieldSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time)
     : out_dir_(out_dir), pvd_(open_series(out_dir, "fields", restart_time)) {}
 
+std::size_t FieldSeries::write(double time, const VtiGrid& grid, const std::vector<VtiComponents>& cell_data) {
+  const std::size_t index = pvd_.next_index();
+  const std::string file = frame_file_name("fields", index, "vti");
+  write_vti(out_dir_ / file, grid, time, cell_data);
+  pvd_.add(time, file);
+  return index;
+}
+
 std::size_t FieldSeries::write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data) {
   const std::size_t index = pvd_.next_index();
   const std::string file = frame_file_name("fields", index, "vti");
@@ -292,6 +300,10 @@ ParticleSeries::ParticleSeries(const std::filesystem::path& out_dir, std::option
     : out_dir_(out_dir), pvd_(open_series(out_dir, "particles", restart_time)) {}
 
 std::size_t ParticleSeries::write(double time, const ParticleStore& particles, bool with_csv) {
+  return write(time, particle_arrays(particles), with_csv);
+}
+
+std::size_t ParticleSeries::write(double time, const ParticleArrays& particles, bool with_csv) {
   const std::size_t index = pvd_.next_index();
   const std::string file = frame_file_name("particles", index, "vtu");
   write_vtu(out_dir_ / file, time, particles);

@@ -79,6 +79,8 @@ class FieldSeries {
   /// Write one frame and list it in the .pvd; returns its frame number (for files of the same instant, such as
   /// tracers/NNNNNN.csv).
   std::size_t write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data);
+  /// The same in either dimension.
+  std::size_t write(double time, const VtiGrid& grid, const std::vector<VtiComponents>& cell_data);
   const PvdCollection& collection() const { return pvd_; }
 
  private:
@@ -93,6 +95,8 @@ class ParticleSeries {
   explicit ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
   /// Write one frame (and its CSV when `with_csv`); returns its frame number.
   std::size_t write(double time, const ParticleStore& particles, bool with_csv = false);
+  /// The same in either dimension.
+  std::size_t write(double time, const ParticleArrays& particles, bool with_csv = false);
   const PvdCollection& collection() const { return pvd_; }
 
  private:
