@@ -104,8 +104,19 @@ def vtk_array(data, name):
     return None if arr is None else vtk_to_numpy(arr)
 
 
+def mid_depth_slice(eps3):
+    """The voidage on the plane z = D/2 of a (nz, ny, nx) array of cell values: the middle layer for odd nz, the
+    mean of the two layers either side of the plane for even nz (linear interpolation between their centres)."""
+    nz = eps3.shape[0]
+    if nz % 2 == 1:
+        return eps3[nz // 2]
+    return 0.5 * (eps3[nz // 2 - 1] + eps3[nz // 2])
+
+
 def read_vti(path):
-    """Voidage and grid geometry of a fields/NNNNNN.vti file: dict with eps[j, i], x0, y0, dx, dy, nx, ny."""
+    """Voidage and grid geometry of a fields/NNNNNN.vti file: dict with eps[j, i], x0, y0, dx, dy, nx, ny,
+    dimension. A 3D frame (WholeExtent with z cells, nz >= 1) also gives eps3[k, j, i], nz, dz, z0 and
+    eps_mean[j, i] (the depth average); its eps is the mid-depth slice (mid_depth_slice)."""
     import vtk
 
     r = vtk.vtkXMLImageDataReader()
@@ -113,14 +124,19 @@ def read_vti(path):
     r.Update()
     img = r.GetOutput()
     ext = img.GetExtent()
-    nx, ny = ext[1] - ext[0], ext[3] - ext[2]
-    ox, oy, _ = img.GetOrigin()
-    dx, dy, _ = img.GetSpacing()
+    nx, ny, nz = ext[1] - ext[0], ext[3] - ext[2], ext[5] - ext[4]
+    ox, oy, oz = img.GetOrigin()
+    dx, dy, dz = img.GetSpacing()
     eps = vtk_array(img.GetCellData(), "voidage")
     if eps is None or nx <= 0 or ny <= 0:
         return None
-    return {"eps": np.asarray(eps, dtype=float).reshape(ny, nx), "x0": ox + ext[0] * dx, "y0": oy + ext[2] * dy,
-            "dx": dx, "dy": dy, "nx": nx, "ny": ny}
+    if nz <= 0:
+        return {"eps": np.asarray(eps, dtype=float).reshape(ny, nx), "x0": ox + ext[0] * dx, "y0": oy + ext[2] * dy,
+                "dx": dx, "dy": dy, "nx": nx, "ny": ny, "dimension": 2}
+    eps3 = np.asarray(eps, dtype=float).reshape(nz, ny, nx)
+    return {"eps": mid_depth_slice(eps3), "eps_mean": eps3.mean(axis=0), "eps3": eps3, "x0": ox + ext[0] * dx,
+            "y0": oy + ext[2] * dy, "z0": oz + ext[4] * dz, "dx": dx, "dy": dy, "dz": dz, "nx": nx, "ny": ny,
+            "nz": nz, "dimension": 3}
 
 
 def read_vtu(path):
@@ -140,7 +156,7 @@ def read_vtu(path):
     species = vtk_array(pd, "species")
     diameter = vtk_array(pd, "diameter")
     n = pts.shape[0]
-    return {"x": pts[:, 0].astype(float), "y": pts[:, 1].astype(float),
+    return {"x": pts[:, 0].astype(float), "y": pts[:, 1].astype(float), "z": pts[:, 2].astype(float),
             "layer": np.zeros(n, dtype=int) if layer is None else np.asarray(layer, dtype=int),
             "species": np.zeros(n, dtype=int) if species is None else np.asarray(species, dtype=int),
             "diameter": np.full(n, 0.004) if diameter is None else np.asarray(diameter, dtype=float)}
@@ -240,6 +256,20 @@ class Run:
                 self.notes.append(f"cost.json unreadable ({e})")
         self.gravity = gravity_of(self.case) if self.case else G
         self._domain = None
+        # 2 or 3: case.toml's case.dimension (written by every run since issue 12), else the first field frame's
+        # extent (a 3D frame has z cells), else 2.
+        self.dimension = 2
+        self.depth = None
+        c = self.case.get("case", {}) if isinstance(self.case.get("case"), dict) else {}
+        d = self.case.get("domain", {}) if isinstance(self.case.get("domain"), dict) else {}
+        if c.get("dimension") in (2, 3):
+            self.dimension = int(c["dimension"])
+        elif self.fields:
+            f = read_vti(self.fields[0][1])
+            if f is not None:
+                self.dimension = f["dimension"]
+        if self.dimension == 3 and isinstance(d.get("depth"), (int, float)):
+            self.depth = float(d["depth"])
 
     def has_jet(self):
         """True or False from case.toml; None when the case is unknown (then the jet tables show the run)."""
@@ -399,7 +429,17 @@ def empty_panel(ax):
     ax.set_axis_off()
 
 
-def figure_voidage(runs, path, notes):
+def figure_voidage(runs, path, notes, depth_averaged=False):
+    """Voidage maps; a 3D run shows its mid-depth slice, or with depth_averaged its depth-averaged voidage (then
+    only the 3D runs have rows)."""
+    if depth_averaged:
+        runs = [r for r in runs if r.dimension == 3]
+    else:
+        for r in runs:
+            if r.dimension == 3:
+                notes.append(f"{r.label}: 3D; its panels show the mid-depth slice z = D/2 (the middle cell layer, or "
+                             "the mean of the two layers either side of the plane); voidage_depth_averaged.png has "
+                             "the depth average")
     rows, n_cols, why = choose_panels(runs, lambda r: r.fields, "field frames")
     notes += why
     if not rows or n_cols == 0:
@@ -417,15 +457,17 @@ def figure_voidage(runs, path, notes):
                 empty_panel(ax)
                 continue
             ext = [f["x0"], f["x0"] + f["nx"] * f["dx"], f["y0"], f["y0"] + f["ny"] * f["dy"]]
-            image = ax.imshow(f["eps"], origin="lower", extent=ext, cmap=VOIDAGE_CMAP, vmin=0.35, vmax=1.0,
+            eps = f["eps_mean"] if depth_averaged and "eps_mean" in f else f["eps"]
+            image = ax.imshow(eps, origin="lower", extent=ext, cmap=VOIDAGE_CMAP, vmin=0.35, vmax=1.0,
                               interpolation="nearest")
             style_panel(ax, run, fr, b, len(rows), a, pw, run.domain())
     if image is None:
         plt.close(fig)
         return "no field frame has a voidage array"
     cb = fig.colorbar(image, ax=axes.ravel().tolist(), shrink=0.8)
-    cb.set_label("voidage")
-    fig.suptitle("Voidage (layout of Gera et al. 1998, Fig. 3)", fontsize=10)
+    cb.set_label("depth-averaged voidage" if depth_averaged else "voidage")
+    fig.suptitle("Depth-averaged voidage of the 3D runs (layout of Gera et al. 1998, Fig. 3)" if depth_averaged
+                 else "Voidage (layout of Gera et al. 1998, Fig. 3)", fontsize=10)
     save(fig, path)
     return None
 
@@ -483,6 +525,11 @@ def figure_particles(runs, kind, path, notes):
     notes += why
     if not rows or n_cols == 0:
         return f"no {what} in any run"
+    if kind != "tracers":
+        for r, _ in rows:
+            if r.dimension == 3:
+                notes.append(f"{r.label}: 3D; its panels show the spheres the mid-depth plane z = D/2 cuts"
+                             + ("" if r.depth else " (no domain.depth in case.toml: every sphere)"))
     fig, axes, panel = panel_grid(len(rows), n_cols, bed_aspect(rows), side=2.7 if kind == "species" else 0.2)
     species_seen = {}
     drawn = 0
@@ -505,6 +552,10 @@ def figure_particles(runs, kind, path, notes):
                 scatter_colours(ax, numeric(c, "x"), numeric(c, "y"), colours, ball, scale)
             else:
                 p = read_vtu(fr[1])
+                if p is not None and run.dimension == 3 and run.depth:
+                    # A slice of a 3D bed: the spheres the mid-depth plane cuts.
+                    cut = np.abs(p["z"] - 0.5 * run.depth) < 0.5 * p["diameter"]
+                    p = {k: v[cut] for k, v in p.items()}
                 if p is None:
                     empty_panel(ax)
                     continue
@@ -734,6 +785,10 @@ def write_report(folders, out, labels=None):
     figures = [
         ("voidage.png", "Voidage maps at the paper's instants (Fig. 3 layout)",
          lambda p, n: figure_voidage(runs, p, n)),
+    ] + ([
+        ("voidage_depth_averaged.png", "Depth-averaged voidage maps of the 3D runs",
+         lambda p, n: figure_voidage(runs, p, n, depth_averaged=True)),
+    ] if any(r.dimension == 3 for r in runs) else []) + [
         ("layers_particles.png", "Particles coloured by initial layer (Fig. 4a)",
          lambda p, n: figure_particles(runs, "layers", p, n)),
         ("species_particles.png", "Particles coloured by species",

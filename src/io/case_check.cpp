@@ -23,8 +23,18 @@ std::string pair_name(int a, int b) {
   return b < 0 ? fmt::format("species {} with a wall", a) : fmt::format("species {} with species {}", a, b);
 }
 
-// A random 2D packing of discs fills about 82% of the area (Berryman 1983).
+// A random 2D packing of discs fills about 82% of the area, a random close packing of spheres 64% of the volume
+// (Berryman 1983).
 constexpr double kDiscPackingFraction = 0.82;
+constexpr double kSpherePackingFraction = 0.64;
+
+// "0.6 x 1 m" in 2D, "0.6 x 1 x 0.1 m" in 3D (without the unit).
+std::string box_text(const DomainConfig& d) {
+  return d.dimension == 3 ? fmt::format("{} x {} x {}", d.width, d.height, d.depth) : fmt::format("{} x {}", d.width, d.height);
+}
+std::string cell_text(const CaseGrid& g) {
+  return g.dimension == 3 ? fmt::format("{} x {} x {}", g.dx, g.dy, g.dz) : fmt::format("{} x {}", g.dx, g.dy);
+}
 
 }  // namespace
 
@@ -86,7 +96,8 @@ std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c) {
 
 void check_domain_plausible(const CaseReader& r, const DomainConfig& domain) {
   // Industrial beds are some 10 m across; the largest benchmark case here is 27 m wide.
-  for (const auto& [key, v] : {std::pair{"domain.width", domain.width}, std::pair{"domain.height", domain.height}}) {
+  for (const auto& [key, v] : {std::pair{"domain.width", domain.width}, std::pair{"domain.height", domain.height},
+                               std::pair{"domain.depth", domain.dimension == 3 ? domain.depth : 0.0}}) {
     if (v > 100.0) {
       r.fail(key, fmt::format("{} m is larger than any fluidised bed (industrial ones are some 10 m){}", v,
                               v * 1e-3 <= 100.0 ? fmt::format(": a size in millimetres? {} mm is {:g} m", v, v * 1e-3)
@@ -97,22 +108,25 @@ void check_domain_plausible(const CaseReader& r, const DomainConfig& domain) {
 
 void check_particle_plausible(const CaseReader& r, const std::string& diameter_key, double d,
                               const std::string& density_key, double rho, const DomainConfig& domain,
-                              const std::optional<Grid2>& cell) {
+                              const std::optional<CaseGrid>& cell) {
   if (d < 1e-7) {
     r.fail(diameter_key, fmt::format("{} m is smaller than any particle a bed is fluidised with (the finest powders are "
                                      "some 1e-6 m): the diameter is in metres", d));
   }
-  if (d > std::min(domain.width, domain.height)) {
-    r.fail(diameter_key, fmt::format("a particle of {} m is larger than the domain ({} x {} m){}", d, domain.width,
-                                     domain.height,
-                                     d * 1e-3 <= std::min(domain.width, domain.height)
+  const bool three_d = domain.dimension == 3;
+  const double smallest = three_d ? std::min({domain.width, domain.height, domain.depth})
+                                  : std::min(domain.width, domain.height);
+  if (d > smallest) {
+    r.fail(diameter_key, fmt::format("a particle of {} m is larger than the domain ({} m){}", d, box_text(domain),
+                                     d * 1e-3 <= smallest
                                          ? fmt::format(": a diameter in millimetres? {} mm is {:g} m", d, d * 1e-3)
                                          : std::string()));
   }
-  if (cell && d > std::min(cell->dx, cell->dy)) {
-    r.fail(diameter_key, fmt::format("a particle of {} m is larger than a gas cell ({} x {} m): the gas sees the "
+  if (cell && d > (three_d ? std::min({cell->dx, cell->dy, cell->dz}) : std::min(cell->dx, cell->dy))) {
+    r.fail(diameter_key, fmt::format("a particle of {} m is larger than a gas cell ({} m): the gas sees the "
                                      "solids averaged over a cell, so a cell must be wider than a particle; a coarser "
-                                     "grid (grid.cell_width) or a smaller diameter", d, cell->dx, cell->dy));
+                                     "grid (grid.cell_width{}) or a smaller diameter", d, cell_text(*cell),
+                                     three_d ? ", grid.cell_depth" : ""));
   }
   // The lightest particles fluidised are foams of some 10-100 kg/m^3; gases are below 10 kg/m^3 at the pressures
   // of a fluidised bed; no solid is denser than osmium.
@@ -162,8 +176,15 @@ std::string describe_case(const CaseConfig& c) {
   s += fmt::format("case '{}' ({}): {}\n", c.name, c.model == Model::Tfm ? "two-fluid model" : "discrete particles",
                    c.description);
   for (const std::string& n : c.notes) s += fmt::format("  note: {}\n", n);
-  line("domain", fmt::format("{} x {} m, gravity ({}, {}) m/s^2", c.domain.width, c.domain.height, c.domain.gravity.x,
-                             c.domain.gravity.y));
+  const bool three_d = c.domain.dimension == 3;
+  if (three_d) {
+    line("domain", fmt::format("{} x {} x {} m (width x height x depth, front and back walls), gravity ({}, {}, {}) "
+                               "m/s^2", c.domain.width, c.domain.height, c.domain.depth, c.domain.gravity.x,
+                               c.domain.gravity.y, c.domain.gravity.z));
+  } else {
+    line("domain", fmt::format("{} x {} m, gravity ({}, {}) m/s^2", c.domain.width, c.domain.height, c.domain.gravity.x,
+                               c.domain.gravity.y));
+  }
   line("end time", fmt::format("{} s", c.run.end_time));
   const double g = std::abs(c.domain.gravity.y);
   const double rho_g = c.gas.rho_g, mu_g = c.gas.mu_g;
@@ -178,7 +199,9 @@ std::string describe_case(const CaseConfig& c) {
       const Species& sp = dem.species[a];
       const double f = a < frac.size() ? frac[a] : 0.0;
       bed_mass += static_cast<double>(n) * f * sp.mass();
-      bed_area += static_cast<double>(n) * f * std::numbers::pi * sp.diameter * sp.diameter / 4.0;
+      bed_area += static_cast<double>(n) * f *
+                  (three_d ? std::numbers::pi * sp.diameter * sp.diameter * sp.diameter / 6.0
+                           : std::numbers::pi * sp.diameter * sp.diameter / 4.0);
       std::string v = fmt::format("d = {} m, rho = {} kg/m^3, mass {:.4g} kg, {:.3g}% by number", sp.diameter,
                                   sp.density, sp.mass(), 100.0 * f);
       if (sinks && sp.density > rho_g) {
@@ -214,7 +237,9 @@ std::string describe_case(const CaseConfig& c) {
     // bed (the column above a particle's width: delta / d = M g / (W k), the same for every species) and a
     // head-on impact (delta = v sqrt(m_eff / k), the undamped spring's amplitude).
     constexpr double target = 0.01;
-    const double static_fraction = bed_mass * g / (c.domain.width * k);
+    // In 3D the column above a particle's cross-section d^2 of the floor W D: delta / d = M g d / (W D k).
+    const double static_fraction = three_d ? bed_mass * g * dem.species[0].diameter / (c.domain.width * c.domain.depth * k)
+                                           : bed_mass * g / (c.domain.width * k);
     const auto dt_at = [&](double k_new) {
       DemConfig d2 = dem;
       d2.stiffness = k_new;
@@ -248,9 +273,15 @@ std::string describe_case(const CaseConfig& c) {
     }
     line("particles", c.particles.source == ParticleSource::File ? fmt::format("{} read from {}", n, c.particles.file)
                                                                  : fmt::format("{} placed at random", n));
-    line("estimated settled bed height", fmt::format("{:.3f} m from every species' area (random disc packing, area "
-                                                      "fraction {})", bed_area / kDiscPackingFraction / c.domain.width,
-                                                      kDiscPackingFraction));
+    if (three_d) {
+      line("estimated settled bed height", fmt::format("{:.3f} m from every species' volume (random close packing, "
+                                                        "volume fraction {})", bed_area / kSpherePackingFraction /
+                                                        (c.domain.width * c.domain.depth), kSpherePackingFraction));
+    } else {
+      line("estimated settled bed height", fmt::format("{:.3f} m from every species' area (random disc packing, area "
+                                                        "fraction {})", bed_area / kDiscPackingFraction / c.domain.width,
+                                                        kDiscPackingFraction));
+    }
     if (dem.n_species() > 1) {
       const BedMixture mix = bed_mixture(dem, frac);
       line("mixture", fmt::format("Sauter mean diameter d32 = {:.4g} m, volume-mean density {:.4g} kg/m^3", mix.d32, mix.rho));
@@ -271,9 +302,15 @@ std::string describe_case(const CaseConfig& c) {
     line("top of the domain (particles)", c.dem.walls.top ? "wall"
                                           : c.dem.walls.top_outflow ? "outflow: leaving particles are removed and counted"
                                                                     : "open: a particle crossing it fails the run");
+    if (three_d) line("front and back (particles)", "walls (z = 0 and z = domain.depth)");
   }
   if (c.model == Model::Tfm || c.gas_enabled) {
-    line("gas grid", fmt::format("{} x {} cells of {} x {} m", c.grid.nx, c.grid.ny, c.grid.dx, c.grid.dy));
+    if (three_d) {
+      line("gas grid", fmt::format("{} x {} x {} cells of {} x {} x {} m", c.grid.nx, c.grid.ny, c.grid.nz, c.grid.dx,
+                                   c.grid.dy, c.grid.dz));
+    } else {
+      line("gas grid", fmt::format("{} x {} cells of {} x {} m", c.grid.nx, c.grid.ny, c.grid.dx, c.grid.dy));
+    }
     if (c.model == Model::Dem) {
       line("gas time step", fmt::format("{:g} s ({} DEM steps)", c.dem.dt * c.coupling.dem_substeps, c.coupling.dem_substeps));
     }
@@ -287,8 +324,16 @@ std::string describe_case(const CaseConfig& c) {
                                                      "unchanged", 100.0 * bc.inlet_noise, bc.noise_seed));
     }
     for (const InletJet& j : c.gas.boundary.jets) {
-      line("jet", fmt::format("{} m/s over [{}, {}] m for {} <= t < {} s", j.velocity, j.x_centre - 0.5 * j.width,
-                              j.x_centre + 0.5 * j.width, j.t_start, j.t_end));
+      std::string where = fmt::format("[{}, {}] m", j.x_centre - 0.5 * j.width, j.x_centre + 0.5 * j.width);
+      if (three_d) {
+        where = j.shape == InletShape::Disc
+                    ? fmt::format("a disc of diameter {} m centred at (x, z) = ({}, {}) m", j.width, j.x_centre, j.z_centre)
+                : j.shape == InletShape::Rectangle
+                    ? fmt::format("a rectangle x in {}, z in [{}, {}] m", where, j.z_centre - 0.5 * j.depth,
+                                  j.z_centre + 0.5 * j.depth)
+                    : fmt::format("a slot x in {} across the whole depth", where);
+      }
+      line("jet", fmt::format("{} m/s over {} for {} <= t < {} s", j.velocity, where, j.t_start, j.t_end));
     }
     line("U_mf of the throughflow ratio (bubble.u_mf)", fmt::format("{:.3f} m/s", c.bubble.u_mf));
   }

@@ -43,14 +43,15 @@ inline constexpr double kDemEpsMf = 0.43;
 /// bubble.u_mf; empty where the bed has none (no downward gravity, solids not heavier than the gas).
 std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c);
 
-/// Plausibility of the domain: larger than any bed is an error naming the likely unit slip.
+/// Plausibility of the domain (width, height, and depth in 3D): larger than any bed is an error naming the likely
+/// unit slip.
 void check_domain_plausible(const CaseReader& r, const DomainConfig& domain);
 /// Plausibility of a particle diameter and density (either model): a value that cannot describe a bed particle
 /// is a bad-input error saying what looks wrong and the likely unit slip. `cell` is the gas cell when particles
 /// are averaged over cells (CFD-DEM, TFM), else empty.
 void check_particle_plausible(const CaseReader& r, const std::string& diameter_key, double d,
                               const std::string& density_key, double rho, const DomainConfig& domain,
-                              const std::optional<Grid2>& cell);
+                              const std::optional<CaseGrid>& cell);
 /// Plausibility of the gas: no fluid at all is an error; a liquid's value is a note.
 void check_gas_plausible(const CaseReader& r, const GasConfig& g, std::vector<std::string>& notes);
 

@@ -6,6 +6,7 @@
 
 #include "analysis/bubble_tracker.hpp"
 #include "core/domain.hpp"
+#include "core/grid.hpp"
 #include "core/grid2.hpp"
 #include "core/vec2.hpp"
 #include "coupling/coupling_config.hpp"
@@ -51,6 +52,37 @@ struct RunConfig {
   double max_wall_time = 0.0;  ///< s; 0 means no limit
 };
 
+/// The gas grid of a case in either dimension: cells and cell sizes per axis (x across, y up, z the depth between
+/// front and back; nz = 1 and dz = 0 in 2D), the origin at the bottom-left(-front) corner of the domain. One grid
+/// serves the gas, the voidage and the two-fluid model; each model takes the form it works on.
+struct CaseGrid {
+  int dimension = 2;
+  int nx = 0, ny = 0, nz = 1;
+  double dx = 0.0, dy = 0.0, dz = 0.0;  ///< m
+
+  int n(int axis) const { return axis == 0 ? nx : axis == 1 ? ny : nz; }
+  double h(int axis) const { return axis == 0 ? dx : axis == 1 ? dy : dz; }
+  std::size_t cells() const {
+    return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+  }
+  /// The x-y grid without ghost layers (the two-fluid model, the 2D analysis); in 3D the grid of one z layer.
+  Grid2 grid2() const { return Grid2{nx, ny, dx, dy, 0.0, 0.0}; }
+  /// The whole grid, owned by this process, with `ghost` layers (Dim = 2 ignores z).
+  template <int Dim>
+  Grid<Dim> grid_of(int ghost = 1) const {
+    Grid<Dim> g;
+    for (int a = 0; a < Dim; ++a) {
+      g.domain.lo[a] = 0;
+      g.domain.hi[a] = n(a);
+      g.h[a] = h(a);
+      g.origin[a] = 0.0;
+    }
+    g.owned = g.domain;
+    g.ghost = ghost;
+    return g;
+  }
+};
+
 struct CaseConfig {
   std::string name = "case";
   std::string description;
@@ -64,7 +96,7 @@ struct CaseConfig {
   SettleConfig settle{};
   OutputConfig output{};
   bool gas_enabled = true;
-  Grid2 grid{};
+  CaseGrid grid{};
   GasConfig gas{};
   CouplingConfig coupling{};
   BubbleConfig bubble{};

@@ -8,6 +8,7 @@
 #include "dem/contact_law.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "io/case_check.hpp"
+#include "io/csv.hpp"
 #include "io/dem_model.hpp"
 #include <filesystem>
 
@@ -44,6 +45,13 @@ double dem_stable_time_step(const DemConfig& dem) {
 
 namespace {
 
+// Placement sites across the depth of a 3D bed, on the lattice random_placement_capacity counts in x and y.
+std::int64_t placement_sites_across_depth(const DemConfig& dem, const PackingConfig& cfg, double depth) {
+  double d_max = 0.0;
+  for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
+  return std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(depth / (d_max + 2.0 * cfg.min_gap) + 1e-9)));
+}
+
 void read_case(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   // [case]
@@ -61,20 +69,46 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.run.max_wall_time = r.number("case.max_wall_time", 0.0, "s",
                                  "stop with a checkpoint (exit 130) after this wall time; 0 = no limit", R::non_negative());
 
+  c.domain.dimension = static_cast<int>(r.integer("case.dimension", 2, "2: a monolayer in the x-y plane (per metre "
+                                                  "of depth, coupling.depth deep); 3: a box with front and back walls "
+                                                  "(domain.depth deep)", R::between(2, 3)));
+  const bool three_d = c.domain.dimension == 3;
+  if (three_d && c.model == Model::Tfm) {
+    r.fail("case.dimension", "the two-fluid model is two-dimensional in this version: case.dimension = 3 needs "
+                             "case.model = \"dem\"");
+  }
+
   // [domain]: the box and gravity of every model, read here only and copied into each model's config.
   c.domain.width = r.number("domain.width", 0.6, "m", "bed width (x)", R::positive());
   c.domain.height = r.number("domain.height", 1.0, "m", "domain height (y)", R::positive());
+  if (three_d) {
+    c.domain.depth = r.required_number("domain.depth", "m", "bed depth (z, between the front and back walls); 3D "
+                                       "only (case.dimension = 3), required there", R::positive());
+  } else if (r.has("domain.depth")) {
+    r.fail("domain.depth", "a 2D case (case.dimension = 2) has no depth: its bed is a monolayer per metre of depth "
+                           "(coupling.depth sets the slab its volume fractions stand for); set case.dimension = 3 for "
+                           "a bed between front and back walls");
+  }
   check_domain_plausible(r, c.domain);
   r.alias("dem.gravity", "domain.gravity");  // its name before the two-fluid model could set it
-  const auto grav = r.numbers("domain.gravity", {0.0, -9.81}, "m/s^2", "gravitational acceleration (x, y) of every "
-                              "model (dem.gravity is read as this key)", 2);
-  c.domain.gravity = {grav[0], grav[1], 0.0};
+  const auto grav = r.numbers("domain.gravity", three_d ? std::vector<double>{0.0, -9.81, 0.0} : std::vector<double>{0.0, -9.81},
+                              "m/s^2", "gravitational acceleration (x, y) of every model, (x, y, z) in 3D; a 2D case "
+                              "takes three only with z = 0 (dem.gravity is read as this key)", 2, 3);
+  if (three_d && grav.size() != 3) {
+    r.fail("domain.gravity", fmt::format("a 3D case needs three components (x, y, z), got {}", grav.size()));
+  }
+  if (!three_d && grav.size() == 3 && grav[2] != 0.0) {
+    r.fail("domain.gravity", fmt::format("z = {} m/s^2 in a 2D case, whose bed lies in the x-y plane: give (x, y), "
+                                         "or set case.dimension = 3", grav[2]));
+  }
+  c.domain.gravity = {grav[0], grav[1], grav.size() == 3 ? grav[2] : 0.0};
   c.dem.width = c.domain.width;
   c.dem.height = c.domain.height;
   c.dem.gravity = c.domain.gravity_vector<2>();
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
-                                    "outflow (they leave, removed and counted in monitor.csv)", {"open", "wall", "outflow"});
+                                    "outflow (they leave, removed and counted in monitor.csv); the sides, the "
+                                    "bottom and, in 3D, the front and back are always walls", {"open", "wall", "outflow"});
   c.dem.walls.top = ptop == "wall";
   c.dem.walls.top_outflow = ptop == "outflow";
 
@@ -151,7 +185,8 @@ void read_case(CaseReader& r, CaseConfig& c) {
   // [particles]
   const std::string source = r.string("particles.source", "random",
                                       "random: place at random (then settle, see [settle]); file: read a CSV "
-                                      "id,x,y,vx,vy,omega,species",
+                                      "id,x,y,vx,vy,omega,species (3D: id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,"
+                                      "species)",
                                       {"random", "file"});
   c.particles.source = source == "file" ? ParticleSource::File : ParticleSource::Random;
   c.particles.file = r.string("particles.file", "", "CSV file of particles (particles.source = \"file\"), "
@@ -161,34 +196,43 @@ void read_case(CaseReader& r, CaseConfig& c) {
   }
   c.particles.packing.count = r.integer("particles.count", 22000, "number of particles placed at random", R::positive());
   c.particles.packing.x_min = 0.0;
-  c.particles.packing.x_max = c.dem.width;
+  c.particles.packing.x_max = c.domain.width;
   c.particles.packing.y_min = 0.0;
-  c.particles.packing.y_max = r.number("particles.fill_height", c.dem.height, "m",
+  c.particles.packing.y_max = r.number("particles.fill_height", c.domain.height, "m",
                                        "top of the region where particles are placed at random", R::positive());
-  if (c.particles.packing.y_max > c.dem.height) {
-    r.fail("particles.fill_height", fmt::format("{} m is above the domain height {} m", c.particles.packing.y_max, c.dem.height));
+  if (c.particles.packing.y_max > c.domain.height) {
+    r.fail("particles.fill_height", fmt::format("{} m is above the domain height {} m", c.particles.packing.y_max, c.domain.height));
   }
   c.particles.packing.min_gap = r.number("particles.gap", 0.05 * c.dem.species[0].diameter, "m",
                                          "smallest gap between randomly placed particles", R::non_negative());
   c.particles.packing.seed = c.seed;
   if (c.particles.source == ParticleSource::Random) {
-    const std::int64_t capacity = random_placement_capacity(c.dem, c.particles.packing);
+    std::int64_t capacity = random_placement_capacity(c.dem, c.particles.packing);
+    if (three_d) capacity *= placement_sites_across_depth(c.dem, c.particles.packing, c.domain.depth);
     if (c.particles.packing.count > capacity) {
-      r.fail("particles.count", fmt::format("{} particles do not fit in the {} x {} m placement region: at most {} "
+      r.fail("particles.count", fmt::format("{} particles do not fit in the {} x {}{} m placement region: at most {} "
                                             "with a gap of {} m; raise particles.fill_height or domain.height",
-                                            c.particles.packing.count, c.dem.width, c.particles.packing.y_max, capacity,
+                                            c.particles.packing.count, c.domain.width, c.particles.packing.y_max,
+                                            three_d ? fmt::format(" x {}", c.domain.depth) : std::string(), capacity,
                                             c.particles.packing.min_gap));
     }
   } else {
     // Read the file now, so that `check` reports a bad row before any run.
     const auto path = case_relative_path(r.file_name(), c.particles.file);
-    const ParticleStore from_file = particles_from_csv(path.string(), c.dem);
-    c.particles.packing.count = static_cast<std::int64_t>(from_file.size());
+    std::vector<std::int32_t> file_species;
+    if (three_d) {
+      const std::vector<ParticleCsvRow> rows = read_particles_csv(path, 3);
+      check_particle_rows(rows, path.string(), c.domain, c.dem.n_species());
+      for (const ParticleCsvRow& row : rows) file_species.push_back(row.species);
+    } else {
+      file_species = particles_from_csv(path.string(), c.dem).species;
+    }
+    c.particles.packing.count = static_cast<std::int64_t>(file_species.size());
     // The bed is the file's: its species make up the mixture `check` and the U_mf default describe.
     std::vector<double> share(c.dem.n_species(), 0.0);
-    for (const std::int32_t sp : from_file.species) share[static_cast<std::size_t>(sp)] += 1.0;
-    for (double& f : share) f /= std::max<double>(1.0, static_cast<double>(from_file.size()));
-    if (from_file.size() > 0) c.particles.packing.species_fraction = share;
+    for (const std::int32_t sp : file_species) share[static_cast<std::size_t>(sp)] += 1.0;
+    for (double& f : share) f /= std::max<double>(1.0, static_cast<double>(file_species.size()));
+    if (!file_species.empty()) c.particles.packing.species_fraction = share;
   }
   c.particles.layers = static_cast<int>(r.integer("particles.layers", 6, "colour layers of the initial bed (Fig. 4)",
                                                   R::between(1, 1000)));
@@ -295,12 +339,26 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
   // [grid]: one staggered grid for the gas, the voidage and the two-fluid model.
+  const bool three_d = c.domain.dimension == 3;
   const double dx = r.number("grid.cell_width", 0.02, "m", "gas cell width (the paper: 0.02 m)", R::positive());
   const double dy = r.number("grid.cell_height", dx, "m", "gas cell height", R::positive());
-  const double fx = c.domain.width / dx, fy = c.domain.height / dy;
-  if (fx * fy > 1e8) {  // 40 fields of 8 bytes per cell (the TFM): 32 GB
-    r.fail("grid.cell_width", fmt::format("cells of {} x {} m make {:.3g} cells of the {} x {} m domain; at most 1e8 "
-                                          "fit in memory", dx, dy, fx * fy, c.domain.width, c.domain.height));
+  double dz = 0.0;
+  if (three_d) {
+    dz = r.number("grid.cell_depth", std::min(dx, c.domain.depth), "m", "gas cell depth (z); 3D only; default: "
+                  "grid.cell_width, or the whole depth when that is less", R::positive());
+    r.describe_default("grid.cell_depth", "min(cell_width, domain.depth)");
+  } else if (r.has("grid.cell_depth")) {
+    r.fail("grid.cell_depth", "a 2D case (case.dimension = 2) has one layer of cells; set case.dimension = 3 for "
+                              "cells across a depth");
+  }
+  const double fx = c.domain.width / dx, fy = c.domain.height / dy, fz = three_d ? c.domain.depth / dz : 1.0;
+  if (fx * fy * fz > 1e8) {  // 40 fields of 8 bytes per cell (the TFM): 32 GB
+    r.fail("grid.cell_width", three_d ? fmt::format("cells of {} x {} x {} m make {:.3g} cells of the {} x {} x {} m "
+                                                    "domain; at most 1e8 fit in memory", dx, dy, dz, fx * fy * fz,
+                                                    c.domain.width, c.domain.height, c.domain.depth)
+                                      : fmt::format("cells of {} x {} m make {:.3g} cells of the {} x {} m domain; at "
+                                                    "most 1e8 fit in memory", dx, dy, fx * fy, c.domain.width,
+                                                    c.domain.height));
   }
   if (std::abs(fx - std::round(fx)) > 1e-9 * fx) {
     r.fail("grid.cell_width", fmt::format("{} m does not divide the domain width {} m into whole cells", dx, c.domain.width));
@@ -308,8 +366,20 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   if (std::abs(fy - std::round(fy)) > 1e-9 * fy) {
     r.fail("grid.cell_height", fmt::format("{} m does not divide the domain height {} m into whole cells", dy, c.domain.height));
   }
-  c.grid = Grid2::uniform(c.domain.width, c.domain.height, static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy)));
+  if (three_d && std::abs(fz - std::round(fz)) > 1e-9 * fz) {
+    r.fail("grid.cell_depth", fmt::format("{} m does not divide the domain depth {} m into whole cells", dz, c.domain.depth));
+  }
+  const Grid2 xy = Grid2::uniform(c.domain.width, c.domain.height, static_cast<int>(std::lround(fx)),
+                                  static_cast<int>(std::lround(fy)));
+  c.grid.dimension = c.domain.dimension;
+  c.grid.nx = xy.nx;
+  c.grid.ny = xy.ny;
+  c.grid.dx = xy.dx;
+  c.grid.dy = xy.dy;
+  c.grid.nz = three_d ? static_cast<int>(std::lround(fz)) : 1;
+  c.grid.dz = three_d ? c.domain.depth / c.grid.nz : 0.0;
   // The gas solver's rule (GasSolver refuses fewer cells), here so that `check` refuses what `run` would, gas or not.
+  // Across the depth one layer is allowed: a slab one cell deep between front and back walls.
   if (c.grid.nx < 2) {
     r.fail("grid.cell_width", fmt::format("{} m leaves {} cell across the domain width {} m; the gas needs at least 2",
                                           dx, c.grid.nx, c.domain.width));
@@ -372,17 +442,66 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   for (std::size_t k = 0; k < nj; ++k) {
     const std::string p = fmt::format("inlet.jet[{}].", k);
     InletJet j;
+    if (three_d) {
+      const std::string shape = r.string(p + "shape", "slot", "region of the bottom face (3D only): slot (across the "
+                                         "whole depth), rectangle (width x depth) or disc (diameter)",
+                                         {"slot", "rectangle", "disc"});
+      j.shape = shape == "disc" ? InletShape::Disc : shape == "rectangle" ? InletShape::Rectangle : InletShape::Slot;
+    } else {
+      for (const char* k : {"shape", "centre_z", "depth", "diameter"}) {
+        if (r.has(p + k)) {
+          r.fail(p + k, "a 2D case's jet is a slot of the bottom edge (centre, width); shapes across a depth need "
+                        "case.dimension = 3");
+        }
+      }
+    }
     j.x_centre = r.number(p + "centre", c.domain.width / 2, "m", "x of the jet centre");
-    j.width = r.number(p + "width", dx, "m", "jet width", R::positive());
+    if (j.shape == InletShape::Disc) {
+      if (r.has(p + "width")) r.fail(p + "width", "a disc jet is given by its diameter, not a width");
+      j.width = r.number(p + "diameter", std::max(dx, dz), "m", "diameter of a disc jet (3D)", R::positive());
+      r.describe_default(p + "diameter", "max(cell_width, cell_depth)");
+    } else {
+      if (r.has(p + "diameter")) r.fail(p + "diameter", "only a disc jet has a diameter; a slot or a rectangle has a width");
+      j.width = r.number(p + "width", dx, "m", "jet width (x extent of a slot or a rectangle)", R::positive());
+    }
+    if (j.shape == InletShape::Slot) {
+      for (const char* k : {"centre_z", "depth"}) {
+        if (r.has(p + k)) r.fail(p + k, "a slot spans the whole depth; use shape = \"rectangle\" for a part of it");
+      }
+      j.z_centre = 0.5 * c.domain.depth;
+      j.depth = c.domain.depth;
+    } else {
+      j.z_centre = r.number(p + "centre_z", 0.5 * c.domain.depth, "m", "z of the centre of a rectangle or disc jet (3D)");
+      r.describe_default(p + "centre_z", "domain.depth / 2");
+      if (j.shape == InletShape::Rectangle) {
+        j.depth = r.number(p + "depth", dz, "m", "z extent of a rectangle jet (3D)", R::positive());
+        r.describe_default(p + "depth", "grid.cell_depth");
+      } else {
+        if (r.has(p + "depth")) r.fail(p + "depth", "a disc jet is given by its diameter; only a rectangle has a depth");
+        j.depth = j.width;
+      }
+    }
     j.velocity = r.number(p + "velocity", 30.0, "m/s", "superficial gas velocity through the jet");
     j.t_start = r.number(p + "start", 0.0, "s", "the jet opens at this time", R::non_negative());
     j.t_end = r.number(p + "end", 0.4, "s", "the jet closes at this time", R::non_negative());
+    // The jet is a region of the bottom face: inside it, and wide enough for the grid to resolve.
     if (j.x_centre - 0.5 * j.width < -1e-12 || j.x_centre + 0.5 * j.width > c.domain.width + 1e-12) {
       r.fail(p + "centre", fmt::format("the jet [{}, {}] m is not inside the bottom [0, {}] m",
                                        j.x_centre - 0.5 * j.width, j.x_centre + 0.5 * j.width, c.domain.width));
     }
+    if (j.shape != InletShape::Slot &&
+        (j.z_centre - 0.5 * j.depth < -1e-12 || j.z_centre + 0.5 * j.depth > c.domain.depth + 1e-12)) {
+      r.fail(p + "centre_z", fmt::format("the jet's z range [{}, {}] m is not inside the bottom's depth [0, {}] m",
+                                         j.z_centre - 0.5 * j.depth, j.z_centre + 0.5 * j.depth, c.domain.depth));
+    }
+    const std::string wkey = j.shape == InletShape::Disc ? p + "diameter" : p + "width";
     if (j.width < dx * (1.0 - 1e-9)) {
-      r.fail(p + "width", fmt::format("{} m is narrower than a gas cell ({} m): the grid cannot resolve it", j.width, dx));
+      r.fail(wkey, fmt::format("{} m is narrower than a gas cell ({} m): the grid cannot resolve it", j.width, dx));
+    }
+    if (j.shape != InletShape::Slot && j.depth < c.grid.dz * (1.0 - 1e-9)) {
+      r.fail(j.shape == InletShape::Disc ? wkey : p + "depth",
+             fmt::format("{} m is shallower than a gas cell's depth ({} m): the grid cannot resolve it", j.depth,
+                         c.grid.dz));
     }
     if (j.t_end < j.t_start) r.fail(p + "end", "the jet closes before it opens");
     g.boundary.jets.push_back(j);
@@ -393,8 +512,18 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   const std::string vm = r.string("coupling.voidage", "bilinear", "how particle volume is shared among cells: "
                                   "bilinear (cloud in cell) or centre (the paper's counting)", {"bilinear", "centre"});
   cc.voidage = vm == "centre" ? VoidageMethod::Centre : VoidageMethod::Bilinear;
-  cc.depth = r.number("coupling.depth", c.model == Model::Dem ? c.dem.species[0].diameter : 0.004, "m",
-                      "bed depth that turns particle volume into a volume fraction (one diameter: a monolayer)", R::positive());
+  if (three_d) {
+    // A 3D cell has a volume; the slab depth of the per-depth monitor columns is the domain's.
+    if (r.has("coupling.depth")) {
+      r.fail("coupling.depth", "a 3D case takes its cell volumes from the grid and its depth from domain.depth; "
+                               "coupling.depth is for 2D monolayers");
+    }
+    cc.depth = c.domain.depth;
+  } else {
+    cc.depth = r.number("coupling.depth", c.model == Model::Dem ? c.dem.species[0].diameter : 0.004, "m",
+                        "bed depth that turns particle volume into a volume fraction (one diameter: a monolayer); "
+                        "2D only (3D: domain.depth)", R::positive());
+  }
   cc.eps_min = r.number("coupling.eps_min", 0.3, "", "smallest voidage the gas and the drag see", R::Range{0.0, 1.0, true, true});
   const bool substeps_derived = c.model == Model::Dem && !r.has("dem.time_step") && !r.has("coupling.dem_substeps");
   int substeps_default = 1;
@@ -405,7 +534,9 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     // Stokes relaxation time rho_p d^2 / (18 mu_g) of the smallest particle, so the drag stays resolved.
     double u_max = std::max(std::abs(g.boundary.inlet_velocity), std::abs(g.boundary.ramp_from));
     for (const InletJet& j : g.boundary.jets) u_max = std::max(u_max, std::abs(j.velocity));
-    const double courant = u_max > 0.0 ? 0.5 * std::min(c.grid.dx, c.grid.dy) * cc.eps_min / u_max : 1e300;
+    double h_min = std::min(c.grid.dx, c.grid.dy);
+    if (three_d) h_min = std::min(h_min, c.grid.dz);
+    const double courant = u_max > 0.0 ? 0.5 * h_min * cc.eps_min / u_max : 1e300;
     double stokes = 1e300;
     for (const Species& sp : c.dem.species) {
       stokes = std::min(stokes, sp.density * sp.diameter * sp.diameter / (18.0 * g.mu_g));
@@ -433,7 +564,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
 
   // [bubble]
   BubbleConfig& b = c.bubble;
-  b.grid = c.grid;
+  b.grid = c.grid.grid2();
   b.eps_threshold = r.number("bubble.threshold", 0.8, "", "voidage above which a cell is bubble (the paper: 0.8)",
                              R::Range{0.0, 1.0, true, true});
   b.jet_x = r.number("bubble.jet_x", g.boundary.jets.empty() ? c.domain.width / 2 : g.boundary.jets[0].x_centre, "m",
@@ -517,10 +648,32 @@ std::string case_keys_markdown() {
   const std::string base = "case.name = \"keys\"\nspecies = [{diameter = 0.004}]\ncontact.pair = [{species_a = 0}]\n"
                            "inlet.jet = [{centre = 0.31}]\n";
   std::vector<KeyInfo> all = load_case_text(base, "keys.toml").keys;
-  for (const KeyInfo& k :
-       load_case_text("case.name = \"keys\"\ncase.model = \"tfm\"\ninlet.jet = [{centre = 0.31}]\n", "keys.toml").keys) {
-    if (std::none_of(all.begin(), all.end(), [&](const KeyInfo& a) { return a.path == k.path; })) all.push_back(k);
-  }
+  // Keys that only other cases read go after the last key of their table (or section), so sections stay whole.
+  auto merge = [&all](const std::vector<KeyInfo>& more) {
+    for (const KeyInfo& k : more) {
+      if (std::any_of(all.begin(), all.end(), [&](const KeyInfo& a) { return a.path == k.path; })) continue;
+      auto prefix = [](const std::string& path, bool table) {
+        return table ? path.substr(0, path.rfind('.') + 1) : path.substr(0, path.find_first_of(".[") + 1);
+      };
+      std::size_t at = all.size();
+      bool found = false;
+      for (const bool table : {true, false}) {
+        for (std::size_t i = 0; i < all.size() && !found; ++i) {
+          if (prefix(all[i].path, table) != prefix(k.path, table)) continue;
+          at = i + 1;
+          while (at < all.size() && prefix(all[at].path, table) == prefix(k.path, table)) ++at;
+          found = true;
+        }
+        if (found) break;
+      }
+      all.insert(all.begin() + static_cast<std::ptrdiff_t>(at), k);
+    }
+  };
+  merge(load_case_text("case.name = \"keys\"\ncase.model = \"tfm\"\ninlet.jet = [{centre = 0.31}]\n", "keys.toml").keys);
+  // A 3D case with a jet of each shape: the keys of the depth.
+  merge(load_case_text("case.name = \"keys\"\ncase.dimension = 3\ndomain.depth = 0.1\nspecies = [{diameter = 0.004}]\n"
+                       "inlet.jet = [{centre = 0.31}, {centre = 0.31, shape = \"rectangle\"}, "
+                       "{centre = 0.31, shape = \"disc\"}]\n", "keys.toml").keys);
   std::string md;
   std::string section;
   for (const KeyInfo& k : all) {

@@ -444,10 +444,19 @@ std::string CaseReader::required_string(const std::string& path, const std::stri
 
 std::vector<double> CaseReader::numbers(const std::string& path, const std::vector<double>& def,
                                         const std::string& unit, const std::string& doc, std::size_t size) {
+  return numbers(path, def, unit, doc, size, size);
+}
+
+std::vector<double> CaseReader::numbers(const std::string& path, const std::vector<double>& def,
+                                        const std::string& unit, const std::string& doc, std::size_t min_size,
+                                        std::size_t max_size) {
   std::string def_text = "[";
   for (std::size_t i = 0; i < def.size(); ++i) def_text += (i ? ", " : "") + format_number(def[i]);
   def_text += "]";
-  record(path, "array of numbers", unit, doc, size ? fmt::format("{} values", size) : "", def_text);
+  const std::string sizes = min_size == 0 && max_size == 0 ? std::string()
+                            : min_size == max_size ? fmt::format("{} values", min_size)
+                                                   : fmt::format("{} or {} values", min_size, max_size);
+  record(path, "array of numbers", unit, doc, sizes, def_text);
   std::vector<double> v = def;
   if (const toml::node* n = find(path)) {
     const auto* a = n->as_array();
@@ -460,7 +469,9 @@ std::vector<double> CaseReader::numbers(const std::string& path, const std::vect
       }
       v.push_back(*d);
     }
-    if (size && v.size() != size) fail(path, fmt::format("expected {} values, got {}", size, v.size()));
+    if (max_size && (v.size() < min_size || v.size() > max_size)) {
+      fail(path, fmt::format("expected {}, got {}", sizes, v.size()));
+    }
   }
   toml::array arr;
   for (double x : v) arr.push_back(x);

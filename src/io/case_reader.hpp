@@ -57,6 +57,9 @@ class CaseReader {
   std::string required_string(const std::string& path, const std::string& doc);
   std::vector<double> numbers(const std::string& path, const std::vector<double>& def, const std::string& unit,
                               const std::string& doc, std::size_t size = 0);
+  /// An array of min_size to max_size numbers (gravity: 2 in 2D, 3 in 3D).
+  std::vector<double> numbers(const std::string& path, const std::vector<double>& def, const std::string& unit,
+                              const std::string& doc, std::size_t min_size, std::size_t max_size);
   /// Number of tables in an array of tables (e.g. [[species]]); its keys are read as "name[i].key".
   std::size_t table_count(const std::string& path, const std::string& doc);
   bool has(const std::string& path) const;

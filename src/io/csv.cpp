@@ -214,18 +214,63 @@ std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
 }
 
 void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles, Sync sync) {
-  std::string out = std::string(particle_csv_header) + "\n";
-  out.reserve(out.size() + particles.size() * 140);
-  for (const std::size_t p : order_by_id(particles)) {
-    out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", particles.id[p], particles.x[p],
-                       particles.y[p], particles.vx[p], particles.vy[p], particles.omega[p], particles.species[p]);
+  write_particles_csv(path, particle_arrays(particles), sync);
+}
+
+std::vector<std::size_t> ParticleArrays::order_by_id() const {
+  std::vector<std::size_t> order(size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  return order;
+}
+
+void write_particles_csv(const std::filesystem::path& path, const ParticleArrays& p, Sync sync) {
+  const bool three_d = p.dimension == 3;
+  std::string out = std::string(particle_csv_header_of(p.dimension)) + "\n";
+  out.reserve(out.size() + p.size() * (three_d ? 240 : 140));
+  for (const std::size_t k : p.order_by_id()) {
+    if (three_d) {
+      out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", p.id[k],
+                         p.x[0][k], p.x[1][k], p.x[2][k], p.v[0][k], p.v[1][k], p.v[2][k], p.omega[0][k],
+                         p.omega[1][k], p.omega[2][k], p.species[k]);
+    } else {
+      out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", p.id[k], p.x[0][k], p.x[1][k], p.v[0][k],
+                         p.v[1][k], p.omega[2][k], p.species[k]);
+    }
   }
   write_file_atomic(path, out, sync);
 }
 
-std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path) {
-  static constexpr const char* names[] = {"id", "x", "y", "vx", "vy", "omega", "species"};
-  constexpr std::size_t ncol = std::size(names);
+void check_particle_rows(const std::vector<ParticleCsvRow>& rows, const std::string& file, const DomainConfig& domain,
+                         std::size_t n_species) {
+  const bool three_d = domain.dimension == 3;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const ParticleCsvRow& row = rows[r];
+    if (row.species < 0 || static_cast<std::size_t>(row.species) >= n_species) {
+      throw_input_error(fmt::format("{}: row {}, column species: species {} is not defined in the case (it has {})",
+                                    file, r + 2, row.species, n_species));
+    }
+    const bool inside = row.x >= 0.0 && row.x <= domain.width && row.y >= 0.0 && row.y <= domain.height &&
+                        (!three_d || (row.z >= 0.0 && row.z <= domain.depth));
+    if (!inside) {
+      throw_input_error(three_d ? fmt::format("{}: row {}, columns x,y,z: particle {} at ({}, {}, {}) m is not inside "
+                                              "the {} x {} x {} m domain", file, r + 2, row.id, row.x, row.y, row.z,
+                                              domain.width, domain.height, domain.depth)
+                                : fmt::format("{}: row {}, columns x,y: particle {} at ({}, {}) m is not inside the "
+                                              "{} x {} m domain", file, r + 2, row.id, row.x, row.y, domain.width,
+                                              domain.height));
+    }
+  }
+}
+
+std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path, int dimension) {
+  static constexpr const char* names2[] = {"id", "x", "y", "vx", "vy", "omega", "species"};
+  static constexpr const char* names3[] = {"id", "x", "y", "z", "vx", "vy", "vz", "omega_x", "omega_y", "omega_z",
+                                           "species"};
+  const bool three_d = dimension == 3;
+  const char* const* names = three_d ? names3 : names2;
+  const std::size_t ncol = three_d ? std::size(names3) : std::size(names2);
+  const char* const header_text = particle_csv_header_of(dimension);
   const std::string file = path.string();
   auto fail = [&](std::size_t row, std::size_t column, const std::string& what) -> void {
     throw Error(ErrorKind::BadInput, fmt::format("{}: row {}, column {}: {}", file, row, column, what));
@@ -237,19 +282,31 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
   bool complete = true;
   std::vector<std::string_view> lines = split_lines(body, complete);
   while (!lines.empty() && trim(lines.back()).empty()) lines.pop_back();
-  if (lines.empty()) fail(1, 1, fmt::format("empty file, expected the header '{}'", particle_csv_header));
+  if (lines.empty()) fail(1, 1, fmt::format("empty file, expected the header '{}'", header_text));
 
   const std::vector<std::string_view> header = split_cells(lines.front());
+  {
+    // A file of the other dimension, said as such rather than as a wrong column.
+    std::string joined;
+    for (std::size_t c = 0; c < header.size(); ++c) {
+      if (c > 0) joined.push_back(',');
+      joined.append(trim(header[c]));
+    }
+    if (joined == particle_csv_header_of(three_d ? 2 : 3)) {
+      fail(1, 1, fmt::format("a {0}D particle file (header '{1}') for a {2}D case; a {2}D case reads '{3}'",
+                             three_d ? 2 : 3, joined, dimension, header_text));
+    }
+  }
   for (std::size_t c = 0; c < std::max(header.size(), ncol); ++c) {
     if (c >= header.size()) {
-      fail(1, c + 1, fmt::format("missing header column '{}' (expected '{}')", names[c], particle_csv_header));
+      fail(1, c + 1, fmt::format("missing header column '{}' (expected '{}')", names[c], header_text));
     }
     if (c >= ncol) {
-      fail(1, c + 1, fmt::format("extra header column '{}' (expected '{}')", header[c], particle_csv_header));
+      fail(1, c + 1, fmt::format("extra header column '{}' (expected '{}')", header[c], header_text));
     }
     if (header[c] != names[c]) {
       fail(1, c + 1, fmt::format("header '{}' where '{}' is expected (the header must be '{}')", header[c],
-                                 names[c], particle_csv_header));
+                                 names[c], header_text));
     }
   }
   if (lines.size() == 1) fail(2, 1, "no particle rows after the header");
@@ -300,12 +357,25 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
 
     ParticleCsvRow row;
     row.id = parse_integer(0, 0, std::numeric_limits<std::int64_t>::max());
-    row.x = parse_real(1);
-    row.y = parse_real(2);
-    row.vx = parse_real(3);
-    row.vy = parse_real(4);
-    row.omega = parse_real(5);
-    row.species = static_cast<std::int32_t>(parse_integer(6, 0, std::numeric_limits<std::int32_t>::max()));
+    if (three_d) {
+      row.x = parse_real(1);
+      row.y = parse_real(2);
+      row.z = parse_real(3);
+      row.vx = parse_real(4);
+      row.vy = parse_real(5);
+      row.vz = parse_real(6);
+      row.omega_x = parse_real(7);
+      row.omega_y = parse_real(8);
+      row.omega = parse_real(9);
+      row.species = static_cast<std::int32_t>(parse_integer(10, 0, std::numeric_limits<std::int32_t>::max()));
+    } else {
+      row.x = parse_real(1);
+      row.y = parse_real(2);
+      row.vx = parse_real(3);
+      row.vy = parse_real(4);
+      row.omega = parse_real(5);
+      row.species = static_cast<std::int32_t>(parse_integer(6, 0, std::numeric_limits<std::int32_t>::max()));
+    }
     const auto [it, inserted] = first_row_of_id.emplace(row.id, r);
     if (!inserted) fail(r, 1, fmt::format("duplicate id {} (first in row {})", row.id, it->second));
     rows.push_back(row);

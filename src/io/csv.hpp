@@ -1,6 +1,7 @@
 #pragma once
 // CSV time series (monitor.csv, bubble.csv, tracers) that survive a kill and continue after a restart,
-// and the particle CSV format (id,x,y,vx,vy,omega,species) written by runs and read by case files.
+// and the particle CSV format (2D: id,x,y,vx,vy,omega,species; 3D: id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,species)
+// written by runs and read by case files.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -10,8 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "core/domain.hpp"
 #include "dem/particle_store.hpp"
 #include "io/atomic_file.hpp"
+#include "io/particle_arrays.hpp"
 
 namespace fluidbed {
 
@@ -51,17 +54,25 @@ class CsvWriter {
   CsvWriter(std::filesystem::path path, std::vector<std::string> columns, const std::string& initial_content);
 };
 
-/// One line of a particle CSV file.
+/// One line of a particle CSV file. A 2D file has no z, vz, omega_x, omega_y (they read as 0).
 struct ParticleCsvRow {
   std::int64_t id = 0;
   double x = 0.0, y = 0.0;    ///< m
   double vx = 0.0, vy = 0.0;  ///< m/s
-  double omega = 0.0;         ///< rad/s, spin about z, anticlockwise positive
+  double omega = 0.0;         ///< rad/s, spin about z, anticlockwise positive (3D: omega_z)
   std::int32_t species = 0;
+  double z = 0.0;             ///< m (3D)
+  double vz = 0.0;            ///< m/s (3D)
+  double omega_x = 0.0, omega_y = 0.0;  ///< rad/s, spin about x and y (3D)
 };
 
-/// The exact header of a particle CSV file.
+/// The exact header of a particle CSV file: 2D, and 3D.
 inline constexpr const char* particle_csv_header = "id,x,y,vx,vy,omega,species";
+inline constexpr const char* particle_csv_header_3d = "id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,species";
+/// The header of a particle CSV file of `dimension` (2 or 3).
+inline const char* particle_csv_header_of(int dimension) {
+  return dimension == 3 ? particle_csv_header_3d : particle_csv_header;
+}
 
 /// Storage slots of `particles` in increasing id order (ties in storage order), for output that does not
 /// depend on how the store happens to be sorted.
@@ -70,11 +81,20 @@ std::vector<std::size_t> order_by_id(const ParticleStore& particles);
 /// Write `particles` sorted by id at full precision, atomically. Throws Error(BadInput) when it cannot write.
 void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles,
                          Sync sync = Sync::Durable);
+/// The same from plain arrays, in their dimension (a 2D view gives exactly the bytes of the overload above).
+void write_particles_csv(const std::filesystem::path& path, const ParticleArrays& particles,
+                         Sync sync = Sync::Durable);
 
-/// Read and validate a particle CSV file (rows in file order). Throws Error(BadInput,
+/// Read and validate a particle CSV file of `dimension` (rows in file order). Throws Error(BadInput,
 /// "<file>: row R, column C: ...") on the first problem, R being the line number (the header is row 1):
-/// wrong header, missing or extra values, a value that is not a finite number, a non-integer or negative id,
-/// a non-integer or negative species, a duplicate id, no particle rows.
-std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path);
+/// wrong header (a file of the other dimension is named as such), missing or extra values, a value that is not a
+/// finite number, a non-integer or negative id, a non-integer or negative species, a duplicate id, no particle
+/// rows.
+std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path, int dimension = 2);
+
+/// The checks of a particle file against its case: species defined (`n_species`), centres inside the domain
+/// (x, y, and z in 3D). Throws Error(BadInput, "<file>: row R, ...").
+void check_particle_rows(const std::vector<ParticleCsvRow>& rows, const std::string& file, const DomainConfig& domain,
+                         std::size_t n_species);
 
 }  // namespace fluidbed

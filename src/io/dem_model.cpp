@@ -235,7 +235,7 @@ class DemModel final : public ModelRun {
   DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
       : config_(c),
         sim_(DemSolver(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}),
-             c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid, c.gas)) : std::nullopt, c.coupling),
+             c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid.grid2(), c.gas)) : std::nullopt, c.coupling),
         log_(&log) {
     if (fresh) sim_.initialize();
   }
@@ -311,7 +311,7 @@ class DemModel final : public ModelRun {
       v[7] = sim_.min_voidage();
       v[8] = sim_.total_fluid_force().y;
       v[9] = sim_.total_gas_reaction().y;
-      const LaceyResult l = lacey_index(p, config_.particles.layers / 2, config_.grid, MixingConfig{});
+      const LaceyResult l = lacey_index(p, config_.particles.layers / 2, config_.grid.grid2(), MixingConfig{});
       if (l.valid) v[11] = l.index;
     }
     return v;
@@ -319,16 +319,14 @@ class DemModel final : public ModelRun {
   FieldView fields() override {
     if (!sim_.has_gas()) return {};
     FieldView f;
-    f.grid = &sim_.gas().grid();
-    f.eps = &sim_.voidage();
-    f.p = &sim_.gas().fields().p;
-    f.ug = &sim_.gas_u();
-    f.vg = &sim_.gas_v();
-    f.us = &sim_.solids_u();
-    f.vs = &sim_.solids_v();
+    f.set_grid(sim_.gas().grid());
+    f.eps = sim_.voidage().v.data();
+    f.p = sim_.gas().fields().p.v.data();
+    f.ug = {sim_.gas_u().v.data(), sim_.gas_v().v.data(), nullptr};
+    f.us = {sim_.solids_u().v.data(), sim_.solids_v().v.data(), nullptr};
     return f;
   }
-  const ParticleStore* particles() const override { return &sim_.dem().particles(); }
+  std::optional<ParticleArrays> particles() const override { return particle_arrays(sim_.dem().particles()); }
 
   void save(Hdf5File& f) const override {
     save_dem(f, sim_.dem().view());

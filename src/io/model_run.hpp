@@ -1,5 +1,8 @@
 #pragma once
 // The narrow interface between the run driver (outputs, checkpoints, progress) and a model (CFD-DEM or TFM).
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -7,22 +10,51 @@
 
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
-#include "dem/particle_store.hpp"
+#include "io/particle_arrays.hpp"
 
 namespace fluidbed {
 
 class Hdf5File;
 
-/// Cell-centred views of a model's grid fields for observers (bubble tracker, tracers, field output).
+/// Cell-centred views of a model's grid fields for observers (bubble tracker, tracers, field output), in either
+/// dimension: the grid's shape and, per field, a pointer to its interior values as one contiguous array of
+/// n[0] n[1] n[2] cells, axis 0 fastest (cell (i, j, k) at i + n[0] (j + n[1] k)); n[2] = 1 in 2D. A null pointer
+/// is a field the model does not have. The arrays belong to the model and stay valid until its next advance().
 struct FieldView {
-  const Grid2* grid = nullptr;  ///< null when the model has no grid (DEM without gas)
-  const Field2* eps = nullptr;  ///< voidage
-  const Field2* p = nullptr;    ///< gas pressure, Pa
-  const Field2* ug = nullptr;   ///< interstitial gas velocity, cell centres, m/s
-  const Field2* vg = nullptr;
-  const Field2* us = nullptr;   ///< solids velocity, cell centres (DEM: cell-averaged particle velocity), m/s
-  const Field2* vs = nullptr;
-  const Field2* theta = nullptr;  ///< granular temperature (TFM kinetic theory), m^2/s^2
+  int dimension = 2;
+  std::array<int, 3> n{0, 0, 1};          ///< cells per axis; n[0] = 0 when the model has no grid (DEM without gas)
+  std::array<double, 3> h{0.0, 0.0, 0.0};  ///< cell size per axis, m (h[2] = 0 in 2D)
+  std::array<double, 3> origin{0.0, 0.0, 0.0};  ///< low corner of the grid, m
+  const double* eps = nullptr;  ///< voidage
+  const double* p = nullptr;    ///< gas pressure, Pa
+  std::array<const double*, 3> ug{};  ///< interstitial gas velocity per axis, cell centres, m/s (ug[2]: 3D)
+  /// Solids velocity per axis, cell centres (DEM: cell-averaged particle velocity), m/s.
+  std::array<const double*, 3> us{};
+  const double* theta = nullptr;  ///< granular temperature (TFM kinetic theory), m^2/s^2
+
+  bool has_grid() const { return n[0] > 0; }
+  std::size_t cells() const {
+    return static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+  }
+  /// Whether the gas (or solids) velocity has all its components.
+  bool has_gas_velocity() const { return ug[0] && ug[1] && (dimension == 2 || ug[2]); }
+  bool has_solids_velocity() const { return us[0] && us[1] && (dimension == 2 || us[2]); }
+  /// The x-y grid of a 2D view (for the 2D analysis).
+  Grid2 grid2() const { return Grid2{n[0], n[1], h[0], h[1], origin[0], origin[1]}; }
+  /// A copy of a 2D view's field as a Field2 (for the 2D analysis); `values` one of the pointers above.
+  Field2 field2(const double* values) const {
+    Field2 f(n[0], n[1]);
+    std::copy(values, values + f.size(), f.v.begin());
+    return f;
+  }
+  /// Set the shape from a 2D grid and point the fields at Field2 arrays (nullptr where absent).
+  void set_grid(const Grid2& g) {
+    dimension = 2;
+    n = {g.nx, g.ny, 1};
+    h = {g.dx, g.dy, 0.0};
+    origin = {g.x0, g.y0, 0.0};
+  }
+  static const double* data(const Field2* f) { return f ? f->v.data() : nullptr; }
 };
 
 struct CostInfo {
@@ -44,7 +76,9 @@ class ModelRun {
   virtual std::vector<std::string> monitor_columns() const = 0;
   virtual std::vector<std::optional<double>> monitor_values() = 0;
   virtual FieldView fields() = 0;
-  virtual const ParticleStore* particles() const { return nullptr; }
+  /// The particles as plain arrays (either dimension), valid until the next advance(); empty for a model without
+  /// particles.
+  virtual std::optional<ParticleArrays> particles() const { return std::nullopt; }
   virtual void save(Hdf5File& file) const = 0;
   virtual void load(const Hdf5File& file) = 0;
   virtual CostInfo cost() const = 0;

@@ -395,20 +395,22 @@ class Run {
       checkpoints_.next = 1;  // none at t = 0
     }
     const FieldView fv = model_->fields();
-    if (fv.grid && restart_) {
+    // The tracers and the bubble tracker work on 2D fields (the 3D analysis attaches here once it exists).
+    const bool planar = fv.has_grid() && fv.dimension == 2;
+    if (planar && restart_) {
       // The balls and their colours as saved: recolouring them from the bed at the restart time would move them
       // to other layers.
       if (restart_file_->has("tracers/id")) {
-        tracers_.emplace(load_tracers(*restart_file_, *fv.grid));
+        tracers_.emplace(load_tracers(*restart_file_, fv.grid2()));
       } else if (cfg_.output.tracers) {
         log().warn("the checkpoint holds no cell tracers: no tracers/*.csv from this restart");
       }
-    } else if (fv.grid && cfg_.output.tracers) {
+    } else if (planar && cfg_.output.tracers) {
       // Balls of the paper's Fig. 4b/c over the initial bed.
-      const double h = fv.eps ? bed_surface_height(*fv.grid, *fv.eps).value_or(0.0) : 0.0;
-      if (h > 0.0) tracers_.emplace(*fv.grid, h, cfg_.particles.layers);
+      const double h = fv.eps ? bed_surface_height(fv.grid2(), fv.field2(fv.eps)).value_or(0.0) : 0.0;
+      if (h > 0.0) tracers_.emplace(fv.grid2(), h, cfg_.particles.layers);
     }
-    if (fv.grid && fv.eps && fv.ug && fv.vg) {
+    if (planar && fv.eps && fv.has_gas_velocity()) {
       bubbles_.emplace(cfg_.bubble);
       if (restart_ && restart_file_->has("bubble/tracked")) bubbles_->restore(load_bubble_state(*restart_file_));
     }
@@ -463,7 +465,7 @@ class Run {
         if (tracers_) {
           // The step actually taken: the two-fluid model's step is adaptive.
           const FieldView fv = model_->fields();
-          if (fv.us && fv.vs) tracers_->advance(*fv.us, *fv.vs, t - t_before);
+          if (fv.has_solids_velocity()) tracers_->advance(fv.field2(fv.us[0]), fv.field2(fv.us[1]), t - t_before);
         }
         observe(t);
         if (checkpoints_.due(t, dt_) && !landed(t)) periodic_checkpoint(t);
@@ -534,7 +536,8 @@ class Run {
       const double stamp = frames_.stamp(t);
       if (bubbles_) {
         const FieldView fv = model_->fields();
-        const BubbleSample b = bubbles_->observe(stamp, *fv.grid, *fv.eps, *fv.ug, *fv.vg);
+        const BubbleSample b = bubbles_->observe(stamp, fv.grid2(), fv.field2(fv.eps), fv.field2(fv.ug[0]),
+                                                 fv.field2(fv.ug[1]));
         const auto values = bubble_csv_values(b);
         bubble_csv_->row(std::span<const std::optional<double>>(values.data(), values.size()));
       }
@@ -547,21 +550,23 @@ class Run {
   void write_frame(double t) {
     const FieldView fv = model_->fields();
     const std::size_t index = static_cast<std::size_t>(frames_.next);
-    if (cfg_.output.fields && fv.grid) {
-      std::vector<VtiArray> arrays;
-      if (fv.eps) arrays.push_back(VtiArray::scalar("voidage", *fv.eps));
-      if (fv.p) arrays.push_back(VtiArray::scalar("pressure", *fv.p));
-      if (fv.ug && fv.vg) arrays.push_back(VtiArray::vector("gas_velocity", *fv.ug, *fv.vg));
-      if (fv.us && fv.vs) arrays.push_back(VtiArray::vector("solids_velocity", *fv.us, *fv.vs));
-      if (fv.theta) arrays.push_back(VtiArray::scalar("granular_temperature", *fv.theta));
+    if (cfg_.output.fields && fv.has_grid()) {
+      const int axes = fv.dimension == 3 ? 3 : 2;
+      std::vector<VtiComponents> arrays;
+      if (fv.eps) arrays.push_back({"voidage", {fv.eps, nullptr, nullptr}, 1});
+      if (fv.p) arrays.push_back({"pressure", {fv.p, nullptr, nullptr}, 1});
+      if (fv.has_gas_velocity()) arrays.push_back({"gas_velocity", fv.ug, axes});
+      if (fv.has_solids_velocity()) arrays.push_back({"solids_velocity", fv.us, axes});
+      if (fv.theta) arrays.push_back({"granular_temperature", {fv.theta, nullptr, nullptr}, 1});
       const std::string rel = frame_file_name("fields", index, "vti");
-      write_vti(out_ / rel, *fv.grid, t, arrays);
+      write_vti(out_ / rel, VtiGrid{fv.dimension, fv.n, fv.h, fv.origin}, t, arrays);
       fields_pvd_->add(t, rel);
     }
     // Particle frames: every n-th frame (output.particle_interval = n * output.interval, checked by the loader),
     // numbered as the field frame of the same instant.
     const auto every = static_cast<std::size_t>(std::llround(cfg_.output.particle_interval / cfg_.output.interval));
-    const ParticleStore* p = index % std::max<std::size_t>(every, 1) == 0 ? model_->particles() : nullptr;
+    const std::optional<ParticleArrays> p =
+        index % std::max<std::size_t>(every, 1) == 0 ? model_->particles() : std::nullopt;
     if (p) {
       if (cfg_.output.particles) {
         const std::string rel = frame_file_name("particles", index, "vtu");

@@ -59,14 +59,12 @@ class TfmModel final : public ModelRun {
   }
   FieldView fields() override {
     FieldView f;
-    f.grid = &solver_.grid();
-    f.eps = &solver_.state().eps;
-    f.p = &solver_.state().p;
-    f.ug = &ug_;
-    f.vg = &vg_;
-    f.us = &us_;
-    f.vs = &vs_;
-    f.theta = &solver_.state().theta;
+    f.set_grid(solver_.grid());
+    f.eps = solver_.state().eps.v.data();
+    f.p = solver_.state().p.v.data();
+    f.ug = {ug_.v.data(), vg_.v.data(), nullptr};
+    f.us = {us_.v.data(), vs_.v.data(), nullptr};
+    f.theta = solver_.state().theta.v.data();
     return f;
   }
 

@@ -138,27 +138,57 @@ void check_shape(const Grid2& grid, const Field2* f, const std::string& name) {
 
 }  // namespace
 
-void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
-               const std::vector<VtiArray>& cell_data) {
+VtiGrid VtiGrid::of(const Grid2& g) {
+  VtiGrid v;
+  v.dimension = 2;
+  v.n = {g.nx, g.ny, 1};
+  v.h = {g.dx, g.dy, 0.0};
+  v.origin = {g.x0, g.y0, 0.0};
+  return v;
+}
+
+void write_vti(const std::filesystem::path& path, const VtiGrid& grid, double time,
+               const std::vector<VtiComponents>& cell_data) {
+  const std::size_t cells = grid.cells();
   VtkFile file;
-  file.xml += fmt::format(R"(  <ImageData WholeExtent="0 {} 0 {} 0 0" Origin="{:.17g} {:.17g} 0" Spacing="{:.17g} {:.17g} 1">)"
-                          "\n",
-                          grid.nx, grid.ny, grid.x0, grid.y0, grid.dx, grid.dy);
-  file.time_value(time);
-  file.xml += fmt::format(R"(    <Piece Extent="0 {} 0 {} 0 0">)"
-                          "\n",
-                          grid.nx, grid.ny);
+  if (grid.dimension == 3) {
+    file.xml += fmt::format(R"(  <ImageData WholeExtent="0 {} 0 {} 0 {}" Origin="{:.17g} {:.17g} {:.17g}" )"
+                            R"(Spacing="{:.17g} {:.17g} {:.17g}">)"
+                            "\n",
+                            grid.n[0], grid.n[1], grid.n[2], grid.origin[0], grid.origin[1], grid.origin[2], grid.h[0],
+                            grid.h[1], grid.h[2]);
+    file.time_value(time);
+    file.xml += fmt::format(R"(    <Piece Extent="0 {} 0 {} 0 {}">)"
+                            "\n",
+                            grid.n[0], grid.n[1], grid.n[2]);
+  } else {
+    // z spacing 1: VTK needs a positive spacing on the collapsed axis.
+    file.xml += fmt::format(R"(  <ImageData WholeExtent="0 {} 0 {} 0 0" Origin="{:.17g} {:.17g} 0" Spacing="{:.17g} {:.17g} 1">)"
+                            "\n",
+                            grid.n[0], grid.n[1], grid.origin[0], grid.origin[1], grid.h[0], grid.h[1]);
+    file.time_value(time);
+    file.xml += fmt::format(R"(    <Piece Extent="0 {} 0 {} 0 0">)"
+                            "\n",
+                            grid.n[0], grid.n[1]);
+  }
   file.xml += "      <CellData>\n";
-  for (const VtiArray& a : cell_data) {
-    check_shape(grid, a.x, a.name);
-    if (a.y == nullptr) {
-      file.data_array("Float64", a.name, 1, a.x->v);
+  for (const VtiComponents& a : cell_data) {
+    if (a.count != 1 && a.count != 2 && a.count != 3) {
+      throw std::invalid_argument(fmt::format("write_vti: array '{}' has {} components (1, 2 or 3)", a.name, a.count));
+    }
+    for (int c = 0; c < a.count; ++c) {
+      if (a.c[static_cast<std::size_t>(c)] == nullptr) {
+        throw std::invalid_argument(fmt::format("write_vti: array '{}' lacks component {}", a.name, c));
+      }
+    }
+    if (a.count == 1) {
+      file.data_array("Float64", a.name, 1, std::vector<double>(a.c[0], a.c[0] + cells));
     } else {
-      check_shape(grid, a.y, a.name);
-      std::vector<double> xyz(3 * grid.cells(), 0.0);
-      for (std::size_t k = 0; k < grid.cells(); ++k) {
-        xyz[3 * k] = a.x->v[k];
-        xyz[3 * k + 1] = a.y->v[k];
+      // Vectors always have 3 components in VTK; a 2D vector's z is 0.
+      std::vector<double> xyz(3 * cells, 0.0);
+      for (int c = 0; c < a.count; ++c) {
+        const double* src = a.c[static_cast<std::size_t>(c)];
+        for (std::size_t k = 0; k < cells; ++k) xyz[3 * k + static_cast<std::size_t>(c)] = src[k];
       }
       file.data_array("Float64", a.name, 3, xyz);
     }
@@ -168,25 +198,43 @@ void write_vti(const std::filesystem::path& path, const Grid2& grid, double time
   write_file_atomic(path, file.finish("ImageData"), Sync::Atomic);
 }
 
-void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles) {
-  const std::vector<std::size_t> order = order_by_id(particles);
-  const std::size_t n = order.size();
+void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
+               const std::vector<VtiArray>& cell_data) {
+  std::vector<VtiComponents> arrays;
+  for (const VtiArray& a : cell_data) {
+    check_shape(grid, a.x, a.name);
+    if (a.y) check_shape(grid, a.y, a.name);
+    arrays.push_back({a.name, {a.x->v.data(), a.y ? a.y->v.data() : nullptr, nullptr}, a.y ? 2 : 1});
+  }
+  write_vti(path, VtiGrid::of(grid), time, arrays);
+}
 
-  std::vector<double> points(3 * n, 0.0), velocity(3 * n, 0.0), diameter(n), spin(n);
+void write_vtu(const std::filesystem::path& path, double time, const ParticleArrays& particles) {
+  const bool three_d = particles.dimension == 3;
+  const std::vector<std::size_t> order = particles.order_by_id();
+  const std::size_t n = order.size();
+  const int axes = three_d ? 3 : 2;
+
+  std::vector<double> points(3 * n, 0.0), velocity(3 * n, 0.0), diameter(n), spin(three_d ? 3 * n : n);
   std::vector<std::int64_t> id(n), connectivity(n), offsets(n);
-  std::vector<std::int32_t> species(n), layer(n);
+  std::vector<std::int32_t> species(n), layer(n, 0);
   std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t p = order[k];
-    points[3 * k] = particles.x[p];
-    points[3 * k + 1] = particles.y[p];
-    velocity[3 * k] = particles.vx[p];
-    velocity[3 * k + 1] = particles.vy[p];
+    for (int a = 0; a < axes; ++a) {
+      const auto ua = static_cast<std::size_t>(a);
+      points[3 * k + ua] = particles.x[ua][p];
+      velocity[3 * k + ua] = particles.v[ua][p];
+    }
+    if (three_d) {
+      for (std::size_t a = 0; a < 3; ++a) spin[3 * k + a] = particles.omega[a][p];
+    } else {
+      spin[k] = particles.omega[2][p];
+    }
     diameter[k] = 2.0 * particles.radius[p];
-    spin[k] = particles.omega[p];
     id[k] = particles.id[p];
     species[k] = particles.species[p];
-    layer[k] = particles.layer[p];
+    if (!particles.layer.empty()) layer[k] = particles.layer[p];
     connectivity[k] = static_cast<std::int64_t>(k);
     offsets[k] = static_cast<std::int64_t>(k + 1);
   }
@@ -208,10 +256,14 @@ void write_vtu(const std::filesystem::path& path, double time, const ParticleSto
   file.data_array("Int32", "species", 1, species);
   file.data_array("Float64", "diameter", 1, diameter);
   file.data_array("Float64", "velocity", 3, velocity);
-  file.data_array("Float64", "angular_velocity", 1, spin);
+  file.data_array("Float64", "angular_velocity", three_d ? 3 : 1, spin);
   file.data_array("Int32", "layer", 1, layer);
   file.xml += "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n";
   write_file_atomic(path, file.finish("UnstructuredGrid"), Sync::Atomic);
+}
+
+void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles) {
+  write_vtu(path, time, particle_arrays(particles));
 }
 
 namespace {
@@ -228,6 +280,14 @@ PvdCollection open_series(const std::filesystem::path& out_dir, const std::strin
 FieldSeries::FieldSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time)
     : out_dir_(out_dir), pvd_(open_series(out_dir, "fields", restart_time)) {}
 
+std::size_t FieldSeries::write(double time, const VtiGrid& grid, const std::vector<VtiComponents>& cell_data) {
+  const std::size_t index = pvd_.next_index();
+  const std::string file = frame_file_name("fields", index, "vti");
+  write_vti(out_dir_ / file, grid, time, cell_data);
+  pvd_.add(time, file);
+  return index;
+}
+
 std::size_t FieldSeries::write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data) {
   const std::size_t index = pvd_.next_index();
   const std::string file = frame_file_name("fields", index, "vti");
@@ -240,6 +300,10 @@ ParticleSeries::ParticleSeries(const std::filesystem::path& out_dir, std::option
     : out_dir_(out_dir), pvd_(open_series(out_dir, "particles", restart_time)) {}
 
 std::size_t ParticleSeries::write(double time, const ParticleStore& particles, bool with_csv) {
+  return write(time, particle_arrays(particles), with_csv);
+}
+
+std::size_t ParticleSeries::write(double time, const ParticleArrays& particles, bool with_csv) {
   const std::size_t index = pvd_.next_index();
   const std::string file = frame_file_name("particles", index, "vtu");
   write_vtu(out_dir_ / file, time, particles);

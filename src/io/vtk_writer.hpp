@@ -2,6 +2,7 @@
 // VTK XML writers for ParaView: ImageData (.vti) for cell fields, UnstructuredGrid (.vtu) of vertices for
 // particles. Written without the VTK library: appended binary data, little-endian, UInt64 block headers,
 // zlib-compressed in the block layout of vtkZLibDataCompressor; values keep every bit (full double precision).
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -11,6 +12,7 @@
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
+#include "io/particle_arrays.hpp"
 #include "io/pvd.hpp"
 
 namespace fluidbed {
@@ -28,6 +30,33 @@ struct VtiArray {
   }
 };
 
+/// The shape of an ImageData grid in either dimension: cells, cell size and low corner per axis (2D: n[2] = 1,
+/// written as a collapsed z extent).
+struct VtiGrid {
+  int dimension = 2;
+  std::array<int, 3> n{0, 0, 1};
+  std::array<double, 3> h{0.0, 0.0, 0.0};       ///< m
+  std::array<double, 3> origin{0.0, 0.0, 0.0};  ///< m
+  static VtiGrid of(const Grid2& grid);
+  std::size_t cells() const {
+    return static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+  }
+};
+
+/// One CellData array as contiguous component arrays of grid.cells() values (axis 0 fastest): `count` = 1 a
+/// scalar; 2 or 3 a vector, written with 3 components (z = 0 for 2). Pointers must outlive the write_vti call.
+struct VtiComponents {
+  std::string name;
+  std::array<const double*, 3> c{};
+  int count = 1;
+};
+
+/// Write an ImageData file of cell-centred arrays on `grid` in its dimension (3D: WholeExtent 0 nx 0 ny 0 nz),
+/// FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written and
+/// std::invalid_argument for an array without its components.
+void write_vti(const std::filesystem::path& path, const VtiGrid& grid, double time,
+               const std::vector<VtiComponents>& cell_data);
+
 /// Write an ImageData file of cell-centred arrays on `grid` (every field nx x ny, else std::invalid_argument),
 /// with FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
 void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
@@ -38,6 +67,9 @@ void write_vti(const std::filesystem::path& path, const Grid2& grid, double time
 /// angular_velocity (Float64 scalar: spin about z, rad/s, anticlockwise positive), layer (Int32);
 /// FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
 void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles);
+/// The same from plain arrays in their dimension; in 3D the points and velocities have their z and
+/// angular_velocity is a Float64 x 3 vector (rad/s). A 2D view gives exactly the bytes of the overload above.
+void write_vtu(const std::filesystem::path& path, double time, const ParticleArrays& particles);
 
 /// The field frames of a run: `<out_dir>/fields/NNNNNN.vti` listed in `<out_dir>/fields.pvd`.
 /// With `restart_time`, the existing collection is kept up to that time and numbering continues after it.
@@ -47,6 +79,8 @@ class FieldSeries {
   /// Write one frame and list it in the .pvd; returns its frame number (for files of the same instant, such as
   /// tracers/NNNNNN.csv).
   std::size_t write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data);
+  /// The same in either dimension.
+  std::size_t write(double time, const VtiGrid& grid, const std::vector<VtiComponents>& cell_data);
   const PvdCollection& collection() const { return pvd_; }
 
  private:
@@ -61,6 +95,8 @@ class ParticleSeries {
   explicit ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
   /// Write one frame (and its CSV when `with_csv`); returns its frame number.
   std::size_t write(double time, const ParticleStore& particles, bool with_csv = false);
+  /// The same in either dimension.
+  std::size_t write(double time, const ParticleArrays& particles, bool with_csv = false);
   const PvdCollection& collection() const { return pvd_; }
 
  private:

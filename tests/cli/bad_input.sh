@@ -50,8 +50,11 @@ bad too_many_particles "particles.count: 1000000 particles do not fit" "particle
 bad bad_model 'case.model: "lbm" is not one of "dem", "tfm"' 'case.model = "lbm"'
 bad fractions "fractions add up to" "species = [{fraction = 0.5}, {fraction = 0.3}]"
 bad wall_restitution "contact.wall_restitution: 1.5 is out of range" "contact.wall_restitution = 1.5"
-bad gravity_size "domain.gravity: expected 2 values, got 3" "domain.gravity = [0.0, -9.81, 0.0]"
-bad gravity_old_name_size "gravity_old_name_size.toml:[0-9]+:[0-9]+ \(dem.gravity\): domain.gravity: expected 2 values" "dem.gravity = [0.0, -9.81, 0.0]"
+bad gravity_size "domain.gravity: expected 2 or 3 values, got 4" "domain.gravity = [0.0, -9.81, 0.0, 0.0]"
+bad gravity_z_in_2d "domain.gravity: z = 0.5 m/s\^2 in a 2D case" "domain.gravity = [0.0, -9.81, 0.5]"
+bad gravity_old_name_size "gravity_old_name_size.toml:[0-9]+:[0-9]+ \(dem.gravity\): domain.gravity: expected 2 or 3 values" "dem.gravity = [0.0, -9.81, 0.0, 0.0]"
+bad depth_in_2d "domain.depth: a 2D case \(case.dimension = 2\) has no depth" "domain.depth = 0.1"
+bad no_depth_in_3d "missing required value domain.depth" "case.dimension = 3"
 bad fill_height "particles.fill_height: 2 m is above the domain height" "particles.fill_height = 2.0"
 bad particle_file_missing "particles.source = \"file\" needs particles.file" 'particles.source = "file"'
 # Gas, grid and jets: read and checked even when gas.enabled = false.

@@ -57,6 +57,7 @@ def read_vti(path):
     ext = data.GetExtent()
     return {
         "dims": (ext[1] - ext[0], ext[3] - ext[2]),
+        "dims3": (ext[1] - ext[0], ext[3] - ext[2], ext[5] - ext[4]),
         "extent": tuple(ext),
         "origin": data.GetOrigin(),
         "spacing": data.GetSpacing(),
@@ -172,6 +173,40 @@ def sample_particles(t, n=5):
         "velocity": np.stack([0.5 * d, np.full(n, -t), np.zeros(n)], axis=1),
         "angular_velocity": 10.0 * d - 1.0,
         "points": np.stack([0.001 * (d + 1.0), 0.002 * d + t, np.zeros(n)], axis=1),
+    }
+
+
+# The 3D sample of tests/unit/io/sample_series.hpp (VtkWriter.WritesSample3dForReadback): 4 x 3 x 2 cells, five
+# spheres with z, vz and a spin vector.
+SAMPLE_GRID_3D = {"n": (4, 3, 2), "h": (0.0025, 0.005, 0.004), "origin": (0.1, 0.0, 0.002)}
+
+
+def sample_fields_3d(t):
+    nx, ny, nz = SAMPLE_GRID_3D["n"]
+    n = nx * ny * nz
+    out = {"voidage": np.zeros(n), "pressure": np.zeros(n), "gas_velocity": np.zeros((n, 3))}
+    for k in range(nz):
+        for j in range(ny):
+            for i in range(nx):
+                c = (k * ny + j) * nx + i
+                out["voidage"][c] = 0.4 + 0.01 * i + j / 30.0 + k / 7.0 + t
+                out["pressure"][c] = 1000.0 * j - k
+                out["gas_velocity"][c] = (i * t, 0.5 - j, 0.25 * k - t)
+    return out
+
+
+def sample_particles_3d(t, n=5):
+    """Point arrays in id order (ids 0..n-1) of the 3D sample."""
+    ids = np.arange(n, dtype=np.int64)
+    d = ids.astype(np.float64)
+    return {
+        "id": ids,
+        "species": (ids % 2).astype(np.int32),
+        "layer": (ids // 2).astype(np.int32),
+        "diameter": 2.0 * (0.002 + 0.0005 * d),
+        "velocity": np.stack([0.5 * d, np.full(n, -t), 0.25 * d], axis=1),
+        "angular_velocity": np.stack([d, -2.0 * d, 10.0 * d - 1.0], axis=1),
+        "points": np.stack([0.001 * (d + 1.0), 0.002 * d + t, 0.003 * d], axis=1),
     }
 
 

@@ -3,10 +3,13 @@
 // tests/post/vtk_check.py (sample_*): change both together.
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
+#include "io/particle_arrays.hpp"
+#include "io/vtk_writer.hpp"
 
 namespace fluidbed::test {
 
@@ -56,6 +59,79 @@ inline ParticleStore sample_particles(double t, std::int64_t n) {
     const double d = static_cast<double>(id);
     p.add(id, static_cast<std::int32_t>(id % 2), s, {0.001 * (d + 1.0), 0.002 * d + t}, {0.5 * d, -t},
           10.0 * d - 1.0, static_cast<std::int32_t>(id / 2));
+  }
+  return p;
+}
+
+/// The 3D sample (tests/post/test_vtk_readback_3d.py): 4 x 3 x 2 cells and 5 spheres stored out of id order.
+inline VtiGrid sample_grid_3d() {
+  VtiGrid g;
+  g.dimension = 3;
+  g.n = {4, 3, 2};
+  g.h = {0.0025, 0.005, 0.004};
+  g.origin = {0.1, 0.0, 0.002};
+  return g;
+}
+
+/// Cell arrays of the 3D sample, i fastest: voidage, pressure, gas velocity (3 components).
+struct SampleFields3d {
+  std::vector<double> voidage, pressure, ug, vg, wg;
+};
+inline SampleFields3d sample_fields_3d(double t) {
+  const VtiGrid g = sample_grid_3d();
+  SampleFields3d f;
+  for (int k = 0; k < g.n[2]; ++k) {
+    for (int j = 0; j < g.n[1]; ++j) {
+      for (int i = 0; i < g.n[0]; ++i) {
+        f.voidage.push_back(0.4 + 0.01 * i + j / 30.0 + k / 7.0 + t);
+        f.pressure.push_back(1000.0 * j - k);
+        f.ug.push_back(i * t);
+        f.vg.push_back(0.5 - j);
+        f.wg.push_back(0.25 * k - t);
+      }
+    }
+  }
+  return f;
+}
+
+/// Owned arrays of the 3D sample particles, and their ParticleArrays view.
+struct SampleParticles3d {
+  std::vector<std::int64_t> id;
+  std::array<std::vector<double>, 3> x, v, omega;
+  std::vector<double> radius;
+  std::vector<std::int32_t> species, layer;
+  ParticleArrays view() const {
+    ParticleArrays a;
+    a.dimension = 3;
+    a.id = id;
+    for (std::size_t d = 0; d < 3; ++d) {
+      a.x[d] = x[d];
+      a.v[d] = v[d];
+      a.omega[d] = omega[d];
+    }
+    a.radius = radius;
+    a.species = species;
+    a.layer = layer;
+    return a;
+  }
+};
+inline SampleParticles3d sample_particles_3d(double t) {
+  SampleParticles3d p;
+  for (const std::int64_t id : std::array<std::int64_t, 5>{4, 0, 3, 1, 2}) {
+    const double d = static_cast<double>(id);
+    p.id.push_back(id);
+    p.x[0].push_back(0.001 * (d + 1.0));
+    p.x[1].push_back(0.002 * d + t);
+    p.x[2].push_back(0.003 * d);
+    p.v[0].push_back(0.5 * d);
+    p.v[1].push_back(-t);
+    p.v[2].push_back(0.25 * d);
+    p.omega[0].push_back(d);
+    p.omega[1].push_back(-2.0 * d);
+    p.omega[2].push_back(10.0 * d - 1.0);
+    p.radius.push_back(0.002 + 0.0005 * d);
+    p.species.push_back(static_cast<std::int32_t>(id % 2));
+    p.layer.push_back(static_cast<std::int32_t>(id / 2));
   }
   return p;
 }

@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "core/error.hpp"
 #include "io/csv.hpp"
 #include "sample_series.hpp"
@@ -136,6 +138,46 @@ TEST(ParticlesCsv, MissingFileIsBadInput) {
     EXPECT_EQ(e.kind(), ErrorKind::BadInput);
     EXPECT_NE(std::string(e.what()).find((dir / "none.csv").string() + ": cannot read"), std::string::npos);
   }
+}
+
+// 3D particle files: the header with z, vz and the spin vector, every value back bit for bit, sorted by id.
+TEST(ParticlesCsv, ThreeDimensionalRoundTripIsBitExact) {
+  const test::ScratchDir scratch;
+  const auto& dir = scratch.path;
+  test::SampleParticles3d p = test::sample_particles_3d(0.1 / 3.0);
+  p.v[2][1] = -0.0;
+  p.omega[0][3] = 1e-300;
+  write_particles_csv(dir / "p.csv", p.view());
+  const std::string text = test::slurp(dir / "p.csv");
+  EXPECT_EQ(text.substr(0, text.find('\n')), "id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,species");
+  const auto rows = read_particles_csv(dir / "p.csv", 3);
+  ASSERT_EQ(rows.size(), p.id.size());
+  auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_EQ(rows[k].id, static_cast<std::int64_t>(k));
+    const auto s = static_cast<std::size_t>(std::find(p.id.begin(), p.id.end(), rows[k].id) - p.id.begin());
+    EXPECT_TRUE(same(rows[k].x, p.x[0][s]) && same(rows[k].y, p.x[1][s]) && same(rows[k].z, p.x[2][s])) << k;
+    EXPECT_TRUE(same(rows[k].vx, p.v[0][s]) && same(rows[k].vy, p.v[1][s]) && same(rows[k].vz, p.v[2][s])) << k;
+    EXPECT_TRUE(same(rows[k].omega_x, p.omega[0][s]) && same(rows[k].omega_y, p.omega[1][s]) &&
+                same(rows[k].omega, p.omega[2][s])) << k;
+    EXPECT_EQ(rows[k].species, p.species[s]);
+  }
+  // A file of one dimension is refused, by name, by a case of the other.
+  for (const auto& [dim, file] : {std::pair{2, "p.csv"}, std::pair{3, "q.csv"}}) {
+    if (dim == 3) write_particles_csv(dir / file, test::sample_particles(0.0));
+    try {
+      read_particles_csv(dir / file, dim);
+      ADD_FAILURE() << "accepted " << file << " as " << dim << "D";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(fmt::format("row 1, column 1: a {}D particle file", 5 - dim)),
+                std::string::npos) << e.what();
+    }
+  }
+  // Centres outside the box, in z too, are refused against the case's domain.
+  DomainConfig box{3, 0.1, 0.1, 0.02, {0.0, -9.81, 0.0}};  // z up to 0.012 m
+  EXPECT_NO_THROW(check_particle_rows(rows, "p.csv", box, 2));
+  box.depth = 0.01;
+  EXPECT_THROW(check_particle_rows(rows, "p.csv", box, 2), Error);
 }
 
 struct BadCsv {

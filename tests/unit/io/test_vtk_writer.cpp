@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "io/pvd.hpp"
 #include "io/vtk_writer.hpp"
 #include "sample_series.hpp"
@@ -273,6 +274,69 @@ TEST(VtkWriter, WritesSampleSeriesForReadback) {
   ASSERT_EQ(entries.size(), static_cast<std::size_t>(test::sample_frames));
   EXPECT_EQ(entries.back().file, "fields/000002.vti");
   for (const auto& e : read_pvd(dir / "particles.pvd")) EXPECT_TRUE(std::filesystem::exists(dir / e.file)) << e.file;
+}
+
+// 3D frames: an ImageData of nx x ny x nz cells with 3-component vectors, and spheres with z, vz and a spin
+// vector; values exact (lossless zlib). Also written for tests/post/test_vtk_readback_3d.py (python-vtk).
+TEST(VtkWriter, WritesSample3dForReadback) {
+  const char* env = std::getenv("FLUIDBED_VTK_SAMPLE_DIR");
+  const test::ScratchDir scratch;
+  const std::filesystem::path dir = env != nullptr && *env != '\0' ? std::filesystem::path(env) : scratch.path;
+  const double t = test::sample_time(2);
+  const VtiGrid g = test::sample_grid_3d();
+  const test::SampleFields3d f = test::sample_fields_3d(t);
+  write_vti(dir / "3d.vti", g, t,
+            {{"voidage", {f.voidage.data(), nullptr, nullptr}, 1},
+             {"pressure", {f.pressure.data(), nullptr, nullptr}, 1},
+             {"gas_velocity", {f.ug.data(), f.vg.data(), f.wg.data()}, 3}});
+  const auto parsed = parse_vtk(test::slurp(dir / "3d.vti"));
+  const std::string& h = parsed.header;
+  EXPECT_NE(h.find(R"(WholeExtent="0 4 0 3 0 2")"), std::string::npos) << h;
+  EXPECT_NE(h.find(R"(<Piece Extent="0 4 0 3 0 2">)"), std::string::npos) << h;
+  EXPECT_NE(h.find(fmt::format(R"(Origin="{:.17g} {:.17g} {:.17g}")", 0.1, 0.0, 0.002)), std::string::npos) << h;
+  EXPECT_NE(h.find(fmt::format(R"(Spacing="{:.17g} {:.17g} {:.17g}")", 0.0025, 0.005, 0.004)), std::string::npos) << h;
+  expect_same_bits(parsed.values<double>("voidage"), f.voidage);
+  const auto uvw = parsed.values<double>("gas_velocity");
+  ASSERT_EQ(uvw.size(), 3 * g.cells());
+  for (std::size_t k = 0; k < g.cells(); ++k) {
+    EXPECT_EQ(uvw[3 * k], f.ug[k]);
+    EXPECT_EQ(uvw[3 * k + 1], f.vg[k]);
+    EXPECT_EQ(uvw[3 * k + 2], f.wg[k]);
+  }
+
+  const test::SampleParticles3d p = test::sample_particles_3d(t);
+  write_vtu(dir / "3d.vtu", t, p.view());
+  const auto pv = parse_vtk(test::slurp(dir / "3d.vtu"));
+  EXPECT_EQ(pv.arrays.at("angular_velocity").components, 3);
+  EXPECT_EQ(pv.arrays.at("velocity").components, 3);
+  const auto pts = pv.values<double>("Points");
+  const auto spin = pv.values<double>("angular_velocity");
+  const auto ids = pv.values<std::int64_t>("id");
+  ASSERT_EQ(ids.size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    const auto slot = static_cast<std::size_t>(std::find(p.id.begin(), p.id.end(), static_cast<std::int64_t>(k)) - p.id.begin());
+    EXPECT_EQ(ids[k], static_cast<std::int64_t>(k));  // sorted by id
+    for (std::size_t a = 0; a < 3; ++a) {
+      EXPECT_EQ(pts[3 * k + a], p.x[a][slot]);
+      EXPECT_EQ(spin[3 * k + a], p.omega[a][slot]);
+    }
+  }
+}
+
+// A 2D view of the store writes the same bytes as the store itself (the 2D frames did not change).
+TEST(VtkWriter, TwoDimensionalViewGivesTheStoreBytes) {
+  const test::ScratchDir scratch;
+  const ParticleStore p = test::sample_particles(0.05);
+  write_vtu(scratch.path / "a.vtu", 0.05, p);
+  write_vtu(scratch.path / "b.vtu", 0.05, particle_arrays(p));
+  EXPECT_EQ(test::slurp(scratch.path / "a.vtu"), test::slurp(scratch.path / "b.vtu"));
+  const Grid2 grid = test::sample_grid();
+  const auto f = test::sample_fields(0.05);
+  write_vti(scratch.path / "a.vti", grid, 0.05, {VtiArray::scalar("voidage", f.voidage), VtiArray::vector("gas_velocity", f.ug, f.vg)});
+  write_vti(scratch.path / "b.vti", VtiGrid::of(grid), 0.05,
+            {{"voidage", {f.voidage.v.data(), nullptr, nullptr}, 1},
+             {"gas_velocity", {f.ug.v.data(), f.vg.v.data(), nullptr}, 2}});
+  EXPECT_EQ(test::slurp(scratch.path / "a.vti"), test::slurp(scratch.path / "b.vti"));
 }
 
 }  // namespace
