@@ -80,6 +80,7 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
   if (!owner_.empty() && owner_.size() != n_cells)
     throw_input_error(fmt::format("bubble population: {} cells, the previous sample had {}", n_cells, owner_.size()));
   const double thr = config_.eps_threshold;
+  sample_events_begin_ = events_.size();
 
   const int j_surf = bed_surface_row(eps, config_.surface_eps);
   std::vector<std::uint8_t> mask(n_cells);
@@ -258,6 +259,59 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
 
   current_ = std::move(now);
   return current_;
+}
+
+template <int Dim>
+typename BubblePopulation<Dim>::State BubblePopulation<Dim>::state() const {
+  State s;
+  s.owner = owner_;
+  s.next_id = next_id_;
+  for (const BubbleRecord<Dim>& b : current_) {
+    s.ids.push_back(b.id);
+    s.cells.push_back(static_cast<double>(b.cells));
+    s.centroid_y.push_back(b.centroid[1]);
+    const auto it = history_.find(b.id);
+    const std::size_t n = it == history_.end() ? 0 : it->second.t.size();
+    s.history_count.push_back(static_cast<int>(n));
+    for (std::size_t k = 0; k < n; ++k) {
+      s.history_t.push_back(it->second.t[k]);
+      s.history_centroid.push_back(it->second.centroid[k]);
+      s.history_nose.push_back(it->second.nose[k]);
+    }
+  }
+  return s;
+}
+
+template <int Dim>
+void BubblePopulation<Dim>::restore(const State& s) {
+  const std::size_t n = s.ids.size();
+  if (s.cells.size() != n || s.centroid_y.size() != n || s.history_count.size() != n ||
+      s.history_centroid.size() != s.history_t.size() || s.history_nose.size() != s.history_t.size())
+    throw_input_error("bubble population: inconsistent checkpoint state");
+  owner_ = s.owner;
+  next_id_ = s.next_id;
+  current_.clear();
+  history_.clear();
+  events_.clear();
+  frames_.clear();
+  sample_events_begin_ = 0;
+  std::size_t at = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    BubbleRecord<Dim> r;
+    r.id = s.ids[b];
+    r.cells = static_cast<std::size_t>(s.cells[b]);
+    r.centroid[1] = s.centroid_y[b];
+    current_.push_back(r);
+    const std::size_t c = static_cast<std::size_t>(s.history_count[b]);
+    if (at + c > s.history_t.size()) throw_input_error("bubble population: inconsistent checkpoint state");
+    History& h = history_[r.id];
+    h.t.assign(s.history_t.begin() + static_cast<std::ptrdiff_t>(at), s.history_t.begin() + static_cast<std::ptrdiff_t>(at + c));
+    h.centroid.assign(s.history_centroid.begin() + static_cast<std::ptrdiff_t>(at),
+                      s.history_centroid.begin() + static_cast<std::ptrdiff_t>(at + c));
+    h.nose.assign(s.history_nose.begin() + static_cast<std::ptrdiff_t>(at),
+                  s.history_nose.begin() + static_cast<std::ptrdiff_t>(at + c));
+    at += c;
+  }
 }
 
 namespace {

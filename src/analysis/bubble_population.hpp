@@ -79,16 +79,35 @@ class BubblePopulation {
   const std::vector<BubbleRecord<Dim>>& observe(double t, const CellView<Dim>& eps);
 
   const std::vector<BubbleRecord<Dim>>& current() const { return current_; }
+  /// The events seen at the latest sample (the lines to append to bubble_events.csv).
+  std::vector<BubbleEventRecord> sample_events() const {
+    return {events_.begin() + static_cast<std::ptrdiff_t>(sample_events_begin_), events_.end()};
+  }
   /// Every event so far, in order of time.
   const std::vector<BubbleEventRecord>& events() const { return events_; }
-  /// Every sample so far.
+  /// Every sample so far; frames().back() is the latest.
   const std::vector<BubbleFrame>& frames() const { return frames_; }
   const PopulationConfig& config() const { return config_; }
+
+  /// What the next observe() depends on, as flat arrays for a checkpoint: a restored population continues with the
+  /// same ids, events and velocities (events() and frames() before the restore are not kept).
+  struct State {
+    std::vector<int> owner;            ///< per cell, the id of its bubble at the last sample, -1 none
+    std::vector<int> ids;              ///< the bubbles of the last sample
+    std::vector<double> cells;         ///< their cell counts
+    std::vector<double> centroid_y;    ///< their centroid heights, m
+    std::vector<int> history_count;    ///< per bubble, how many velocity samples it holds (<= velocity_samples)
+    std::vector<double> history_t, history_centroid, history_nose;  ///< those samples, bubble after bubble
+    int next_id = 0;
+  };
+  State state() const;
+  void restore(const State& s);
 
  private:
   struct History {
     std::vector<double> t, centroid, nose;
   };
+  std::size_t sample_events_begin_ = 0;
   PopulationConfig config_;
   std::vector<int> owner_;  // id of the bubble of each cell at the previous sample, -1 none
   std::vector<BubbleRecord<Dim>> current_;
