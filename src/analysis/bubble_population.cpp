@@ -17,12 +17,18 @@ namespace fluidbed {
 
 const char* bubble_event_name(BubbleEvent e) {
   switch (e) {
-    case BubbleEvent::None: return "";
-    case BubbleEvent::Birth: return "birth";
-    case BubbleEvent::Split: return "split";
-    case BubbleEvent::Coalescence: return "coalescence";
-    case BubbleEvent::Eruption: return "eruption";
-    case BubbleEvent::Disappearance: return "disappearance";
+    case BubbleEvent::None:
+      return "";
+    case BubbleEvent::Birth:
+      return "birth";
+    case BubbleEvent::Split:
+      return "split";
+    case BubbleEvent::Coalescence:
+      return "coalescence";
+    case BubbleEvent::Eruption:
+      return "eruption";
+    case BubbleEvent::Disappearance:
+      return "disappearance";
   }
   return "";
 }
@@ -53,7 +59,7 @@ struct Region {
   bool excluded_free = false;         // has a cell above the bed surface
   bool excluded_distributor = false;  // has a cell centre in the distributor zone
   std::array<double, Dim> sum{};
-  std::array<double, Dim> lo, hi;     // threshold contour extents per axis
+  std::array<double, Dim> lo, hi;  // threshold contour extents per axis
   Region() {
     lo.fill(std::numeric_limits<double>::infinity());
     hi.fill(-std::numeric_limits<double>::infinity());
@@ -66,9 +72,10 @@ template <int Dim>
 BubblePopulation<Dim>::BubblePopulation(const PopulationConfig& config) : config_(config) {
   static_assert(Dim == 2 || Dim == 3);
   if (!(config_.eps_threshold > 0.0 && config_.eps_threshold < 1.0))
-    throw_input_error(fmt::format("bubble population: threshold voidage must lie in (0, 1), got {}",
-                                  config_.eps_threshold));
-  if (!(config_.distributor_height >= 0.0)) throw_input_error("bubble population: distributor_height must not be negative");
+    throw_input_error(
+        fmt::format("bubble population: threshold voidage must lie in (0, 1), got {}", config_.eps_threshold));
+  if (!(config_.distributor_height >= 0.0))
+    throw_input_error("bubble population: distributor_height must not be negative");
   if (!(config_.min_size >= 0.0)) throw_input_error("bubble population: min_size must not be negative");
   if (config_.velocity_samples < 2) throw_input_error("bubble population: velocity_samples must be at least 2");
 }
@@ -122,7 +129,8 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
   const double cell_measure = g.cell_measure();
   const auto is_bubble = [&](int l) {
     const Region<Dim>& r = region[static_cast<std::size_t>(l)];
-    return !r.excluded_free && !r.excluded_distributor && static_cast<double>(r.cells) * cell_measure >= config_.min_size;
+    return !r.excluded_free && !r.excluded_distributor &&
+           static_cast<double>(r.cells) * cell_measure >= config_.min_size;
   };
 
   // Association by shared cells: overlap[(previous id, region)] and the previous bubbles' overlap with the freeboard.
@@ -162,7 +170,8 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
     b.cells = r.cells;
     b.size = static_cast<double>(r.cells) * cell_measure;
     // Circle of the same area (2D), sphere of the same volume V = pi d^3 / 6 (3D).
-    b.equivalent_diameter = Dim == 2 ? std::sqrt(4.0 * b.size / std::numbers::pi) : std::cbrt(6.0 * b.size / std::numbers::pi);
+    b.equivalent_diameter =
+        Dim == 2 ? std::sqrt(4.0 * b.size / std::numbers::pi) : std::cbrt(6.0 * b.size / std::numbers::pi);
     for (int a = 0; a < Dim; ++a) b.centroid[a] = r.sum[a] / static_cast<double>(r.cells);
     b.nose = r.hi[1];
     b.tail = r.lo[1];
@@ -305,7 +314,8 @@ void BubblePopulation<Dim>::restore(const State& s) {
     const std::size_t c = static_cast<std::size_t>(s.history_count[b]);
     if (at + c > s.history_t.size()) throw_input_error("bubble population: inconsistent checkpoint state");
     History& h = history_[r.id];
-    h.t.assign(s.history_t.begin() + static_cast<std::ptrdiff_t>(at), s.history_t.begin() + static_cast<std::ptrdiff_t>(at + c));
+    h.t.assign(s.history_t.begin() + static_cast<std::ptrdiff_t>(at),
+               s.history_t.begin() + static_cast<std::ptrdiff_t>(at + c));
     h.centroid.assign(s.history_centroid.begin() + static_cast<std::ptrdiff_t>(at),
                       s.history_centroid.begin() + static_cast<std::ptrdiff_t>(at + c));
     h.nose.assign(s.history_nose.begin() + static_cast<std::ptrdiff_t>(at),
@@ -352,7 +362,9 @@ std::string bubble_events_csv_row(const BubbleEventRecord& e) {
   return fmt::format("{},{},{},{},{}", e.time, bubble_event_name(e.event), e.id, join_ids(e.others), e.height);
 }
 
-std::string bubble_frames_csv_header() { return "time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction"; }
+std::string bubble_frames_csv_header() {
+  return "time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction";
+}
 
 std::string bubble_frames_csv_row(const BubbleFrame& f) {
   return fmt::format("{},{},{},{},{},{}", f.time, opt(f.bed_height), f.bed_measure, f.bubble_measure, f.bubbles,

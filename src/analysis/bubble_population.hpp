@@ -32,10 +32,11 @@ const char* bubble_event_name(BubbleEvent e);
 /// One bubble at one sample.
 template <int Dim>
 struct BubbleRecord {
-  double time = 0.0;                   ///< s
-  int id = -1;                         ///< persistent id, from 0 in order of birth
-  BubbleEvent event = BubbleEvent::None;  ///< Birth, Split (a child of a split) or Coalescence at this sample, else None
-  std::vector<int> parents;            ///< ids it came from at this sample (split: the parent; coalescence: all merged)
+  double time = 0.0;  ///< s
+  int id = -1;        ///< persistent id, from 0 in order of birth
+  /// Birth, Split (a child of a split) or Coalescence at this sample, else None
+  BubbleEvent event = BubbleEvent::None;
+  std::vector<int> parents;  ///< ids it came from at this sample (split: the parent; coalescence: all merged)
   std::size_t cells = 0;
   double size = 0.0;                   ///< m^2 (2D) or m^3 (3D): cells times the cell measure
   double equivalent_diameter = 0.0;    ///< m: circle sqrt(4 A / pi) in 2D, sphere (6 V / pi)^(1/3) in 3D
@@ -50,7 +51,7 @@ struct BubbleRecord {
 
 /// One event; for Split `others` are the children, for Coalescence the ids merged into `id` (which survives).
 struct BubbleEventRecord {
-  double time = 0.0;        ///< s, the sample at which it was seen
+  double time = 0.0;  ///< s, the sample at which it was seen
   BubbleEvent event = BubbleEvent::None;
   int id = -1;              ///< the bubble born, split (the parent), surviving a coalescence, erupted or gone
   std::vector<int> others;  ///< split: children; coalescence: the other parents; birth: parents of a split child
@@ -59,11 +60,11 @@ struct BubbleEventRecord {
 
 /// Per sample: the bed and the bubbles in it, for the bubble fraction and the window of the statistics.
 struct BubbleFrame {
-  double time = 0.0;                  ///< s
-  std::optional<double> bed_height;   ///< m, bed_surface_height(); empty without a bed
-  double bed_measure = 0.0;           ///< m^2 / m^3 between distributor_height and the bed surface, whole width
-  double bubble_measure = 0.0;        ///< m^2 / m^3, sum of the bubbles' sizes
-  int bubbles = 0;                    ///< number of bubbles
+  double time = 0.0;                 ///< s
+  std::optional<double> bed_height;  ///< m, bed_surface_height(); empty without a bed
+  double bed_measure = 0.0;          ///< m^2 / m^3 between distributor_height and the bed surface, whole width
+  double bubble_measure = 0.0;       ///< m^2 / m^3, sum of the bubbles' sizes
+  int bubbles = 0;                   ///< number of bubbles
   /// bubble_measure / bed_measure, the fraction of the bed occupied by bubbles; 0 without a bed.
   double bubble_fraction() const { return bed_measure > 0.0 ? bubble_measure / bed_measure : 0.0; }
 };
@@ -92,11 +93,11 @@ class BubblePopulation {
   /// What the next observe() depends on, as flat arrays for a checkpoint: a restored population continues with the
   /// same ids, events and velocities (events() and frames() before the restore are not kept).
   struct State {
-    std::vector<int> owner;            ///< per cell, the id of its bubble at the last sample, -1 none
-    std::vector<int> ids;              ///< the bubbles of the last sample
-    std::vector<double> cells;         ///< their cell counts
-    std::vector<double> centroid_y;    ///< their centroid heights, m
-    std::vector<int> history_count;    ///< per bubble, how many velocity samples it holds (<= velocity_samples)
+    std::vector<int> owner;          ///< per cell, the id of its bubble at the last sample, -1 none
+    std::vector<int> ids;            ///< the bubbles of the last sample
+    std::vector<double> cells;       ///< their cell counts
+    std::vector<double> centroid_y;  ///< their centroid heights, m
+    std::vector<int> history_count;  ///< per bubble, how many velocity samples it holds (<= velocity_samples)
     std::vector<double> history_t, history_centroid, history_nose;  ///< those samples, bubble after bubble
     int next_id = 0;
   };

@@ -36,7 +36,8 @@ def check(name, exact, computed, tol):
     err = abs(computed - exact)
     ok = err <= tol
     failures += not ok
-    print(f"{name}: exact {exact:.6g} computed {computed:.6g} error {err:.3g} tolerance {tol:.3g} {'ok' if ok else 'FAIL'}")
+    print(f"{name}: exact {exact:.6g} computed {computed:.6g} error {err:.3g} tolerance {tol:.3g}",
+          "ok" if ok else "FAIL")
 
 
 check("dominant frequency (Hz)", f0, f_dom, df)

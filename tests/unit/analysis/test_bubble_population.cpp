@@ -16,16 +16,14 @@ namespace fluidbed {
 namespace {
 
 constexpr double eps_bed = 0.43;
-constexpr double h = 0.01;       // cell size, m
+constexpr double h = 0.01;  // cell size, m
 constexpr int nx = 40, ny = 60, nz = 8;
 constexpr int freeboard_row = 50;  // rows from here up are freeboard (eps = 1): bed surface at 0.50 m
 
 // A box of cells [i0, i1) x [j0, j1) (x [2, 6) in depth in 3D).
 struct Box {
   int i0, i1, j0, j1;
-  std::size_t cells(int dim) const {
-    return static_cast<std::size_t>((i1 - i0) * (j1 - j0) * (dim == 3 ? 4 : 1));
-  }
+  std::size_t cells(int dim) const { return static_cast<std::size_t>((i1 - i0) * (j1 - j0) * (dim == 3 ? 4 : 1)); }
 };
 
 template <int Dim>
