@@ -295,6 +295,7 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
       was_attached_ = false;
       nose_t_.clear();
       nose_h_.clear();
+      centroid_h_.clear();
       ++bubble_count_;
     }
   }
@@ -401,6 +402,14 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
     nose_h_.erase(nose_h_.begin());
   }
   if (nose_t_.size() >= 2) s.rise_velocity = lsq_slope(nose_t_, nose_h_);
+  // The centroid over the same samples (fewer after a restore from a checkpoint that did not hold them).
+  centroid_h_.push_back(*s.centroid_y);
+  if (centroid_h_.size() > nose_t_.size())
+    centroid_h_.erase(centroid_h_.begin(), centroid_h_.end() - static_cast<std::ptrdiff_t>(nose_t_.size()));
+  if (centroid_h_.size() >= 2) {
+    const std::vector<double> tc(nose_t_.end() - static_cast<std::ptrdiff_t>(centroid_h_.size()), nose_t_.end());
+    s.centroid_rise_velocity = lsq_slope(tc, centroid_h_);
+  }
 
   // Axial interstitial gas velocity in the emulsion just above the roof: half a cell above the nose.
   std::array<double, Dim> probe{};
@@ -442,15 +451,20 @@ std::string opt(const std::optional<double>& v) { return v ? fmt::format("{}", *
 
 }  // namespace
 
-std::string bubble_csv_header(int dimension) {
+std::string bubble_csv_header(int dimension, bool centroid) {
+  const std::string tail = centroid ? ",centroid_y_m,centroid_rise_velocity_m_s" : "";
   if (dimension == 3)
     return "time_s,nose_height_m,rise_velocity_m_s,nose_gas_velocity_m_s,throughflow_ratio,bubble_volume_m3,attached,"
-           "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m,nose_z_m,theory_rise_velocity_m_s";
+           "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m,nose_z_m,theory_rise_velocity_m_s" +
+           tail;
   return "time_s,nose_height_m,rise_velocity_m_s,nose_gas_velocity_m_s,throughflow_ratio,bubble_area_m2,attached,"
-         "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m";
+         "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m" +
+         tail;
 }
 
-std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s) {
+namespace {
+
+std::vector<std::optional<double>> bubble_csv_values_base(const BubbleSample& s) {
   std::optional<double> attached;
   if (s.attached) attached = *s.attached ? 1.0 : 0.0;
   std::optional<double> id;
@@ -463,7 +477,18 @@ std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s) {
           s.equivalent_diameter, s.bed_height, s.erupted ? 1.0 : 0.0, id, s.nose_x};
 }
 
-std::string bubble_csv_row(const BubbleSample& s) {
+}  // namespace
+
+std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s, bool centroid) {
+  std::vector<std::optional<double>> v = bubble_csv_values_base(s);
+  if (centroid) {
+    v.push_back(s.centroid_y);
+    v.push_back(s.centroid_rise_velocity);
+  }
+  return v;
+}
+
+std::string bubble_csv_row(const BubbleSample& s, bool centroid) {
   const std::string attached = s.attached ? (*s.attached ? "1" : "0") : "";
   const std::string id = s.bubble_id >= 0 ? fmt::format("{}", s.bubble_id) : std::string();
   std::string row = fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", s.time, opt(s.nose_height), opt(s.rise_velocity),
@@ -471,6 +496,7 @@ std::string bubble_csv_row(const BubbleSample& s) {
                                 opt(s.dimension == 3 ? s.volume : s.area), attached, opt(s.equivalent_diameter),
                                 opt(s.bed_height), s.erupted ? 1 : 0, id, opt(s.nose_x));
   if (s.dimension == 3) row += fmt::format(",{},{}", opt(s.nose_z), opt(s.theory_rise_velocity));
+  if (centroid) row += fmt::format(",{},{}", opt(s.centroid_y), opt(s.centroid_rise_velocity));
   return row;
 }
 

@@ -42,7 +42,9 @@ struct BubbleSample {
   double time = 0.0;                              ///< s
   std::optional<double> nose_height;              ///< m
   std::optional<double> nose_x;                   ///< m, where the nose was sought
-  std::optional<double> rise_velocity;            ///< m/s
+  std::optional<double> rise_velocity;            ///< m/s, of the nose
+  /// m/s, least-squares slope of centroid_y over the same window as rise_velocity: the bubble's own rise velocity
+  std::optional<double> centroid_rise_velocity;
   std::optional<double> nose_gas_velocity;        ///< m/s, interstitial, half a cell above the nose
   std::optional<double> throughflow_ratio;        ///< U_th / U_mf
   std::optional<double> area;                     ///< m^2 (2D)
@@ -88,9 +90,11 @@ class BubbleTracker {
     int bubble_count = 0;
     std::vector<double> nose_t, nose_h;
     std::optional<double> detachment_time, eruption_time;
+    std::vector<double> centroid_h;  ///< centroid heights at the last nose_t.size() (or fewer) samples
   };
   State state() const {
-    return {tracked_, tracking_, was_attached_, bubble_count_, nose_t_, nose_h_, detachment_time_, eruption_time_};
+    return {tracked_,  tracking_,        was_attached_,  bubble_count_, nose_t_,
+            nose_h_,   detachment_time_, eruption_time_, centroid_h_};
   }
   void restore(State s) {
     tracked_ = std::move(s.tracked);
@@ -101,6 +105,7 @@ class BubbleTracker {
     nose_h_ = std::move(s.nose_h);
     detachment_time_ = s.detachment_time;
     eruption_time_ = s.eruption_time;
+    centroid_h_ = std::move(s.centroid_h);
   }
 
  private:
@@ -110,6 +115,7 @@ class BubbleTracker {
   bool was_attached_ = false;
   int bubble_count_ = 0;
   std::vector<double> nose_t_, nose_h_;  // nose history of the tracked bubble, for the rise velocity
+  std::vector<double> centroid_h_;       // centroid heights at the last samples of nose_t_ (fewer after a restore)
   std::optional<double> detachment_time_, eruption_time_;
 };
 
@@ -134,11 +140,13 @@ int label_regions(int nx, int ny, const std::vector<std::uint8_t>& mask, std::ve
 
 /// bubble.csv header: the columns of docs/interface.md, then equivalent_diameter_m, bed_height_m, erupted,
 /// bubble_id, nose_x_m. For dimension 3, bubble_area_m2 is bubble_volume_m3 and nose_z_m and
-/// theory_rise_velocity_m_s follow.
-std::string bubble_csv_header(int dimension = 2);
+/// theory_rise_velocity_m_s follow. With centroid, centroid_y_m and centroid_rise_velocity_m_s are appended last
+/// (every earlier column unchanged).
+std::string bubble_csv_header(int dimension = 2, bool centroid = false);
 /// One bubble.csv line (no newline); empty values where the sample has none; columns for s.dimension.
-std::string bubble_csv_row(const BubbleSample& s);
-/// The same row as numbers (empty optionals where there is no value), in bubble_csv_header(s.dimension) order.
-std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s);
+std::string bubble_csv_row(const BubbleSample& s, bool centroid = false);
+/// The same row as numbers (empty optionals where there is no value), in bubble_csv_header(s.dimension, centroid)
+/// order.
+std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s, bool centroid = false);
 
 }  // namespace fluidbed

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "analysis/bed_surface.hpp"
@@ -248,6 +249,52 @@ TEST(BubbleTracker, AreaAndEquivalentDiameter) {
   EXPECT_NEAR(*s.centroid_y, 0.5 * (g.yc(40) + g.yc(45)), 1e-12);
   // Sharp top: eps 0.95 over 0.43, crossing (0.95 - 0.8)/(0.95 - 0.43) of the way to the next centre.
   EXPECT_NEAR(*s.nose_height, g.yc(45) + (0.95 - thr) / (0.95 - eps_bed) * g.dy, 1e-12);
+}
+
+TEST(BubbleTracker, CentroidRisesAtHalfTheNoseSpeedOfAGrowingJetBubble) {
+  // A sharp void (eps = 1) on the jet, 6 cells wide, from the bottom face up to a top that rises two cells per
+  // sample: its centroid is half its height and rises h per sample, its nose (the threshold crossing a constant
+  // fraction of a cell above the top centre) 2 h per sample. Both slopes are exact up to round-off.
+  const Grid2 g = Grid2::uniform(0.6, 1.0, 60, 100);  // 1 cm cells
+  BubbleTracker tracker(fine_config(g, 0.3));
+  const Field2 zero(g.nx, g.ny, 0.0);
+  const double dt = 0.01;
+  BubbleSample s;
+  for (int n = 0; n < 4; ++n) {
+    Field2 f(g.nx, g.ny, eps_bed);
+    for (int j = 0; j < 10 + 2 * n; ++j)
+      for (int i = 27; i < 33; ++i) f(i, j) = 1.0;
+    s = tracker.observe(n * dt, g, f, zero, zero);
+  }
+  ASSERT_TRUE(s.rise_velocity && s.centroid_rise_velocity && s.centroid_y);
+  const double u_c = g.dy / dt;
+  std::printf("growing jet bubble: centroid exact %g computed %.15g; nose exact %g computed %.15g\n", u_c,
+              *s.centroid_rise_velocity, 2.0 * u_c, *s.rise_velocity);
+  EXPECT_NEAR(*s.centroid_rise_velocity, u_c, 1e-9 * u_c);
+  EXPECT_NEAR(*s.rise_velocity, 2.0 * u_c, 1e-9 * u_c);
+  EXPECT_NEAR(*s.centroid_y, 0.5 * 16 * g.dy, 1e-12);
+  EXPECT_TRUE(*s.attached);
+  // The optional trailing columns: every earlier column is unchanged.
+  const std::string base = bubble_csv_row(s), with = bubble_csv_row(s, true);
+  EXPECT_EQ(with.rfind(base + ",", 0), 0u);
+  EXPECT_EQ(bubble_csv_header(2, true), bubble_csv_header(2) + ",centroid_y_m,centroid_rise_velocity_m_s");
+  EXPECT_EQ(bubble_csv_header(3, true), bubble_csv_header(3) + ",centroid_y_m,centroid_rise_velocity_m_s");
+  EXPECT_EQ(bubble_csv_values(s, true).size(), bubble_csv_values(s).size() + 2);
+  EXPECT_DOUBLE_EQ(*bubble_csv_values(s, true).back(), *s.centroid_rise_velocity);
+  // A restored state without centroid history (an older checkpoint) gives the velocity again after two samples.
+  BubbleTracker::State st = tracker.state();
+  st.centroid_h.clear();
+  BubbleTracker restored(fine_config(g, 0.3));
+  restored.restore(st);
+  Field2 f(g.nx, g.ny, eps_bed);
+  for (int j = 0; j < 18; ++j)
+    for (int i = 27; i < 33; ++i) f(i, j) = 1.0;
+  EXPECT_FALSE(restored.observe(4 * dt, g, f, zero, zero).centroid_rise_velocity);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 27; i < 33; ++i) f(i, j) = 1.0;
+  const BubbleSample r = restored.observe(5 * dt, g, f, zero, zero);
+  ASSERT_TRUE(r.centroid_rise_velocity);
+  EXPECT_NEAR(*r.centroid_rise_velocity, u_c, 1e-9 * u_c);
 }
 
 TEST(BubbleTracker, CsvColumns) {

@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""post/bubble_stats.py on a synthetic bubbles.csv whose statistics are known exactly: three 2D bubbles of
+equivalent diameter 0.04 m born at y = 0.05 m at t = 0, 0.5, 1.0 s, rising at 0.3 m/s, sampled every 0.1 s; the
+bed fraction is 0.1 at every sample. Exact: every diameter bin holds 0.04, every velocity bin 0.3 m/s (the centroid
+speed), each bubble crosses y = 0.2 m once, so the frequency over [0, 2] s is 3 / 2 = 1.5 per second; the fraction
+is 0.1 with no spread. Tolerances are rounding (1e-9). The 3D Darton diameter is checked at one point against the
+formula evaluated by hand, and its h^0.8 scaling. Usage (CTest): test_bubble_stats.py FLUIDBED_BINARY SOURCE_DIR"""
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(sys.argv[2], "post"))
+import bubble_stats as bs  # noqa: E402
+
+failures = 0
+
+
+def check(name, exact, computed, tol=1e-9):
+    global failures
+    err = abs(computed - exact)
+    ok = bool(err <= tol)
+    failures += not ok
+    print(f"{name}: exact {exact:.6g} computed {computed:.6g} error {err:.3g} {'ok' if ok else 'FAIL'}")
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    with open(os.path.join(tmp, "bubbles.csv"), "w") as fh:
+        fh.write("time_s,id,event,parents,area_m2,equivalent_diameter_m,centroid_x_m,centroid_y_m,nose_m,tail_m,"
+                 "aspect_ratio,u_centroid_m_s,u_nose_m_s\n")
+        area = np.pi * 0.04**2 / 4
+        for k in range(21):
+            t = 0.1 * k
+            for i, born in enumerate((0.0, 0.5, 1.0)):
+                if t < born - 1e-12:
+                    continue
+                y = 0.05 + 0.3 * (t - born)
+                if y > 0.5:
+                    continue
+                first = abs(t - born) < 1e-12
+                u = "" if first else "0.3"
+                fh.write(f"{t},{i},{'birth' if first else ''},,{area},0.04,0.1,{y},{y + 0.02},{y - 0.02},1,{u},{u}\n")
+    with open(os.path.join(tmp, "bubble_frames.csv"), "w") as fh:
+        fh.write("time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction\n")
+        for k in range(21):
+            fh.write(f"{0.1 * k},0.6,0.12,0.012,1,0.1\n")
+    s = bs.bubble_statistics(bs.read_csv(os.path.join(tmp, "bubbles.csv")),
+                             bs.read_csv(os.path.join(tmp, "bubble_frames.csv")), t0=0.0, t1=2.0,
+                             heights=[0.2], bins=5)
+    check("dimension from header", 2, s["dimension"], 0)
+    d = s["d_mean"][s["d_count"] > 0]
+    check("diameter in every height bin, max error", 0.0, float(np.max(np.abs(d - 0.04))))
+    u = s["u_mean"][s["u_count"] > 0]
+    check("centroid rise velocity, max error", 0.0, float(np.max(np.abs(u - 0.3))))
+    check("frequency at 0.2 m (1/s)", 1.5, s["frequency"][0])
+    check("bubble fraction", 0.1, s["fraction_mean"])
+    check("bubble fraction spread", 0.0, s["fraction_std"])
+    check("2D rise constant", 0.5, bs.rise_constant(2), 0)
+    check("3D rise constant", 0.711, bs.rise_constant(3), 0)
+    bs.write_table(s, os.path.join(tmp, "t.csv"))
+    bs.figure(s, os.path.join(tmp, "f.png"))
+    check("figure written", 1, int(os.path.getsize(os.path.join(tmp, "f.png")) > 1000), 0)
+
+# Darton et al. (1977) at U - U_mf = 0.5 m/s, h = 0.3 m, A0 = 1e-4 m^2.
+hand = 0.54 * 0.5**0.4 * (0.3 + 4 * 0.01) ** 0.8 / 9.81**0.2
+check("Darton d_b (m)", hand, float(bs.darton_diameter(0.3, 1.0, 0.5, 1e-4)))
+check("Darton h^0.8 scaling", 2**0.8, float(bs.darton_diameter(0.6, 1.0, 0.5) / bs.darton_diameter(0.3, 1.0, 0.5)))
+sys.exit(1 if failures else 0)
