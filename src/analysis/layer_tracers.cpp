@@ -16,7 +16,7 @@ int layer_of(double y, double y_bottom, double bed_height, int n_layers) {
   return std::clamp(l, 0, n_layers - 1);
 }
 
-void assign_layers(ParticleStore& particles, int n_layers, double bed_height) {
+void assign_layers(ParticleStore<2>& particles, int n_layers, double bed_height) {
   if (n_layers < 1) throw_input_error(fmt::format("number of tracer layers must be at least 1, got {}", n_layers));
   if (!(bed_height > 0.0)) throw_input_error(fmt::format("layer bed height must be positive, got {}", bed_height));
   particles.layer.resize(particles.size());

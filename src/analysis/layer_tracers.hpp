@@ -15,8 +15,8 @@ namespace fluidbed {
 /// are put in the nearest layer.
 int layer_of(double y, double y_bottom, double bed_height, int n_layers);
 
-/// Sets ParticleStore::layer from the current heights (call once, at t = 0), bed from y = 0 to bed_height.
-void assign_layers(ParticleStore& particles, int n_layers, double bed_height);
+/// Sets ParticleStore<2>::layer from the current heights (call once, at t = 0), bed from y = 0 to bed_height.
+void assign_layers(ParticleStore<2>& particles, int n_layers, double bed_height);
 
 /// Balls of the paper's Fig. 4b/c: one per grid cell whose centre lies below the initial bed height.
 class CellTracers {

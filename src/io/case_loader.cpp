@@ -69,9 +69,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   const auto grav = r.numbers("domain.gravity", {0.0, -9.81}, "m/s^2", "gravitational acceleration (x, y) of every "
                               "model (dem.gravity is read as this key)", 2);
   c.domain.gravity = {grav[0], grav[1], 0.0};
-  c.dem.width = c.domain.width;
-  c.dem.height = c.domain.height;
-  c.dem.gravity = c.domain.gravity_vector<2>();
+  c.dem.domain = c.domain;
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
                                     "outflow (they leave, removed and counted in monitor.csv)", {"open", "wall", "outflow"});
@@ -161,28 +159,28 @@ void read_case(CaseReader& r, CaseConfig& c) {
   }
   c.particles.packing.count = r.integer("particles.count", 22000, "number of particles placed at random", R::positive());
   c.particles.packing.x_min = 0.0;
-  c.particles.packing.x_max = c.dem.width;
+  c.particles.packing.x_max = c.dem.domain.width;
   c.particles.packing.y_min = 0.0;
-  c.particles.packing.y_max = r.number("particles.fill_height", c.dem.height, "m",
+  c.particles.packing.y_max = r.number("particles.fill_height", c.dem.domain.height, "m",
                                        "top of the region where particles are placed at random", R::positive());
-  if (c.particles.packing.y_max > c.dem.height) {
-    r.fail("particles.fill_height", fmt::format("{} m is above the domain height {} m", c.particles.packing.y_max, c.dem.height));
+  if (c.particles.packing.y_max > c.dem.domain.height) {
+    r.fail("particles.fill_height", fmt::format("{} m is above the domain height {} m", c.particles.packing.y_max, c.dem.domain.height));
   }
   c.particles.packing.min_gap = r.number("particles.gap", 0.05 * c.dem.species[0].diameter, "m",
                                          "smallest gap between randomly placed particles", R::non_negative());
   c.particles.packing.seed = c.seed;
   if (c.particles.source == ParticleSource::Random) {
-    const std::int64_t capacity = random_placement_capacity(c.dem, c.particles.packing);
+    const std::int64_t capacity = random_placement_capacity<2>(c.dem, c.particles.packing);
     if (c.particles.packing.count > capacity) {
       r.fail("particles.count", fmt::format("{} particles do not fit in the {} x {} m placement region: at most {} "
                                             "with a gap of {} m; raise particles.fill_height or domain.height",
-                                            c.particles.packing.count, c.dem.width, c.particles.packing.y_max, capacity,
+                                            c.particles.packing.count, c.dem.domain.width, c.particles.packing.y_max, capacity,
                                             c.particles.packing.min_gap));
     }
   } else {
     // Read the file now, so that `check` reports a bad row before any run.
     const auto path = case_relative_path(r.file_name(), c.particles.file);
-    const ParticleStore from_file = particles_from_csv(path.string(), c.dem);
+    const ParticleStore<2> from_file = particles_from_csv(path.string(), c.dem);
     c.particles.packing.count = static_cast<std::int64_t>(from_file.size());
     // The bed is the file's: its species make up the mixture `check` and the U_mf default describe.
     std::vector<double> share(c.dem.n_species(), 0.0);

@@ -205,7 +205,7 @@ void CsvWriter::row(std::span<const std::optional<double>> values) {
 // ---------------------------------------------------------------------------------------------------------------
 // Particle CSV
 
-std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
+std::vector<std::size_t> order_by_id(const ParticleStore<2>& particles) {
   std::vector<std::size_t> order(particles.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
@@ -213,7 +213,7 @@ std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
   return order;
 }
 
-void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles, Sync sync) {
+void write_particles_csv(const std::filesystem::path& path, const ParticleStore<2>& particles, Sync sync) {
   std::string out = std::string(particle_csv_header) + "\n";
   out.reserve(out.size() + particles.size() * 140);
   for (const std::size_t p : order_by_id(particles)) {

@@ -44,7 +44,7 @@ class ModelRun {
   virtual std::vector<std::string> monitor_columns() const = 0;
   virtual std::vector<std::optional<double>> monitor_values() = 0;
   virtual FieldView fields() = 0;
-  virtual const ParticleStore* particles() const { return nullptr; }
+  virtual const ParticleStore<2>* particles() const { return nullptr; }
   virtual void save(Hdf5File& file) const = 0;
   virtual void load(const Hdf5File& file) = 0;
   virtual CostInfo cost() const = 0;

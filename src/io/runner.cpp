@@ -561,7 +561,7 @@ class Run {
     // Particle frames: every n-th frame (output.particle_interval = n * output.interval, checked by the loader),
     // numbered as the field frame of the same instant.
     const auto every = static_cast<std::size_t>(std::llround(cfg_.output.particle_interval / cfg_.output.interval));
-    const ParticleStore* p = index % std::max<std::size_t>(every, 1) == 0 ? model_->particles() : nullptr;
+    const ParticleStore<2>* p = index % std::max<std::size_t>(every, 1) == 0 ? model_->particles() : nullptr;
     if (p) {
       if (cfg_.output.particles) {
         const std::string rel = frame_file_name("particles", index, "vtu");

@@ -168,7 +168,7 @@ void write_vti(const std::filesystem::path& path, const Grid2& grid, double time
   write_file_atomic(path, file.finish("ImageData"), Sync::Atomic);
 }
 
-void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles) {
+void write_vtu(const std::filesystem::path& path, double time, const ParticleStore<2>& particles) {
   const std::vector<std::size_t> order = order_by_id(particles);
   const std::size_t n = order.size();
 
@@ -239,7 +239,7 @@ std::size_t FieldSeries::write(double time, const Grid2& grid, const std::vector
 ParticleSeries::ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time)
     : out_dir_(out_dir), pvd_(open_series(out_dir, "particles", restart_time)) {}
 
-std::size_t ParticleSeries::write(double time, const ParticleStore& particles, bool with_csv) {
+std::size_t ParticleSeries::write(double time, const ParticleStore<2>& particles, bool with_csv) {
   const std::size_t index = pvd_.next_index();
   const std::string file = frame_file_name("particles", index, "vtu");
   write_vtu(out_dir_ / file, time, particles);

@@ -37,7 +37,7 @@ void write_vti(const std::filesystem::path& path, const Grid2& grid, double time
 /// Point arrays: id (Int64), species (Int32), diameter (Float64, m), velocity (Float64 x3, z = 0, m/s),
 /// angular_velocity (Float64 scalar: spin about z, rad/s, anticlockwise positive), layer (Int32);
 /// FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
-void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles);
+void write_vtu(const std::filesystem::path& path, double time, const ParticleStore<2>& particles);
 
 /// The field frames of a run: `<out_dir>/fields/NNNNNN.vti` listed in `<out_dir>/fields.pvd`.
 /// With `restart_time`, the existing collection is kept up to that time and numbering continues after it.
@@ -60,7 +60,7 @@ class ParticleSeries {
  public:
   explicit ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
   /// Write one frame (and its CSV when `with_csv`); returns its frame number.
-  std::size_t write(double time, const ParticleStore& particles, bool with_csv = false);
+  std::size_t write(double time, const ParticleStore<2>& particles, bool with_csv = false);
   const PvdCollection& collection() const { return pvd_; }
 
  private:

@@ -94,10 +94,10 @@ inline DemConfig one_species_config(double d, double rho, double k, double e, do
   c.tangential_stiffness_ratio = 1.0;
   c.pair = {InteractionParams{e, mu}};
   c.wall = {InteractionParams{e, mu}};
-  c.width = width;
-  c.height = height;
+  c.domain.width = width;
+  c.domain.height = height;
   c.walls = walls;
-  c.gravity = g;
+  c.domain.gravity = {g.x, g.y, 0.0};
   c.dt = dt;
   return c;
 }

@@ -31,10 +31,10 @@ Outcome impact(double mu, double theta, double dt) {
                                                WallConfig{false, false, true, false});
   const double r = 0.5 * kD;
   const double vn = kV * std::cos(theta), vt = kV * std::sin(theta);
-  ParticleStore p;
+  ParticleStore<2> p;
   p.add(0, 0, c.species[0], {0.1, r + 2.5 * vn * dt}, {vt, -vn});
-  DemSolver s(c, std::move(p));
-  const ParticleStore& q = s.particles();
+  DemSolver<2> s(c, std::move(p));
+  const ParticleStore<2>& q = s.particles();
   bool touched = false;
   for (int n = 0; n < 1000000; ++n) {
     const bool in_contact = q.y[0] < r;
@@ -132,10 +132,10 @@ TEST(DemObliqueImpact, StickingContactFollowsTheTangentialOscillatorUntilItSlips
 
     const DemConfig c = test::one_species_config(kD, kRho, kK, kE, mu, dt, {0.0, 0.0}, 1.0, 0.1,
                                                  WallConfig{false, false, true, false});
-    ParticleStore p;
+    ParticleStore<2> p;
     p.add(0, 0, c.species[0], {0.1, r + 2.5 * vn * dt}, {vt, -vn});  // first touch at t = 2.5 dt
-    DemSolver s(c, std::move(p));
-    const ParticleStore& q = s.particles();
+    DemSolver<2> s(c, std::move(p));
+    const ParticleStore<2>& q = s.particles();
     double worst = 0.0, last_t = 0.0, last_v = 0.0, last_wr = 0.0;
     for (int n = 0; n < 4 * steps_per_contact; ++n) {
       s.step();

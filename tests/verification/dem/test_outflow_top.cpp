@@ -25,7 +25,7 @@ DemConfig outflow_config() {
 
 // Stayers: a heap in the left half, falling onto the floor and into contact (loaded springs). Escapers: thrown up
 // at 3 m/s in the right half, far from the heap, so they reach y = 0.05 + 3^2 / (2 g) = 0.51 m > 0.1 m.
-void add_stayers(ParticleStore& p, const DemConfig& c) {
+void add_stayers(ParticleStore<2>& p, const DemConfig& c) {
   std::int64_t id = 0;
   for (int j = 0; j < 6; ++j) {
     for (int i = 0; i < 8; ++i, ++id) {
@@ -34,7 +34,7 @@ void add_stayers(ParticleStore& p, const DemConfig& c) {
     }
   }
 }
-double add_escapers(ParticleStore& p, const DemConfig& c, std::size_t& count) {
+double add_escapers(ParticleStore<2>& p, const DemConfig& c, std::size_t& count) {
   double mass = 0.0;
   std::int64_t id = 0;
   for (int j = 0; j < 4; ++j) {
@@ -52,7 +52,7 @@ double add_escapers(ParticleStore& p, const DemConfig& c, std::size_t& count) {
 TEST(OutflowTop, RemovesAndCountsLeavingParticles) {
   const test::ScopedThreads one(1);
   const DemConfig c = outflow_config();
-  ParticleStore both, stay;
+  ParticleStore<2> both, stay;
   add_stayers(both, c);
   add_stayers(stay, c);
   std::size_t n_escape = 0;
@@ -60,7 +60,7 @@ TEST(OutflowTop, RemovesAndCountsLeavingParticles) {
   double m_total = 0.0;
   for (double m : both.mass) m_total += m;
 
-  DemSolver with(c, both), without(c, stay);
+  DemSolver<2> with(c, both), without(c, stay);
   std::size_t removed_in_steps = 0;
   for (int n = 0; n < 5000; ++n) {  // 0.1 s
     removed_in_steps += with.step().removed;
@@ -78,7 +78,7 @@ TEST(OutflowTop, RemovesAndCountsLeavingParticles) {
   EXPECT_NEAR(with.removed_mass() + m_left, m_total, 1e-14 * m_total);
 
   // The heap did not notice: same particles, same order, same state bit for bit, springs included.
-  const DemSolver::State a = with.state(), b = without.state();
+  const DemSolver<2>::State a = with.state(), b = without.state();
   ASSERT_EQ(a.particles.id, b.particles.id);
   EXPECT_EQ(a.particles.x, b.particles.x);
   EXPECT_EQ(a.particles.y, b.particles.y);
@@ -99,10 +99,10 @@ TEST(OutflowTop, OpenTopFailsNamingTheChoices) {
   const test::ScopedThreads one(1);
   DemConfig c = outflow_config();
   c.walls.top_outflow = false;
-  ParticleStore p;
+  ParticleStore<2> p;
   std::size_t n = 0;
   add_escapers(p, c, n);
-  DemSolver s(c, p);
+  DemSolver<2> s(c, p);
   try {
     for (int k = 0; k < 5000; ++k) s.step();
     FAIL() << "a particle crossed the open top without an error";
