@@ -245,18 +245,23 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double inv_d = 1.0 / d;
       const Vec<Dim> nrm = inv_d * dx;
       const double overlap = rsum - d;
+      // Lever arms to the contact point x_i + (r_i - overlap / 2) n, the same point seen from j: with them the
+      // pair's torques balance the moment of its forces and an isolated pair keeps its angular momentum, spin
+      // included (the full radii would change it in proportion to the overlap).
+      const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
       // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
-      const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ri + spin(j) * R[j], nrm);
+      const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
       const ContactForce<Dim> cf =
           linear_spring_dashpot(pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])],
                                 ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
       nbr_.history[km] = -nbr_.history[k];
       entry_force_[k] = cf.f;
       entry_force_[km] = -cf.f;
-      // Eq. 9: the torque of the tangential force, r (n x f_t), equal for both partners ((-n) x (-f_t) = n x f_t).
+      // Eq. 9: the torque of the tangential force about each centre, a (n x f_t) with the partner's own lever
+      // arm; n x f_t is the same for both partners ((-n) x (-f_t) = n x f_t).
       const Spin<Dim> tq = cross(nrm, cf.f_t);
-      entry_torque_[k] = tq;
-      entry_torque_[km] = tq;
+      entry_torque_[k] = ai * tq;
+      entry_torque_[km] = aj * tq;
       max_ov = std::max(max_ov, overlap);
       // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
       // no longer a small perturbation of two touching spheres.
@@ -276,7 +281,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     Spin<Dim> torque{};
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       f += entry_force_[k];
-      torque += ri * entry_torque_[k];
+      torque += entry_torque_[k];
     }
     // Plane walls: the same law against a fixed body of infinite mass. A disabled wall never holds a spring.
     const ContactParams& wp = wall_params_[si];
@@ -292,11 +297,12 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
         Vec<Dim> nrm{};
         nrm[a] = side == 0 ? -1.0 : 1.0;
         Vec<Dim> xi_w = p_.wall_spring(i, w);
-        const Vec<Dim> v_rel = vi + cross(wi * ri, nrm);
+        const double lever = ri - overlap;  // to the contact point on the wall plane
+        const Vec<Dim> v_rel = vi + cross(wi * lever, nrm);
         const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
         p_.set_wall_spring(i, w, xi_w);
         f += cf.f;
-        torque += ri * cross(nrm, cf.f_t);
+        torque += lever * cross(nrm, cf.f_t);
         max_ov = std::max(max_ov, overlap);
         if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
       }

@@ -164,7 +164,7 @@ class DemSolver {
   // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.
   std::vector<std::uint32_t> mirror_;
   std::vector<Vec<Dim>> entry_force_;
-  std::vector<Spin<Dim>> entry_torque_;  ///< n x f_t of the pair, the same for both partners (times own radius)
+  std::vector<Spin<Dim>> entry_torque_;  ///< torque of the entry's contact on the entry's own particle
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double max_overlap_fraction_ = 0.0;
