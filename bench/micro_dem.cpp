@@ -29,7 +29,7 @@ ParticleStore<2> hex_bed(const DemConfig& c) {
   std::int64_t id = 0;
   for (int j = 0; static_cast<std::size_t>(id) < kParticles; ++j) {
     const double x0 = r + ((j % 2) ? r : 0.0) + 1e-5;
-    for (double x = x0; x <= c.width - r - 1e-5 && static_cast<std::size_t>(id) < kParticles; x += d) {
+    for (double x = x0; x <= c.domain.width - r - 1e-5 && static_cast<std::size_t>(id) < kParticles; x += d) {
       p.add(id++, 0, s, {x + jitter(1e-5), r + j * row + jitter(1e-5)}, {jitter(0.01), jitter(0.01)});
     }
   }

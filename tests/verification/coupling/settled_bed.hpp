@@ -46,8 +46,8 @@ inline Grid2 bed_grid() { return Grid2::uniform(kWidth, kHeight, kNx, kNy); }
 
 inline DemConfig bed_dem_config() {
   DemConfig c;  // paper particles, k = 800 N/m, restitution 0.9, friction 0.3
-  c.width = kWidth;
-  c.height = kHeight;
+  c.domain.width = kWidth;
+  c.domain.height = kHeight;
   c.dt = 2e-4;
   return c;
 }

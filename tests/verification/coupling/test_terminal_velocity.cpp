@@ -27,8 +27,8 @@ constexpr double kFallTime = 0.5;  // about 9 relaxation times
 DemConfig single_particle_dem(double dt) {
   DemConfig c;
   c.species = {Species{kDiameter, kDensity}};
-  c.width = kWidth;
-  c.height = kHeight;
+  c.domain.width = kWidth;
+  c.domain.height = kHeight;
   c.dt = dt;
   return c;
 }
