@@ -23,10 +23,10 @@ DemConfig paper_dem() {
   return c;
 }
 
-ParticleStore paper_particles(const DemConfig& dem) {
+ParticleStore<2> paper_particles(const DemConfig& dem) {
   PackingConfig pc;  // 22,000 particles, seed 1998
   pc.count = kParticles;
-  return place_random(dem, pc);
+  return place_random<2>(dem, pc);
 }
 
 Grid2 paper_grid() { return Grid2::uniform(0.6, 1.0, 30, 50); }
@@ -34,7 +34,7 @@ Grid2 paper_grid() { return Grid2::uniform(0.6, 1.0, 30, 50); }
 // Particle -> grid: counted voidage and the mean solids velocity (both scatters of the coupling).
 void BM_VoidageAndSolidsVelocity(benchmark::State& state) {
   const DemConfig dem = paper_dem();
-  const ParticleStore p = paper_particles(dem);
+  const ParticleStore<2> p = paper_particles(dem);
   const Grid2 grid = paper_grid();
   const auto method = static_cast<VoidageMethod>(state.range(0));
   Field2 eps, us, vs;
@@ -56,7 +56,7 @@ BENCHMARK(BM_VoidageAndSolidsVelocity)
 // velocity and pressure gradient at the particle, Eq. 13 drag coefficient), written with the public API.
 void BM_DragMapping(benchmark::State& state) {
   const DemConfig dem = paper_dem();
-  ParticleStore p = paper_particles(dem);
+  ParticleStore<2> p = paper_particles(dem);
   const Grid2 grid = paper_grid();
   GasConfig gc;
   GasSolver gas(grid, gc);
@@ -90,7 +90,7 @@ void BM_CfdDemAdvance(benchmark::State& state) {
   const DemConfig dem = paper_dem();
   CouplingConfig cc;
   cc.dem_substeps = static_cast<int>(state.range(0));
-  CfdDemSimulation sim(DemSolver(dem, paper_particles(dem)), GasSolver(paper_grid(), GasConfig{}), cc);
+  CfdDemSimulation sim(DemSolver<2>(dem, paper_particles(dem)), GasSolver(paper_grid(), GasConfig{}), cc);
   sim.initialize();
   for (auto _ : state) sim.advance();
   state.counters["particle_steps_per_s"] = benchmark::Counter(

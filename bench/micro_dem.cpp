@@ -19,17 +19,17 @@ constexpr std::size_t kParticles = 22000;
 /// Hexagonal packing standing on the floor, rows 0.05% closer than touching so that every particle has its
 /// six contacts, with a 10 um jitter and small random velocities: the contact structure of a settled bed
 /// (about 0.51 m high, near the paper's 0.54 m), without spending seconds on settling.
-ParticleStore hex_bed(const DemConfig& c) {
+ParticleStore<2> hex_bed(const DemConfig& c) {
   const Species& s = c.species[0];
   const double d = s.diameter, r = s.radius();
   const double row = d * std::sqrt(3.0) / 2.0 * 0.9995;
   std::mt19937_64 rng(1998);
   auto jitter = [&rng](double a) { return a * (2.0 * static_cast<double>(rng() >> 11) * 0x1.0p-53 - 1.0); };
-  ParticleStore p;
+  ParticleStore<2> p;
   std::int64_t id = 0;
   for (int j = 0; static_cast<std::size_t>(id) < kParticles; ++j) {
     const double x0 = r + ((j % 2) ? r : 0.0) + 1e-5;
-    for (double x = x0; x <= c.width - r - 1e-5 && static_cast<std::size_t>(id) < kParticles; x += d) {
+    for (double x = x0; x <= c.domain.width - r - 1e-5 && static_cast<std::size_t>(id) < kParticles; x += d) {
       p.add(id++, 0, s, {x + jitter(1e-5), r + j * row + jitter(1e-5)}, {jitter(0.01), jitter(0.01)});
     }
   }
@@ -47,7 +47,7 @@ void set_counters(benchmark::State& state) {
 void BM_CellSort(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   const DemConfig c = bed_config();
-  ParticleStore p = hex_bed(c);
+  ParticleStore<2> p = hex_bed(c);
   const double cell = c.species[0].diameter + c.skin;
   for (auto _ : state) {
     p.permute(sort_by_cell(p, cell));
@@ -59,10 +59,10 @@ void BM_CellSort(benchmark::State& state) {
 void BM_NeighborListBuild(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   const DemConfig c = bed_config();
-  ParticleStore p = hex_bed(c);
+  ParticleStore<2> p = hex_bed(c);
   const double cell = c.species[0].diameter + c.skin;
   p.permute(sort_by_cell(p, cell));
-  NeighborList nl;
+  NeighborList<2> nl;
   for (auto _ : state) {
     build_neighbor_list(p, cell, c.skin, nl);
     benchmark::DoNotOptimize(nl.partner.data());
@@ -73,7 +73,7 @@ void BM_NeighborListBuild(benchmark::State& state) {
 
 void BM_ContactForces(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
-  DemSolver s(bed_config(), hex_bed(bed_config()));
+  DemSolver<2> s(bed_config(), hex_bed(bed_config()));
   s.step();  // builds the neighbour list
   for (auto _ : state) benchmark::DoNotOptimize(s.compute_forces());
   set_counters(state);
@@ -81,7 +81,7 @@ void BM_ContactForces(benchmark::State& state) {
 
 void BM_DemStep(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
-  DemSolver s(bed_config(), hex_bed(bed_config()));
+  DemSolver<2> s(bed_config(), hex_bed(bed_config()));
   s.step();
   const std::uint64_t rebuilds0 = s.rebuild_count();
   for (auto _ : state) s.step();

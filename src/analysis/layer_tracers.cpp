@@ -24,7 +24,7 @@ void assign_layers(std::span<const double> y, std::span<std::int32_t> layer, int
   for (std::size_t k = 0; k < y.size(); ++k) layer[k] = layer_of(y[k], 0.0, bed_height, n_layers);
 }
 
-void assign_layers(ParticleStore& particles, int n_layers, double bed_height) {
+void assign_layers(ParticleStore<2>& particles, int n_layers, double bed_height) {
   if (n_layers < 1) throw_input_error(fmt::format("number of tracer layers must be at least 1, got {}", n_layers));
   if (!(bed_height > 0.0)) throw_input_error(fmt::format("layer bed height must be positive, got {}", bed_height));
   particles.layer.resize(particles.size());

@@ -24,7 +24,7 @@ int layer_of(double y, double y_bottom, double bed_height, int n_layers);
 /// lengths.
 void assign_layers(std::span<const double> y, std::span<std::int32_t> layer, int n_layers, double bed_height);
 /// Sets ParticleStore::layer from the current heights (the 2D store).
-void assign_layers(ParticleStore& particles, int n_layers, double bed_height);
+void assign_layers(ParticleStore<2>& particles, int n_layers, double bed_height);
 
 /// Balls of the paper's Fig. 4b/c: one per grid cell whose centre lies below the initial bed height, in 2D or 3D.
 template <int Dim>

@@ -101,7 +101,7 @@ std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::s
   return lacey_index_per_group<2>({x, y}, group, n_groups, cell_geometry(domain), config);
 }
 
-LaceyResult lacey_index(const ParticleStore& particles, int split_layer, const Grid2& domain,
+LaceyResult lacey_index(const ParticleStore<2>& particles, int split_layer, const Grid2& domain,
                         const MixingConfig& config) {
   std::vector<std::uint8_t> lower(particles.size());
   for (std::size_t k = 0; k < particles.size(); ++k) lower[k] = particles.layer[k] < split_layer ? 1 : 0;

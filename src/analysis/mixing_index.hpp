@@ -58,7 +58,7 @@ std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::s
                                                const MixingConfig& config);
 
 /// Lower part (layer < split_layer) vs upper part of the initial bed, for DEM particles.
-LaceyResult lacey_index(const ParticleStore& particles, int split_layer, const Grid2& domain,
+LaceyResult lacey_index(const ParticleStore<2>& particles, int split_layer, const Grid2& domain,
                         const MixingConfig& config);
 /// Same for the cell tracer balls.
 LaceyResult lacey_index(const CellTracers& tracers, int split_layer, const Grid2& domain, const MixingConfig& config);

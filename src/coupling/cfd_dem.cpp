@@ -9,7 +9,7 @@
 
 namespace fluidbed {
 
-CfdDemSimulation::CfdDemSimulation(DemSolver dem, std::optional<GasSolver> gas, CouplingConfig coupling)
+CfdDemSimulation::CfdDemSimulation(DemSolver<2> dem, std::optional<GasSolver> gas, CouplingConfig coupling)
     : dem_(std::move(dem)), gas_(std::move(gas)), coupling_(coupling) {
   depth_ = coupling_.depth > 0.0 ? coupling_.depth : dem_.config().species[0].diameter;
   if (gas_) {
@@ -34,7 +34,7 @@ void CfdDemSimulation::deposit() {
   // Interphase coefficient of each cell as the gas sees it: the particles' drag coefficients K_p = V_p beta /
   // (1 - eps) summed with the deposition kernel, per unit cell volume (Eq. 12's beta), and the K-weighted mean
   // particle velocity, so that the gas receives what the particles feel (Newton's third law).
-  const ParticleStore& p = dem_.particles();
+  const ParticleStore<2>& p = dem_.particles();
   std::vector<double> k_sum(g.cells(), 0.0), ku(g.cells(), 0.0), kv(g.cells(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const CellWeights& cw = weights_[i];
@@ -57,7 +57,7 @@ void CfdDemSimulation::deposit() {
 void CfdDemSimulation::update_particle_forces() {
   const Grid2& g = gas_->grid();
   const GasConfig& gc = gas_->config();
-  ParticleStore& p = dem_.particles();
+  ParticleStore<2>& p = dem_.particles();
   const auto n = static_cast<std::ptrdiff_t>(p.size());
   const bool pressure_force = coupling_.pressure_gradient_force;
   if (weights_.size() != p.size()) particle_cell_weights(p, g, coupling_.voidage, weights_);
@@ -130,7 +130,7 @@ double CfdDemSimulation::min_voidage() const {
 }
 
 Vec2 CfdDemSimulation::total_fluid_force() const {
-  const ParticleStore& p = dem_.particles();
+  const ParticleStore<2>& p = dem_.particles();
   Vec2 f{};
   for (std::size_t i = 0; i < p.size(); ++i) {
     f.x += p.fx_ext[i] + p.drag_k[i] * (p.ugx[i] - p.vx[i]);

@@ -15,7 +15,7 @@ namespace fluidbed {
 class CfdDemSimulation {
  public:
   /// With no gas the simulation is the DEM alone, in vacuum.
-  CfdDemSimulation(DemSolver dem, std::optional<GasSolver> gas, CouplingConfig coupling);
+  CfdDemSimulation(DemSolver<2> dem, std::optional<GasSolver> gas, CouplingConfig coupling);
 
   /// Deposit the initial voidage and solve the gas once for the bed at rest, so that the first particle step
   /// already feels the gas (time does not advance). Call once for a fresh run, not after a restart.
@@ -27,8 +27,8 @@ class CfdDemSimulation {
   double time() const { return dem_.time(); }
   double macro_dt() const { return dem_.config().dt * (gas_ ? coupling_.dem_substeps : 1); }
 
-  DemSolver& dem() { return dem_; }
-  const DemSolver& dem() const { return dem_; }
+  DemSolver<2>& dem() { return dem_; }
+  const DemSolver<2>& dem() const { return dem_; }
   bool has_gas() const { return gas_.has_value(); }
   GasSolver& gas() { return *gas_; }
   const GasSolver& gas() const { return *gas_; }
@@ -58,7 +58,7 @@ class CfdDemSimulation {
   void deposit();
   void update_particle_forces();
 
-  DemSolver dem_;
+  DemSolver<2> dem_;
   std::optional<GasSolver> gas_;
   CouplingConfig coupling_;
   double depth_ = 0.0;

@@ -34,7 +34,7 @@ double gather(const Field2& f, const CellWeights& cw) {
   return s;
 }
 
-void particle_cell_weights(const ParticleStore& p, const Grid2& g, VoidageMethod method,
+void particle_cell_weights(const ParticleStore<2>& p, const Grid2& g, VoidageMethod method,
                            std::vector<CellWeights>& out) {
   out.resize(p.size());
   const auto n = static_cast<std::ptrdiff_t>(p.size());
@@ -47,7 +47,7 @@ void particle_cell_weights(const ParticleStore& p, const Grid2& g, VoidageMethod
 
 // The scatters below run serially in storage order: a fixed order makes the sums independent of the thread
 // count, and they cost little next to the contact forces.
-void compute_voidage(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& g, double depth,
+void compute_voidage(const ParticleStore<2>& p, const std::vector<CellWeights>& weights, const Grid2& g, double depth,
                      Field2& eps) {
   if (eps.nx != g.nx || eps.ny != g.ny) eps = Field2(g.nx, g.ny);
   std::vector<double> vol(g.cells(), 0.0);
@@ -60,13 +60,13 @@ void compute_voidage(const ParticleStore& p, const std::vector<CellWeights>& wei
   for (std::size_t c = 0; c < g.cells(); ++c) eps.v[c] = 1.0 - vol[c] / vcell;
 }
 
-void compute_voidage(const ParticleStore& p, const Grid2& g, VoidageMethod method, double depth, Field2& eps) {
+void compute_voidage(const ParticleStore<2>& p, const Grid2& g, VoidageMethod method, double depth, Field2& eps) {
   std::vector<CellWeights> w;
   particle_cell_weights(p, g, method, w);
   compute_voidage(p, w, g, depth, eps);
 }
 
-void cell_solids_velocity(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& g,
+void cell_solids_velocity(const ParticleStore<2>& p, const std::vector<CellWeights>& weights, const Grid2& g,
                           Field2& us, Field2& vs) {
   if (us.nx != g.nx || us.ny != g.ny) us = Field2(g.nx, g.ny);
   if (vs.nx != g.nx || vs.ny != g.ny) vs = Field2(g.nx, g.ny);
@@ -88,7 +88,7 @@ void cell_solids_velocity(const ParticleStore& p, const std::vector<CellWeights>
   }
 }
 
-void cell_solids_velocity(const ParticleStore& p, const Grid2& g, VoidageMethod method, Field2& us, Field2& vs) {
+void cell_solids_velocity(const ParticleStore<2>& p, const Grid2& g, VoidageMethod method, Field2& us, Field2& vs) {
   std::vector<CellWeights> w;
   particle_cell_weights(p, g, method, w);
   cell_solids_velocity(p, w, g, us, vs);

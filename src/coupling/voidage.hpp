@@ -22,18 +22,18 @@ struct CellWeights {
 CellWeights cell_weights(const Grid2& grid, VoidageMethod method, double x, double y);
 
 /// The kernel weights of every particle (computed in parallel; one entry per particle, in storage order).
-void particle_cell_weights(const ParticleStore& p, const Grid2& grid, VoidageMethod method,
+void particle_cell_weights(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method,
                            std::vector<CellWeights>& out);
 
 /// Voidage of every cell: eps = 1 - (particle volume in the cell) / (dx dy depth), not clipped.
-void compute_voidage(const ParticleStore& p, const Grid2& grid, VoidageMethod method, double depth, Field2& eps);
+void compute_voidage(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, double depth, Field2& eps);
 /// The same from weights already computed by particle_cell_weights.
-void compute_voidage(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& grid, double depth,
+void compute_voidage(const ParticleStore<2>& p, const std::vector<CellWeights>& weights, const Grid2& grid, double depth,
                      Field2& eps);
 
 /// Volume-weighted mean particle velocity of every cell (0 where a cell holds no particle).
-void cell_solids_velocity(const ParticleStore& p, const Grid2& grid, VoidageMethod method, Field2& us, Field2& vs);
-void cell_solids_velocity(const ParticleStore& p, const std::vector<CellWeights>& weights, const Grid2& grid,
+void cell_solids_velocity(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, Field2& us, Field2& vs);
+void cell_solids_velocity(const ParticleStore<2>& p, const std::vector<CellWeights>& weights, const Grid2& grid,
                           Field2& us, Field2& vs);
 
 /// The value of a cell-centred field at a point with the same kernel as the deposition.

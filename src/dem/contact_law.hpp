@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/vec2.hpp"
+#include "core/vec.hpp"
 
 namespace fluidbed {
 
@@ -36,16 +36,39 @@ inline double critical_time(double m, double k) { return 2.0 * std::numbers::pi 
 inline double reduced_mass(double m1, double m2) { return m1 * m2 / (m1 + m2); }
 
 /// Geometry and motion of one contact as seen from particle i.
+template <int Dim>
 struct ContactKinematics {
-  Vec2 n;         ///< unit normal from i towards the partner
-  double overlap; ///< > 0 while in contact, m
-  Vec2 v_rel;     ///< velocity of i's contact point relative to the partner's, m/s
+  Vec<Dim> n;      ///< unit normal from i towards the partner
+  double overlap;  ///< > 0 while in contact, m
+  Vec<Dim> v_rel;  ///< velocity of i's contact point relative to the partner's, m/s
 };
 
+template <int Dim>
 struct ContactForce {
-  Vec2 f;          ///< force on i, N
-  Vec2 f_t;        ///< its tangential part, N (gives the torque)
+  Vec<Dim> f;    ///< force on i, N
+  Vec<Dim> f_t;  ///< its tangential part, N (gives the torque)
 };
+
+/// The stored tangential spring turned into the tangent plane of the current normal n, keeping its length
+/// (the contact frame rotates with the pair; LAMMPS gran/hooke/history). In 2D the plane is the line of
+/// t = (-n_y, n_x), so the rotated spring is +-|xi| t: one square root, no division. In 3D the spring is
+/// projected onto the plane and scaled back to its length.
+inline void rotate_into_tangent_plane(Vec2& xi, Vec2 n) {
+  const double xi_len2 = norm2(xi);
+  if (xi_len2 > 0.0) {
+    const Vec2 t{-n.y, n.x};
+    const double along = dot(xi, t);
+    xi = along > 0.0 ? std::sqrt(xi_len2) * t : (along < 0.0 ? -std::sqrt(xi_len2) * t : Vec2{});
+  }
+}
+inline void rotate_into_tangent_plane(Vec3& xi, Vec3 n) {
+  const double xi_len2 = norm2(xi);
+  if (xi_len2 > 0.0) {
+    const Vec3 proj = xi - dot(xi, n) * n;
+    const double p_len2 = norm2(proj);
+    xi = p_len2 > 0.0 ? std::sqrt(xi_len2 / p_len2) * proj : Vec3{};
+  }
+}
 
 /// Normal velocity for the dashpot of Eq. 2, corrected for a contact that starts or ends inside the step.
 /// Eq. 10 samples the force once per step, so a contact that began a fraction a = overlap / (vn dt) of a step
@@ -67,24 +90,19 @@ inline double normal_dashpot_velocity(double overlap, double vn, double dt) {
 /// tangential slip, and truncated at the Coulomb limit so that spring plus dashpot equals the sliding force
 /// (the treatment of LAMMPS gran/hooke/history). The expressions are antisymmetric under exchange of the
 /// partners, bit for bit, so that both partners of a pair evaluate the same contact with opposite signs.
-inline ContactForce linear_spring_dashpot(const ContactParams& p, const ContactKinematics& c, double dt, Vec2& xi) {
+template <int Dim>
+inline ContactForce<Dim> linear_spring_dashpot(const ContactParams& p, const ContactKinematics<Dim>& c, double dt,
+                                               Vec<Dim>& xi) {
   const double vn = dot(c.v_rel, c.n);
-  const Vec2 v_t = c.v_rel - vn * c.n;  // Eqs. 4-5
+  const Vec<Dim> v_t = c.v_rel - vn * c.n;  // Eqs. 4-5
   // The normal force lies along n; its signed size is the same from both partners, which keeps the law
   // antisymmetric and spares a square root in the Coulomb limit below.
   const double fn = -p.k_n * c.overlap - p.eta_n * normal_dashpot_velocity(c.overlap, vn, dt);  // Eq. 2
-  const Vec2 f_n = fn * c.n;
+  const Vec<Dim> f_n = fn * c.n;
 
-  // Rotate the stored spring into the current tangent plane, keeping its length. In 2D the plane is the line
-  // of t = (-n_y, n_x), so the rotated spring is +-|xi| t: one square root, no division.
-  const double xi_len2 = norm2(xi);
-  if (xi_len2 > 0.0) {
-    const Vec2 t{-c.n.y, c.n.x};
-    const double along = dot(xi, t);
-    xi = along > 0.0 ? std::sqrt(xi_len2) * t : (along < 0.0 ? -std::sqrt(xi_len2) * t : Vec2{});
-  }
+  rotate_into_tangent_plane(xi, c.n);
   xi += dt * v_t;
-  Vec2 f_t = -p.k_t * xi - p.eta_t * v_t;  // Eq. 3
+  Vec<Dim> f_t = -p.k_t * xi - p.eta_t * v_t;  // Eq. 3
 
   const double ft_max = p.mu * std::abs(fn);  // Eq. 6
   const double ft2 = norm2(f_t);

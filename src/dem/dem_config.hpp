@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/vec2.hpp"
+#include "core/domain.hpp"
 #include "dem/particle_store.hpp"
 
 namespace fluidbed {
@@ -15,6 +15,7 @@ struct InteractionParams {
   double friction = 0.3;
 };
 
+/// Plane walls on the low and high side of each axis: x (left, right), y (bottom, top), z (back, front; 3D).
 struct WallConfig {
   bool left = true;
   bool right = true;
@@ -23,6 +24,17 @@ struct WallConfig {
   /// Without a top wall: particles whose centre crosses the top are removed and counted (an outflow), instead of
   /// failing the run.
   bool top_outflow = false;
+  bool back = true;   ///< z = 0 (3D only)
+  bool front = true;  ///< z = depth (3D only)
+
+  /// The wall on side `high` (0: low, 1: high) of axis a.
+  bool enabled(int axis, int high) const {
+    switch (axis) {
+      case 0: return high ? right : left;
+      case 1: return high ? top : bottom;
+      default: return high ? front : back;
+    }
+  }
 };
 
 struct DemConfig {
@@ -33,10 +45,9 @@ struct DemConfig {
   std::vector<InteractionParams> pair{InteractionParams{}};
   /// Particle-wall restitution and friction per species.
   std::vector<InteractionParams> wall{InteractionParams{}};
-  double width = 0.6;    ///< domain, m
-  double height = 1.0;
+  /// The box [0, width] x [0, height] (x [0, depth] in 3D) and gravity; the DEM reads the first Dim components.
+  DomainConfig domain{};
   WallConfig walls{};
-  Vec2 gravity{0.0, -9.81};
   double dt = 2e-4;      ///< s
   double skin = 0.0004;  ///< Verlet skin, m (0: rebuild the neighbour list every step)
 

@@ -40,8 +40,40 @@ std::vector<ContactParams> make_wall_params(const DemConfig& c) {
   return t;
 }
 
-DemSolver::DemSolver(DemConfig config, ParticleStore particles)
-    : config_(std::move(config)), p_(std::move(particles)) {
+namespace {
+
+/// Raw pointers to the arrays a kernel reads per axis, hoisted out of the particle loop.
+template <int Dim>
+struct AxisPtrs {
+  std::array<double*, Dim> a;
+  double* operator[](int k) const { return a[static_cast<std::size_t>(k)]; }
+};
+template <int Dim, class Get>
+AxisPtrs<Dim> axis_ptrs(Get&& get, int n) {
+  AxisPtrs<Dim> p{};
+  for (int k = 0; k < n; ++k) p.a[static_cast<std::size_t>(k)] = get(k).data();
+  return p;
+}
+
+template <int Dim>
+double spin_norm2(Spin<Dim> w) {
+  if constexpr (Dim == 2) {
+    return w * w;
+  } else {
+    return dot(w, w);
+  }
+}
+
+template <int Dim>
+bool is_zero(Vec<Dim> v) {
+  bool z = true;
+  for (int a = 0; a < Dim; ++a) z = z && v[a] == 0.0;
+  return z;
+}
+}  // namespace
+
+template <int Dim>
+DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move(config)), p_(std::move(particles)) {
   pair_params_ = make_pair_params(config_);
   wall_params_ = make_wall_params(config_);
   double d_max = 0.0;
@@ -53,50 +85,45 @@ DemSolver::DemSolver(DemConfig config, ParticleStore particles)
       throw_input_error(fmt::format("particle id {} is given twice: every particle needs its own id", p_.id[i]));
     }
   }
-  wall_xi_.assign(p_.size(), {});
+  for (auto& w : p_.wall_xi) std::fill(w.begin(), w.end(), 0.0);
 }
 
-void DemSolver::rebuild() {
+template <int Dim>
+void DemSolver<Dim>::rebuild() {
   const std::size_t n = p_.size();
   // The old list in its old storage slots; its buffers are reused by the next rebuild.
   const bool have_old = nbr_.offset.size() == n + 1;
   if (have_old) {
     old_offset_.swap(nbr_.offset);
-    old_partner_.swap(nbr_.partner);
+    old_partner_id_.swap(nbr_.partner_id);
     old_history_.swap(nbr_.history);
   }
 
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles
   // drift from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
   const bool sorted = rebuilds_ % kSortEvery == 0;
-  std::vector<std::size_t> order, new_slot;
+  std::vector<std::size_t> order;
   if (sorted) {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
-    std::vector<std::array<Vec2, 4>> w(n);
-    new_slot.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      w[k] = wall_xi_[order[k]];
-      new_slot[order[k]] = k;
-    }
-    wall_xi_.swap(w);
   }
   build_neighbor_list(p_, cell_size_, config_.skin, nbr_);
 
   if (have_old) {
-    // Carry each stretched spring over to the new entry of the same pair; released springs (zero) need no
-    // search, and a pair that left the list had released its spring already (it was beyond contact).
+    // Carry each stretched spring over to the new entry of the same pair, found by the partner's id (so that
+    // it does not matter where either partner is stored now); released springs (zero) need no search, and a
+    // pair that left the list had released its spring already (it was beyond contact).
     const auto sn = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       const std::size_t o = sorted ? order[i] : i;
       for (std::size_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
-        const Vec2 h = old_history_[q];
-        if (h.x == 0.0 && h.y == 0.0) continue;
-        const std::size_t j = sorted ? new_slot[old_partner_[q]] : old_partner_[q];
+        const Vec<Dim> h = old_history_[q];
+        if (is_zero<Dim>(h)) continue;
+        const std::int64_t j = old_partner_id_[q];
         for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
-          if (nbr_.partner[k] == j) {
+          if (nbr_.partner_id[k] == j) {
             nbr_.history[k] = h;
             break;
           }
@@ -105,13 +132,13 @@ void DemSolver::rebuild() {
     }
   }
   link_mirrors();
-  x_build_ = p_.x;
-  y_build_ = p_.y;
+  for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   need_rebuild_ = false;
   ++rebuilds_;
 }
 
-void DemSolver::link_mirrors() {
+template <int Dim>
+void DemSolver<Dim>::link_mirrors() {
   const std::size_t n = p_.size();
   if (nbr_.entries() > std::numeric_limits<std::uint32_t>::max()) {
     throw_simulation_error("neighbour list too long for 32-bit entry links");
@@ -137,24 +164,49 @@ void DemSolver::link_mirrors() {
   }
   if (missing != 0) throw_simulation_error("neighbour list is not symmetric (internal error)");
   // A new list: no entry has a force yet (compute_forces relies on zeros in the entries not in contact).
-  entry_force_.assign(nbr_.entries(), Vec2{});
-  entry_torque_.assign(nbr_.entries(), 0.0);
+  entry_force_.assign(nbr_.entries(), Vec<Dim>{});
+  entry_torque_.assign(nbr_.entries(), Spin<Dim>{});
 }
 
-double DemSolver::compute_forces(double dt) {
+template <int Dim>
+double DemSolver<Dim>::compute_forces(double dt) {
   // With one species every contact has the same diameter: the largest overlap fraction is the largest overlap over
   // it, taken once after the loops; only a mixture pays for a division per contact (5% of the force loop).
   return config_.n_species() > 1 ? compute_forces_of<true>(dt) : compute_forces_of<false>(dt);
 }
 
+template <int Dim>
 template <bool Mixed>
-double DemSolver::compute_forces_of(double dt) {
+double DemSolver<Dim>::compute_forces_of(double dt) {
   const std::size_t n = p_.size();
-  const double W = config_.width;
-  const double H = config_.height;
+  const Vec<Dim> L = config_.domain.extent<Dim>();
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
   if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
+  const AxisPtrs<Dim> X = axis_ptrs<Dim>([&](int a) -> auto& { return p_.coord(a); }, Dim);
+  const AxisPtrs<Dim> V = axis_ptrs<Dim>([&](int a) -> auto& { return p_.velocity(a); }, Dim);
+  const AxisPtrs<Dim> F = axis_ptrs<Dim>([&](int a) -> auto& { return p_.force(a); }, Dim);
+  constexpr int NS = kSpinComponents<Dim>;
+  const AxisPtrs<NS> W = axis_ptrs<NS>([&](int c) -> auto& { return p_.spin_component(c); }, NS);
+  const AxisPtrs<NS> T = axis_ptrs<NS>([&](int c) -> auto& { return p_.torque_component(c); }, NS);
+  const double* R = p_.radius.data();
+  auto pos = [&](std::size_t i) {
+    Vec<Dim> v;
+    for (int a = 0; a < Dim; ++a) v[a] = X[a][i];
+    return v;
+  };
+  auto vel = [&](std::size_t i) {
+    Vec<Dim> v;
+    for (int a = 0; a < Dim; ++a) v[a] = V[a][i];
+    return v;
+  };
+  auto spin = [&](std::size_t i) -> Spin<Dim> {
+    if constexpr (Dim == 2) {
+      return W[0][i];
+    } else {
+      return Vec3{W[0][i], W[1][i], W[2][i]};
+    }
+  };
   double max_ov = 0.0;
   double max_frac = 0.0;  // overlap over the contact's own diameter (the dem.max_overlap_fraction test)
   const auto sn = static_cast<std::ptrdiff_t>(n);
@@ -164,101 +216,119 @@ double DemSolver::compute_forces_of(double dt) {
 #pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const double xi = p_.x[i], yi = p_.y[i], ri = p_.radius[i], wi = p_.omega[i];
-    const Vec2 vi{p_.vx[i], p_.vy[i]};
+    const Vec<Dim> xi = pos(i);
+    const double ri = R[i];
+    const Spin<Dim> wi = spin(i);
+    const Vec<Dim> vi = vel(i);
     const std::size_t si = static_cast<std::size_t>(p_.species[i]);
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       const std::size_t j = nbr_.partner[k];
       if (j < i) continue;  // evaluated by j
       const std::size_t km = mirror_[k];
-      const double dx = p_.x[j] - xi;
-      const double dy = p_.y[j] - yi;
-      const double d2 = dx * dx + dy * dy;
-      const double rsum = ri + p_.radius[j];
+      const Vec<Dim> dx = pos(j) - xi;
+      const double d2 = dot(dx, dx);
+      const double rsum = ri + R[j];
       if (d2 >= rsum * rsum) {
         // Not touching: entries hold zeros unless this contact just ended (spring released, force cleared);
         // testing first spares the scattered writes to the partner's entry for the many pairs that only pass by.
-        const Vec2 fk = entry_force_[k], hk = nbr_.history[k];
-        if (fk.x != 0.0 || fk.y != 0.0 || hk.x != 0.0 || hk.y != 0.0) {
-          nbr_.history[k] = Vec2{};
-          nbr_.history[km] = Vec2{};
-          entry_force_[k] = Vec2{};
-          entry_force_[km] = Vec2{};
-          entry_torque_[k] = 0.0;
-          entry_torque_[km] = 0.0;
+        if (!is_zero<Dim>(entry_force_[k]) || !is_zero<Dim>(nbr_.history[k])) {
+          nbr_.history[k] = Vec<Dim>{};
+          nbr_.history[km] = Vec<Dim>{};
+          entry_force_[k] = Vec<Dim>{};
+          entry_force_[km] = Vec<Dim>{};
+          entry_torque_[k] = Spin<Dim>{};
+          entry_torque_[km] = Spin<Dim>{};
         }
         continue;
       }
       const double d = std::sqrt(d2);
       const double inv_d = 1.0 / d;
-      const Vec2 nrm{dx * inv_d, dy * inv_d};
+      const Vec<Dim> nrm = inv_d * dx;
       const double overlap = rsum - d;
+      // Lever arms to the contact point x_i + (r_i - overlap / 2) n, the same point seen from j: with them the
+      // pair's torques balance the moment of its forces and an isolated pair keeps its angular momentum, spin
+      // included (the full radii would change it in proportion to the overlap).
+      const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
       // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
-      const Vec2 v_rel = (vi - p_.vel(j)) + cross(wi * ri + p_.omega[j] * p_.radius[j], nrm);
-      const ContactForce cf = linear_spring_dashpot(pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])],
-                                                    ContactKinematics{nrm, overlap, v_rel}, dt, nbr_.history[k]);
+      const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
+      const ContactForce<Dim> cf =
+          linear_spring_dashpot(pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])],
+                                ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
       nbr_.history[km] = -nbr_.history[k];
       entry_force_[k] = cf.f;
       entry_force_[km] = -cf.f;
-      // Eq. 9: the torque of the tangential force, r (n x f_t), equal for both partners ((-n) x (-f_t) = n x f_t).
-      const double tq = cross(nrm, cf.f_t);
-      entry_torque_[k] = tq;
-      entry_torque_[km] = tq;
+      // Eq. 9: the torque of the tangential force about each centre, a (n x f_t) with the partner's own lever
+      // arm; n x f_t is the same for both partners ((-n) x (-f_t) = n x f_t).
+      const Spin<Dim> tq = cross(nrm, cf.f_t);
+      entry_torque_[k] = ai * tq;
+      entry_torque_[km] = aj * tq;
       max_ov = std::max(max_ov, overlap);
       // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
       // no longer a small perturbation of two touching spheres.
-      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, p_.radius[j])));
+      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, R[j])));
     }
   }
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
 #pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const double xi = p_.x[i], yi = p_.y[i], ri = p_.radius[i], wi = p_.omega[i];
-    const Vec2 vi{p_.vx[i], p_.vy[i]};
+    const Vec<Dim> xi = pos(i);
+    const double ri = R[i];
+    const Spin<Dim> wi = spin(i);
+    const Vec<Dim> vi = vel(i);
     const std::size_t si = static_cast<std::size_t>(p_.species[i]);
-    Vec2 f{};
-    double torque = 0.0;
+    Vec<Dim> f{};
+    Spin<Dim> torque{};
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       f += entry_force_[k];
-      torque += ri * entry_torque_[k];
+      torque += entry_torque_[k];
     }
-    // Plane walls: the same law against a fixed body of infinite mass.
+    // Plane walls: the same law against a fixed body of infinite mass. A disabled wall never holds a spring.
     const ContactParams& wp = wall_params_[si];
-    auto wall = [&](Wall w, bool enabled, double overlap, Vec2 nrm) {
-      Vec2& xi_w = wall_xi_[i][static_cast<int>(w)];
-      if (!enabled || overlap <= 0.0) {
-        xi_w = Vec2{};
-        return;
+    for (int a = 0; a < Dim; ++a) {
+      for (int side = 0; side < 2; ++side) {
+        if (!walls.enabled(a, side)) continue;
+        const int w = 2 * a + side;
+        const double overlap = side == 0 ? ri - xi[a] : ri - (L[a] - xi[a]);
+        if (overlap <= 0.0) {
+          if (!is_zero<Dim>(p_.wall_spring(i, w))) p_.set_wall_spring(i, w, Vec<Dim>{});
+          continue;
+        }
+        Vec<Dim> nrm{};
+        nrm[a] = side == 0 ? -1.0 : 1.0;
+        Vec<Dim> xi_w = p_.wall_spring(i, w);
+        const double lever = ri - overlap;  // to the contact point on the wall plane
+        const Vec<Dim> v_rel = vi + cross(wi * lever, nrm);
+        const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
+        p_.set_wall_spring(i, w, xi_w);
+        f += cf.f;
+        torque += lever * cross(nrm, cf.f_t);
+        max_ov = std::max(max_ov, overlap);
+        if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
       }
-      const Vec2 v_rel = vi + cross(wi * ri, nrm);
-      const ContactForce cf = linear_spring_dashpot(wp, ContactKinematics{nrm, overlap, v_rel}, dt, xi_w);
-      f += cf.f;
-      torque += ri * cross(nrm, cf.f_t);
-      max_ov = std::max(max_ov, overlap);
-      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
-    };
-    wall(Wall::Left, walls.left, ri - xi, {-1.0, 0.0});
-    wall(Wall::Right, walls.right, ri - (W - xi), {1.0, 0.0});
-    wall(Wall::Bottom, walls.bottom, ri - yi, {0.0, -1.0});
-    wall(Wall::Top, walls.top, ri - (H - yi), {0.0, 1.0});
-    p_.fx[i] = f.x;
-    p_.fy[i] = f.y;
-    p_.torque[i] = torque;
+    }
+    for (int a = 0; a < Dim; ++a) F[a][i] = f[a];
+    if constexpr (Dim == 2) {
+      T[0][i] = torque;
+    } else {
+      for (int c = 0; c < 3; ++c) T[c][i] = torque[c];
+    }
   }
   max_overlap_ = max_ov;
   max_overlap_fraction_ = Mixed || n == 0 ? max_frac : max_ov / (2.0 * p_.radius[0]);
   return max_ov;
 }
 
-DemStepInfo DemSolver::step() {
+template <int Dim>
+DemStepInfo DemSolver<Dim>::step() {
   DemStepInfo info = advance(config_.dt);
   // Whole steps from the clock origin: n dt carries one rounding, a running sum of dt one per step.
   time_ = time_origin_ + static_cast<double>(steps_ - steps_origin_) * config_.dt;
   return info;
 }
 
-DemStepInfo DemSolver::step(double h) {
+template <int Dim>
+DemStepInfo DemSolver<Dim>::step(double h) {
   if (h == config_.dt) return step();
   DemStepInfo info = advance(h);
   time_ += h;
@@ -267,7 +337,8 @@ DemStepInfo DemSolver::step(double h) {
   return info;
 }
 
-DemStepInfo DemSolver::advance(double dt) {
+template <int Dim>
+DemStepInfo DemSolver<Dim>::advance(double dt) {
   DemStepInfo info;
   if (need_rebuild_) {
     rebuild();
@@ -279,10 +350,22 @@ DemStepInfo DemSolver::advance(double dt) {
   // drag_k (ug - v) is taken implicitly in v so that light or fine particles do not limit the time step;
   // with drag_k = 0 this is exactly Eq. 10.
   const std::size_t n = p_.size();
-  const Vec2 g = config_.gravity;
+  const Vec<Dim> g = config_.domain.gravity_vector<Dim>();
   const double half_skin2 = 0.25 * config_.skin * config_.skin;
-  const double H = config_.height;
+  const double H = config_.domain.height;
   const DomainTest in_domain = domain_test();
+  const AxisPtrs<Dim> X = axis_ptrs<Dim>([&](int a) -> auto& { return p_.coord(a); }, Dim);
+  const AxisPtrs<Dim> V = axis_ptrs<Dim>([&](int a) -> auto& { return p_.velocity(a); }, Dim);
+  const AxisPtrs<Dim> F = axis_ptrs<Dim>([&](int a) -> auto& { return p_.force(a); }, Dim);
+  const AxisPtrs<Dim> FE = axis_ptrs<Dim>([&](int a) -> auto& { return p_.force_ext(a); }, Dim);
+  const AxisPtrs<Dim> UG = axis_ptrs<Dim>([&](int a) -> auto& { return p_.gas_velocity(a); }, Dim);
+  const AxisPtrs<Dim> B = axis_ptrs<Dim>([&](int a) -> auto& { return build_[static_cast<std::size_t>(a)]; }, Dim);
+  constexpr int NS = kSpinComponents<Dim>;
+  const AxisPtrs<NS> W = axis_ptrs<NS>([&](int c) -> auto& { return p_.spin_component(c); }, NS);
+  const AxisPtrs<NS> T = axis_ptrs<NS>([&](int c) -> auto& { return p_.torque_component(c); }, NS);
+  const double* drag_k = p_.drag_k.data();
+  const double* inv_mass = p_.inv_mass.data();
+  const double* inv_inertia = p_.inv_inertia.data();
   int moved_far = 0;
   int bad = 0;
   int escaped = 0;
@@ -290,18 +373,22 @@ DemStepInfo DemSolver::advance(double dt) {
 #pragma omp parallel for schedule(static) reduction(max : moved_far, bad, escaped)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const double k = p_.drag_k[i];
-    const double relax = 1.0 / (1.0 + dt * k * p_.inv_mass[i]);
-    p_.vx[i] = (p_.vx[i] + ((p_.fx[i] + p_.fx_ext[i] + k * p_.ugx[i]) * p_.inv_mass[i] + g.x) * dt) * relax;
-    p_.vy[i] = (p_.vy[i] + ((p_.fy[i] + p_.fy_ext[i] + k * p_.ugy[i]) * p_.inv_mass[i] + g.y) * dt) * relax;
-    p_.x[i] += p_.vx[i] * dt;
-    p_.y[i] += p_.vy[i] * dt;
-    p_.omega[i] += p_.torque[i] * p_.inv_inertia[i] * dt;  // Eq. 9
-    const double ddx = p_.x[i] - x_build_[i];
-    const double ddy = p_.y[i] - y_build_[i];
-    if (ddx * ddx + ddy * ddy >= half_skin2) moved_far = 1;
+    const double k = drag_k[i];
+    const double relax = 1.0 / (1.0 + dt * k * inv_mass[i]);
+    for (int a = 0; a < Dim; ++a) {
+      V[a][i] = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * inv_mass[i] + g[a]) * dt) * relax;
+    }
+    for (int a = 0; a < Dim; ++a) X[a][i] += V[a][i] * dt;
+    // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
+    for (int c = 0; c < NS; ++c) W[c][i] += T[c][i] * inv_inertia[i] * dt;
+    double moved2 = 0.0;
+    for (int a = 0; a < Dim; ++a) {
+      const double dd = X[a][i] - B[a][i];
+      moved2 += dd * dd;
+    }
+    if (moved2 >= half_skin2) moved_far = 1;
     if (!in_domain(p_, i)) bad = 1;
-    if (in_domain.outflow && p_.y[i] > H) escaped = 1;
+    if (in_domain.outflow && X[1][i] > H) escaped = 1;
   }
   need_rebuild_ = moved_far != 0;
   ++steps_;
@@ -310,9 +397,10 @@ DemStepInfo DemSolver::advance(double dt) {
   return info;
 }
 
-std::size_t DemSolver::remove_escaped() {
+template <int Dim>
+std::size_t DemSolver<Dim>::remove_escaped() {
   const std::size_t n = p_.size();
-  const double H = config_.height;
+  const double H = config_.domain.height;
   constexpr auto kGone = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> keep, new_slot(n, kGone);
   keep.reserve(n);
@@ -329,9 +417,10 @@ std::size_t DemSolver::remove_escaped() {
   removed_count_ += removed;
   // The neighbour list of the particles that stay, in the same order, with their springs: the remaining pairs
   // are still within reach of their last build, so the list stays valid without a rebuild.
-  NeighborList list;
+  List list;
   list.offset.assign(keep.size() + 1, 0);
   list.partner.reserve(nbr_.partner.size());
+  list.partner_id.reserve(nbr_.partner_id.size());
   list.history.reserve(nbr_.history.size());
   if (nbr_.offset.size() == n + 1) {
     for (std::size_t k = 0; k < keep.size(); ++k) {
@@ -340,6 +429,7 @@ std::size_t DemSolver::remove_escaped() {
         const std::size_t j = new_slot[nbr_.partner[q]];
         if (j == kGone) continue;
         list.partner.push_back(static_cast<std::uint32_t>(j));
+        list.partner_id.push_back(nbr_.partner_id[q]);
         list.history.push_back(nbr_.history[q]);
       }
       list.offset[k + 1] = list.partner.size();
@@ -349,24 +439,21 @@ std::size_t DemSolver::remove_escaped() {
     need_rebuild_ = true;
   }
   p_.permute(keep);
-  std::vector<std::array<Vec2, 4>> w(keep.size());
-  std::vector<double> xb(keep.size()), yb(keep.size());
-  for (std::size_t k = 0; k < keep.size(); ++k) {
-    w[k] = wall_xi_[keep[k]];
-    xb[k] = x_build_.empty() ? p_.x[k] : x_build_[keep[k]];
-    yb[k] = y_build_.empty() ? p_.y[k] : y_build_[keep[k]];
+  for (int a = 0; a < Dim; ++a) {
+    std::vector<double>& b = build_[static_cast<std::size_t>(a)];
+    std::vector<double> nb(keep.size());
+    for (std::size_t k = 0; k < keep.size(); ++k) nb[k] = b.empty() ? p_.coord(a)[k] : b[keep[k]];
+    b.swap(nb);
   }
-  wall_xi_.swap(w);
-  x_build_.swap(xb);
-  y_build_.swap(yb);
   if (!need_rebuild_) link_mirrors();
   return removed;
 }
 
-void DemSolver::check_particles() const {
+template <int Dim>
+void DemSolver<Dim>::check_particles() const {
   const std::size_t n = p_.size();
-  const double W = config_.width;
-  const double H = config_.height;
+  const double W = config_.domain.width;
+  const double H = config_.domain.height;
   // Report the offending particle with the smallest id, so the message does not depend on threads.
   const DomainTest in_domain = domain_test();
   std::size_t worst = n;
@@ -374,9 +461,12 @@ void DemSolver::check_particles() const {
     if (!in_domain(p_, i) && (worst == n || p_.id[i] < p_.id[worst])) worst = i;
   }
   if (worst == n) return;
-  const bool finite = std::isfinite(p_.x[worst]) && std::isfinite(p_.y[worst]) && std::isfinite(p_.vx[worst]) &&
-                      std::isfinite(p_.vy[worst]) && std::isfinite(p_.omega[worst]);
-  if (finite && p_.y[worst] > H && p_.x[worst] >= 0.0 && p_.x[worst] <= W) {
+  bool finite = true;
+  for (int a = 0; a < Dim; ++a) finite = finite && std::isfinite(p_.coord(a)[worst]) && std::isfinite(p_.velocity(a)[worst]);
+  for (int c = 0; c < kSpinComponents<Dim>; ++c) finite = finite && std::isfinite(p_.spin_component(c)[worst]);
+  bool inside_across = p_.x[worst] >= 0.0 && p_.x[worst] <= W;
+  if constexpr (Dim == 3) inside_across = inside_across && p_.z[worst] >= 0.0 && p_.z[worst] <= config_.domain.depth;
+  if (finite && p_.y[worst] > H && inside_across) {
     throw_simulation_error(fmt::format(
         "t = {:.6g} s: particle {} left through the open top of the domain (y = {:.6g} m > {} m, velocity "
         "({:.6g}, {:.6g}) m/s). The top is open to the gas but particles may not leave: likely cause, the gas lifts "
@@ -385,34 +475,42 @@ void DemSolver::check_particles() const {
         "them in, or make the domain taller or ramp the inlet up (inlet.ramp_time).",
         time_, p_.id[worst], p_.y[worst], H, p_.vx[worst], p_.vy[worst]));
   }
-  throw_simulation_error(fmt::format(
-      "t = {:.6g} s: particle {} left the domain [0, {}] x [0, {}] m or its state is not finite: position "
-      "({:.6g}, {:.6g}) m, velocity ({:.6g}, {:.6g}) m/s. Likely cause: the time step is too large for the "
-      "stiffness (check `fluidbed check`); remedy: reduce dem.time_step.",
-      time_, p_.id[worst], W, H, p_.x[worst], p_.y[worst], p_.vx[worst], p_.vy[worst]));
+  if constexpr (Dim == 2) {
+    throw_simulation_error(fmt::format(
+        "t = {:.6g} s: particle {} left the domain [0, {}] x [0, {}] m or its state is not finite: position "
+        "({:.6g}, {:.6g}) m, velocity ({:.6g}, {:.6g}) m/s. Likely cause: the time step is too large for the "
+        "stiffness (check `fluidbed check`); remedy: reduce dem.time_step.",
+        time_, p_.id[worst], W, H, p_.x[worst], p_.y[worst], p_.vx[worst], p_.vy[worst]));
+  } else {
+    throw_simulation_error(fmt::format(
+        "t = {:.6g} s: particle {} left the domain [0, {}] x [0, {}] x [0, {}] m or its state is not finite: "
+        "position ({:.6g}, {:.6g}, {:.6g}) m, velocity ({:.6g}, {:.6g}, {:.6g}) m/s. Likely cause: the time step is "
+        "too large for the stiffness (check `fluidbed check`); remedy: reduce dem.time_step.",
+        time_, p_.id[worst], W, H, config_.domain.depth, p_.x[worst], p_.y[worst], p_.z[worst], p_.vx[worst],
+        p_.vy[worst], p_.vz[worst]));
+  }
 }
 
-double DemSolver::kinetic_energy() const {
+template <int Dim>
+double DemSolver<Dim>::kinetic_energy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    e += 0.5 * p_.mass[i] * (p_.vx[i] * p_.vx[i] + p_.vy[i] * p_.vy[i]) +
-         0.5 * p_.omega[i] * p_.omega[i] / p_.inv_inertia[i];
+    e += 0.5 * p_.mass[i] * norm2(p_.vel(i)) + 0.5 * spin_norm2<Dim>(p_.spin(i)) / p_.inv_inertia[i];
   }
   return e;
 }
 
-DemSolver::State DemSolver::state() const {
-  return State{p_,           nbr_,          wall_xi_,       x_build_,      y_build_,
-               time_,        steps_,        rebuilds_,      need_rebuild_, time_origin_,
-               steps_origin_, removed_count_, removed_mass_};
+template <int Dim>
+typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
+  return State{p_,           nbr_,           build_,        time_,         steps_,       rebuilds_,
+               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
 }
 
-void DemSolver::restore(State s) {
+template <int Dim>
+void DemSolver<Dim>::restore(State s) {
   p_ = std::move(s.particles);
   nbr_ = std::move(s.neighbors);
-  wall_xi_ = std::move(s.wall_xi);
-  x_build_ = std::move(s.x_build);
-  y_build_ = std::move(s.y_build);
+  build_ = std::move(s.build);
   time_ = s.time;
   steps_ = s.steps;
   rebuilds_ = s.rebuilds;
@@ -421,8 +519,17 @@ void DemSolver::restore(State s) {
   removed_count_ = s.removed_count;
   removed_mass_ = s.removed_mass;
   need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
+  if (nbr_.partner_id.size() != nbr_.partner.size()) {
+    // A list given by slots only: its ids are those of the partners in this storage order.
+    nbr_.partner_id.resize(nbr_.partner.size());
+    for (std::size_t k = 0; k < nbr_.partner.size(); ++k) {
+      nbr_.partner_id[k] = nbr_.partner[k] < p_.size() ? p_.id[nbr_.partner[k]] : -1;
+    }
+  }
   mirror_.clear();  // linked again at the next force evaluation
-  if (wall_xi_.size() != p_.size()) wall_xi_.assign(p_.size(), {});
 }
+
+template class DemSolver<2>;
+template class DemSolver<3>;
 
 }  // namespace fluidbed

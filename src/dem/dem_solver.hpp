@@ -1,6 +1,8 @@
 #pragma once
 // The soft-sphere DEM of the paper's section 2.1: contact forces (Eqs. 2-8), torques (Eq. 9) and the explicit
-// update of Eq. 10, with walls and a Verlet neighbour list carrying the contact history across rebuilds.
+// update of Eq. 10, with plane walls on both sides of every axis and a Verlet neighbour list carrying the contact
+// history, keyed by particle ids, across rebuilds. One code for 2D discs of sphere mass (spin about z) and 3D
+// spheres (spin vector); instantiated for Dim = 2 and 3.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -14,7 +16,8 @@
 
 namespace fluidbed {
 
-enum class Wall : int { Left = 0, Right = 1, Bottom = 2, Top = 3 };
+/// Plane walls, numbered 2 axis + side: the particle store's wall springs and WallConfig use this order.
+enum class Wall : int { Left = 0, Right = 1, Bottom = 2, Top = 3, Back = 4, Front = 5 };
 
 /// Diagnostics of one step, cheap enough to compute every step.
 struct DemStepInfo {
@@ -23,23 +26,27 @@ struct DemStepInfo {
   std::size_t removed = 0;   ///< particles that left through an outflow top in this step
 };
 
+template <int Dim>
 class DemSolver {
  public:
+  using Store = ParticleStore<Dim>;
+  using List = NeighborList<Dim>;
+
   /// The particles are put in the canonical storage order (ascending id) first: the run then depends only on the
-  /// particles, not on the order they were handed over in. Ids must be unique.
-  DemSolver(DemConfig config, ParticleStore particles);
+  /// particles, not on the order they were handed over in. Ids must be unique. Contact history starts released.
+  DemSolver(DemConfig config, Store particles);
 
   /// Advance by one time step of config().dt.
   DemStepInfo step();
   /// Advance by one step of length h (a shortened last step that lands on an end time); the clock continues
   /// from there in steps of config().dt.
   DemStepInfo step(double h);
-  /// Contact forces and torques for the current positions (into particles().fx, fy, torque), no update.
+  /// Contact forces and torques for the current positions (into particles().force, torque), no update.
   double compute_forces() { return compute_forces(config_.dt); }
 
   const DemConfig& config() const { return config_; }
-  ParticleStore& particles() { return p_; }
-  const ParticleStore& particles() const { return p_; }
+  Store& particles() { return p_; }
+  const Store& particles() const { return p_; }
   std::uint64_t step_count() const { return steps_; }
   std::uint64_t rebuild_count() const { return rebuilds_; }
   /// Simulated time: the time of the last clock origin plus whole steps of config().dt since it, so that it does
@@ -70,13 +77,12 @@ class DemSolver {
   }
   const ContactParams& wall_params(int species) const { return wall_params_[static_cast<std::size_t>(species)]; }
 
-  /// The complete DEM state, storage order and neighbour list included, so that a restart continues
-  /// bit for bit as the uninterrupted run would have.
+  /// The complete DEM state, storage order and neighbour list included (the wall springs are in the particle
+  /// store), so that a restart continues bit for bit as the uninterrupted run would have.
   struct State {
-    ParticleStore particles;
-    NeighborList neighbors;
-    std::vector<std::array<Vec2, 4>> wall_xi;
-    std::vector<double> x_build, y_build;
+    Store particles;
+    List neighbors;
+    std::array<std::vector<double>, Dim> build;  ///< positions at the last list build, per axis
     double time = 0.0;
     std::uint64_t steps = 0;
     std::uint64_t rebuilds = 0;
@@ -89,11 +95,9 @@ class DemSolver {
   State state() const;
   /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
   struct StateView {
-    const ParticleStore& particles;
-    const NeighborList& neighbors;
-    const std::vector<std::array<Vec2, 4>>& wall_xi;
-    const std::vector<double>& x_build;
-    const std::vector<double>& y_build;
+    const Store& particles;
+    const List& neighbors;
+    const std::array<std::vector<double>, Dim>& build;
     double time;
     std::uint64_t steps;
     std::uint64_t rebuilds;
@@ -104,11 +108,11 @@ class DemSolver {
     double removed_mass;
   };
   StateView view() const {
-    return {p_,    nbr_,   wall_xi_,     x_build_,      y_build_,       time_,         steps_,
-            rebuilds_, need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
+    return {p_,        nbr_,          build_,       time_,          steps_,       rebuilds_,
+            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
   }
   void restore(State s);
-  const NeighborList& neighbors() const { return nbr_; }
+  const List& neighbors() const { return nbr_; }
 
   /// Ask for a neighbour-list rebuild before the next force evaluation (e.g. after particles were moved).
   void invalidate_neighbors() { need_rebuild_ = true; }
@@ -129,33 +133,38 @@ class DemSolver {
   /// Inside the domain (above the top counts as inside with an outflow top: it is removed) with a finite state.
   /// The bounds are copied out of the config so that the step's loop keeps them in registers.
   struct DomainTest {
-    double width, height;
+    Vec<Dim> extent;
     bool outflow;
-    bool operator()(const ParticleStore& p, std::size_t i) const {
-      return p.x[i] >= 0.0 && p.x[i] <= width && p.y[i] >= 0.0 && (p.y[i] <= height || outflow) &&
-             std::isfinite(p.vx[i]) && std::isfinite(p.vy[i]) && std::isfinite(p.omega[i]);
+    bool operator()(const Store& p, std::size_t i) const {
+      bool ok = true;
+      for (int a = 0; a < Dim; ++a) {
+        const double x = p.coord(a)[i];
+        ok = ok && x >= 0.0 && (x <= extent[a] || (a == 1 && outflow));
+      }
+      for (int a = 0; a < Dim; ++a) ok = ok && std::isfinite(p.velocity(a)[i]);
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) ok = ok && std::isfinite(p.spin_component(c)[i]);
+      return ok;
     }
   };
   DomainTest domain_test() const {
-    return {config_.width, config_.height, config_.walls.top_outflow && !config_.walls.top};
+    return {config_.domain.extent<Dim>(), config_.walls.top_outflow && !config_.walls.top};
   }
 
   DemConfig config_;
-  ParticleStore p_;
+  Store p_;
   std::vector<ContactParams> pair_params_;
   std::vector<ContactParams> wall_params_;
-  NeighborList nbr_;
-  std::vector<std::array<Vec2, 4>> wall_xi_;
-  std::vector<double> x_build_, y_build_;
+  List nbr_;
+  std::array<std::vector<double>, Dim> build_;
   // The previous list during a rebuild (kept to reuse its memory).
   std::vector<std::size_t> old_offset_;
-  std::vector<std::uint32_t> old_partner_;
-  std::vector<Vec2> old_history_;
+  std::vector<std::int64_t> old_partner_id_;
+  std::vector<Vec<Dim>> old_history_;
   // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
   // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.
   std::vector<std::uint32_t> mirror_;
-  std::vector<Vec2> entry_force_;
-  std::vector<double> entry_torque_;  ///< n x f_t of the pair, the same for both partners (times own radius)
+  std::vector<Vec<Dim>> entry_force_;
+  std::vector<Spin<Dim>> entry_torque_;  ///< torque of the entry's contact on the entry's own particle
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double max_overlap_fraction_ = 0.0;
@@ -168,6 +177,9 @@ class DemSolver {
   std::uint64_t rebuilds_ = 0;
   bool need_rebuild_ = true;
 };
+
+extern template class DemSolver<2>;
+extern template class DemSolver<3>;
 
 /// Build the contact parameter tables (Eq. 8 with the reduced mass of each species pair).
 std::vector<ContactParams> make_pair_params(const DemConfig& c);

@@ -1,6 +1,7 @@
 #include "dem/neighbor_list.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #ifdef _OPENMP
@@ -12,91 +13,131 @@ namespace fluidbed {
 namespace {
 
 /// Cells covering the particles' bounding box, with a CSR of the slots in each cell (ascending slot order).
+template <int Dim>
 struct CellBins {
-  double x_min = 0.0, y_min = 0.0, size = 1.0;
-  int nx = 1, ny = 1;
+  std::array<double, Dim> lo{};
+  double size = 1.0;
+  std::array<int, Dim> n{};
   std::vector<std::uint32_t> cell_of;  // per particle
   std::vector<std::size_t> start;      // per cell + 1
   std::vector<std::uint32_t> slots;    // particle slots grouped by cell
-  // Copies of x, y, r in the order of `slots`: a row of three neighbouring cells is one contiguous run, so the
-  // search streams through memory whatever the storage order of the particles.
-  std::vector<double> xs, ys, rs;
+  // Copies of the coordinates and radii in the order of `slots`: a row of three neighbouring cells is one
+  // contiguous run, so the search streams through memory whatever the storage order of the particles.
+  std::array<std::vector<double>, Dim> xs;
+  std::vector<double> rs;
 
   // Clamp before the conversion: a far (or non-finite) coordinate must not overflow the int.
-  int ci(double x) const { const double f = (x - x_min) / size; return f > 0.0 ? static_cast<int>(std::min(f, nx - 1.0)) : 0; }
-  int cj(double y) const { const double f = (y - y_min) / size; return f > 0.0 ? static_cast<int>(std::min(f, ny - 1.0)) : 0; }
+  int cell(int a, double x) const {
+    const double f = (x - lo[a]) / size;
+    return f > 0.0 ? static_cast<int>(std::min(f, n[a] - 1.0)) : 0;
+  }
+  /// Row-major cell number, x fastest.
+  std::size_t flat(const std::array<int, Dim>& c) const {
+    std::size_t k = static_cast<std::size_t>(c[Dim - 1]);
+    for (int a = Dim - 2; a >= 0; --a) k = k * static_cast<std::size_t>(n[a]) + static_cast<std::size_t>(c[a]);
+    return k;
+  }
 };
 
-CellBins bin_particles(const ParticleStore& p, double cell_size) {
-  CellBins b;
-  const std::size_t n = p.size();
+template <int Dim>
+CellBins<Dim> bin_particles(const ParticleStore<Dim>& p, double cell_size) {
+  CellBins<Dim> b;
+  const std::size_t np = p.size();
   b.size = cell_size;
-  if (n == 0) {
+  b.n.fill(1);
+  if (np == 0) {
     b.start.assign(2, 0);
     return b;
   }
-  const auto [xmin, xmax] = std::minmax_element(p.x.begin(), p.x.end());
-  const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
-  b.x_min = *xmin;
-  b.y_min = *ymin;
   // Cap the grid so a stray far-away particle cannot make it huge; clamping keeps the search correct
   // because a clamped edge cell is at least as large as the others.
-  const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
-  b.nx = std::max(1, static_cast<int>(std::min((*xmax - b.x_min) / cell_size + 1.0, max_cells)));
-  b.ny = std::max(1, static_cast<int>(std::min((*ymax - b.y_min) / cell_size + 1.0, max_cells / b.nx + 1.0)));
-  const std::size_t ncell = static_cast<std::size_t>(b.nx) * static_cast<std::size_t>(b.ny);
-  b.cell_of.resize(n);
+  const double max_cells = 4.0 * static_cast<double>(np) + 16.0;
+  double cells_below = 1.0;  // cells of the axes before this one
+  for (int a = 0; a < Dim; ++a) {
+    const auto [mn, mx] = std::minmax_element(p.coord(a).begin(), p.coord(a).end());
+    b.lo[a] = *mn;
+    const double cap = a == 0 ? max_cells : max_cells / cells_below + 1.0;
+    b.n[a] = std::max(1, static_cast<int>(std::min((*mx - b.lo[a]) / cell_size + 1.0, cap)));
+    cells_below *= b.n[a];
+  }
+  std::size_t ncell = 1;
+  for (int a = 0; a < Dim; ++a) ncell *= static_cast<std::size_t>(b.n[a]);
+  b.cell_of.resize(np);
   b.start.assign(ncell + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto c = static_cast<std::uint32_t>(static_cast<std::size_t>(b.cj(p.y[i])) * b.nx + b.ci(p.x[i]));
-    b.cell_of[i] = c;
-    ++b.start[c + 1];
+  for (std::size_t i = 0; i < np; ++i) {
+    std::array<int, Dim> c;
+    for (int a = 0; a < Dim; ++a) c[a] = b.cell(a, p.coord(a)[i]);
+    const auto k = static_cast<std::uint32_t>(b.flat(c));
+    b.cell_of[i] = k;
+    ++b.start[k + 1];
   }
   for (std::size_t c = 0; c < ncell; ++c) b.start[c + 1] += b.start[c];
-  b.slots.resize(n);
+  b.slots.resize(np);
   std::vector<std::size_t> fill(b.start.begin(), b.start.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) b.slots[fill[b.cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < np; ++i) b.slots[fill[b.cell_of[i]]++] = static_cast<std::uint32_t>(i);
   return b;
 }
 
-void add_cell_ordered_copies(const ParticleStore& p, CellBins& b) {
+template <int Dim>
+void add_cell_ordered_copies(const ParticleStore<Dim>& p, CellBins<Dim>& b) {
   const std::size_t n = b.slots.size();
-  b.xs.resize(n);
-  b.ys.resize(n);
+  for (int a = 0; a < Dim; ++a) b.xs[a].resize(n);
   b.rs.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = b.slots[k];
-    b.xs[k] = p.x[i];
-    b.ys[k] = p.y[i];
+    for (int a = 0; a < Dim; ++a) b.xs[a][k] = p.coord(a)[i];
     b.rs[k] = p.radius[i];
   }
 }
 
 /// Appends to `out`, from position `used`, every particle j != i within r_i + r_j + skin of particle i, in a
-/// fixed order (cell rows bottom to top, within a row by cell and then by slot); returns the new `used`. The
+/// fixed order (cell rows by z, then y, then within a row by cell and then by slot); returns the new `used`. The
 /// candidates are written unconditionally and kept by advancing the end, which avoids a hard-to-predict branch
 /// (about a third of the candidates of a 3 x 3 cell search are in reach).
-std::size_t append_near(const ParticleStore& p, const CellBins& b, std::size_t i, double skin,
+template <int Dim>
+std::size_t append_near(const ParticleStore<Dim>& p, const CellBins<Dim>& b, std::size_t i, double skin,
                         std::vector<std::uint32_t>& out, std::size_t used) {
-  const double x = p.x[i], y = p.y[i], r = p.radius[i] + skin;
-  const int ci = b.ci(x);
-  const int cj = b.cj(y);
-  // A clamped edge cell may hold particles farther than one cell size away: widen the search there.
-  const int di_lo = (ci == 0) ? 0 : -1, di_hi = (ci == b.nx - 1) ? 0 : 1;
-  const int dj_lo = (cj == 0) ? 0 : -1, dj_hi = (cj == b.ny - 1) ? 0 : 1;
+  std::array<double, Dim> x;
+  std::array<int, Dim> c, d_lo, d_hi;
+  for (int a = 0; a < Dim; ++a) {
+    x[a] = p.coord(a)[i];
+    c[a] = b.cell(a, x[a]);
+    // A clamped edge cell may hold particles farther than one cell size away: widen the search there.
+    d_lo[a] = (c[a] == 0) ? 0 : -1;
+    d_hi[a] = (c[a] == b.n[a] - 1) ? 0 : 1;
+  }
+  const double r = p.radius[i] + skin;
   const auto self = static_cast<std::uint32_t>(i);
-  for (int dj = dj_lo; dj <= dj_hi; ++dj) {
-    const std::size_t row = static_cast<std::size_t>(cj + dj) * static_cast<std::size_t>(b.nx);
-    const std::size_t k_begin = b.start[row + static_cast<std::size_t>(ci + di_lo)];
-    const std::size_t k_end = b.start[row + static_cast<std::size_t>(ci + di_hi) + 1];
+  auto row = [&](std::array<int, Dim> rc) {
+    rc[0] = c[0] + d_lo[0];
+    const std::size_t k_begin = b.start[b.flat(rc)];
+    rc[0] = c[0] + d_hi[0];
+    const std::size_t k_end = b.start[b.flat(rc) + 1];
     if (out.size() < used + (k_end - k_begin)) out.resize(2 * (used + (k_end - k_begin)));
     std::uint32_t* dst = out.data();
+    const double* xs = b.xs[0].data();
+    const double* ys = b.xs[1].data();
+    const double* zs = b.xs[Dim - 1].data();
+    const double* rs = b.rs.data();
+    const std::uint32_t* slots = b.slots.data();
     for (std::size_t k = k_begin; k < k_end; ++k) {
-      const double dx = b.xs[k] - x;
-      const double dy = b.ys[k] - y;
-      const double reach = r + b.rs[k];
-      dst[used] = b.slots[k];
-      used += static_cast<std::size_t>((dx * dx + dy * dy < reach * reach) & (b.slots[k] != self));
+      const double dx = xs[k] - x[0];
+      const double dy = ys[k] - x[1];
+      double d2 = dx * dx + dy * dy;
+      if constexpr (Dim == 3) {
+        const double dz = zs[k] - x[2];
+        d2 += dz * dz;
+      }
+      const double reach = r + rs[k];
+      dst[used] = slots[k];
+      used += static_cast<std::size_t>((d2 < reach * reach) & (slots[k] != self));
+    }
+  };
+  if constexpr (Dim == 2) {
+    for (int dj = d_lo[1]; dj <= d_hi[1]; ++dj) row({c[0], c[1] + dj});
+  } else {
+    for (int dk = d_lo[2]; dk <= d_hi[2]; ++dk) {
+      for (int dj = d_lo[1]; dj <= d_hi[1]; ++dj) row({c[0], c[1] + dj, c[2] + dk});
     }
   }
   return used;
@@ -104,14 +145,16 @@ std::size_t append_near(const ParticleStore& p, const CellBins& b, std::size_t i
 
 }  // namespace
 
-std::vector<std::size_t> sort_by_cell(const ParticleStore& p, double cell_size) {
-  const CellBins b = bin_particles(p, cell_size);
+template <int Dim>
+std::vector<std::size_t> sort_by_cell(const ParticleStore<Dim>& p, double cell_size) {
+  const CellBins<Dim> b = bin_particles(p, cell_size);
   return {b.slots.begin(), b.slots.end()};
 }
 
-void build_neighbor_list(const ParticleStore& p, double cell_size, double skin, NeighborList& out) {
+template <int Dim>
+void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out) {
   const std::size_t n = p.size();
-  CellBins b = bin_particles(p, cell_size);
+  CellBins<Dim> b = bin_particles(p, cell_size);
   add_cell_ordered_copies(p, b);
   out.offset.assign(n + 1, 0);
   // One search pass: each thread fills its own buffer for a contiguous block of particles, and the blocks are
@@ -135,7 +178,7 @@ void build_neighbor_list(const ParticleStore& p, double cell_size, double skin, 
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     block[t + 1] = hi;
     std::vector<std::uint32_t>& mine = found[t];
-    mine.resize((hi - lo) * 8 + 64);
+    mine.resize((hi - lo) * (Dim == 2 ? 8 : 16) + 64);
     std::size_t used = 0;
     for (std::size_t i = lo; i < hi; ++i) {
       const std::size_t before = used;
@@ -146,24 +189,35 @@ void build_neighbor_list(const ParticleStore& p, double cell_size, double skin, 
   }
   for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.partner.resize(out.offset[n]);
-  out.history.assign(out.offset[n], Vec2{});
+  out.history.assign(out.offset[n], Vec<Dim>{});
   for (std::size_t t = 0; t < found.size(); ++t) {
     if (block[t] < block[t + 1]) std::copy(found[t].begin(), found[t].end(), out.partner.begin() + static_cast<std::ptrdiff_t>(out.offset[block[t]]));
   }
+  out.partner_id.resize(out.offset[n]);
+  const auto sm = static_cast<std::ptrdiff_t>(out.offset[n]);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < sm; ++k) out.partner_id[static_cast<std::size_t>(k)] = p.id[out.partner[static_cast<std::size_t>(k)]];
 }
 
-std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts(const ParticleStore& p, double skin) {
+template <int Dim>
+std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts(const ParticleStore<Dim>& p, double skin) {
   std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::size_t j = i + 1; j < p.size(); ++j) {
-      const double dx = p.x[j] - p.x[i];
-      const double dy = p.y[j] - p.y[i];
+      const Vec<Dim> d = p.pos(j) - p.pos(i);
       const double reach = p.radius[i] + p.radius[j] + skin;
-      if (dx * dx + dy * dy < reach * reach) pairs.emplace_back(std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]));
+      if (norm2(d) < reach * reach) pairs.emplace_back(std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]));
     }
   }
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
+
+template std::vector<std::size_t> sort_by_cell<2>(const ParticleStore<2>&, double);
+template std::vector<std::size_t> sort_by_cell<3>(const ParticleStore<3>&, double);
+template void build_neighbor_list<2>(const ParticleStore<2>&, double, double, NeighborList<2>&);
+template void build_neighbor_list<3>(const ParticleStore<3>&, double, double, NeighborList<3>&);
+template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<2>(const ParticleStore<2>&, double);
+template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<3>(const ParticleStore<3>&, double);
 
 }  // namespace fluidbed

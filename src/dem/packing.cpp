@@ -9,29 +9,54 @@
 
 namespace fluidbed {
 
-std::int64_t random_placement_capacity(const DemConfig& dem, const PackingConfig& cfg) {
+namespace {
+
+struct Lattice {
+  double site;
+  std::int64_t nx, ny, nz;  // nz = 1 in 2D
+  std::int64_t sites() const { return std::max<std::int64_t>(nx, 0) * std::max<std::int64_t>(ny, 0) * std::max<std::int64_t>(nz, 0); }
+};
+
+template <int Dim>
+Lattice placement_lattice(const DemConfig& dem, const PackingConfig& cfg) {
   double d_max = 0.0;
   for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
   const double site = d_max + 2.0 * cfg.min_gap;  // half a gap of margin on each side, one gap of jitter
-  const auto nx = static_cast<std::int64_t>(std::floor((cfg.x_max - cfg.x_min) / site + 1e-9));
-  const auto ny = static_cast<std::int64_t>(std::floor((cfg.y_max - cfg.y_min) / site + 1e-9));
-  return std::max<std::int64_t>(nx, 0) * std::max<std::int64_t>(ny, 0);
+  Lattice l{site, static_cast<std::int64_t>(std::floor((cfg.x_max - cfg.x_min) / site + 1e-9)),
+            static_cast<std::int64_t>(std::floor((cfg.y_max - cfg.y_min) / site + 1e-9)), 1};
+  if constexpr (Dim == 3) l.nz = static_cast<std::int64_t>(std::floor((cfg.z_max - cfg.z_min) / site + 1e-9));
+  return l;
 }
 
-ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
+}  // namespace
+
+template <int Dim>
+std::int64_t random_placement_capacity(const DemConfig& dem, const PackingConfig& cfg) {
+  return placement_lattice<Dim>(dem, cfg).sites();
+}
+
+template <int Dim>
+ParticleStore<Dim> place_random(const DemConfig& dem, const PackingConfig& cfg) {
   double d_max = 0.0;
   for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
-  const double site = d_max + 2.0 * cfg.min_gap;  // half a gap of margin on each side, one gap of jitter
+  const Lattice lat = placement_lattice<Dim>(dem, cfg);
+  const double site = lat.site;
   const double w = cfg.x_max - cfg.x_min;
   const double h = cfg.y_max - cfg.y_min;
-  const auto nx = static_cast<std::int64_t>(std::floor(w / site + 1e-9));
-  const auto ny = static_cast<std::int64_t>(std::floor(h / site + 1e-9));
-  const std::int64_t sites = std::max<std::int64_t>(nx, 0) * std::max<std::int64_t>(ny, 0);
+  const std::int64_t nx = lat.nx, ny = lat.ny;
+  const std::int64_t sites = lat.sites();
   if (cfg.count > sites) {
-    throw_input_error(fmt::format(
-        "particles.count = {} particles of diameter {} m do not fit in the placement region {} x {} m "
-        "(at most {} with a gap of {} m); make the region taller or use fewer particles",
-        cfg.count, d_max, w, h, sites, cfg.min_gap));
+    if constexpr (Dim == 2) {
+      throw_input_error(fmt::format(
+          "particles.count = {} particles of diameter {} m do not fit in the placement region {} x {} m "
+          "(at most {} with a gap of {} m); make the region taller or use fewer particles",
+          cfg.count, d_max, w, h, sites, cfg.min_gap));
+    } else {
+      throw_input_error(fmt::format(
+          "particles.count = {} particles of diameter {} m do not fit in the placement region {} x {} x {} m "
+          "(at most {} with a gap of {} m); make the region taller or use fewer particles",
+          cfg.count, d_max, w, h, cfg.z_max - cfg.z_min, sites, cfg.min_gap));
+    }
   }
   // A seeded Mersenne twister with our own integer-to-real mapping: the same seed gives the same bed with
   // every standard library.
@@ -55,7 +80,7 @@ ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
     }
     for (; k < cfg.count; ++k) species[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(cfg.species_fraction.size() - 1);
   }
-  ParticleStore p;
+  ParticleStore<Dim> p;
   p.reserve(static_cast<std::size_t>(cfg.count));
   for (std::int64_t k = 0; k < cfg.count; ++k) {
     const std::int64_t s = site_index[static_cast<std::size_t>(k)];
@@ -63,13 +88,20 @@ ParticleStore place_random(const DemConfig& dem, const PackingConfig& cfg) {
     // Jitter inside the site keeping half the gap to its edges, so neighbours stay at least min_gap apart.
     const double free = site - sp.diameter - cfg.min_gap;
     const double x = cfg.x_min + (static_cast<double>(s % nx) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;
-    const double y = cfg.y_min + (static_cast<double>(s / nx) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;
-    p.add(k, species[static_cast<std::size_t>(k)], sp, {x, y});
+    if constexpr (Dim == 2) {
+      const double y = cfg.y_min + (static_cast<double>(s / nx) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;
+      p.add(k, species[static_cast<std::size_t>(k)], sp, {x, y});
+    } else {
+      const double y = cfg.y_min + (static_cast<double>((s / nx) % ny) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;
+      const double z = cfg.z_min + (static_cast<double>(s / (nx * ny)) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;
+      p.add(k, species[static_cast<std::size_t>(k)], sp, {x, y, z});
+    }
   }
   return p;
 }
 
-double bed_height(const ParticleStore& p, double width, int columns) {
+template <int Dim>
+double bed_height(const ParticleStore<Dim>& p, double width, int columns) {
   std::vector<double> top(static_cast<std::size_t>(columns), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int c = std::clamp(static_cast<int>(p.x[i] / width * columns), 0, columns - 1);
@@ -79,5 +111,12 @@ double bed_height(const ParticleStore& p, double width, int columns) {
   for (double t : top) sum += t;
   return sum / columns;
 }
+
+template std::int64_t random_placement_capacity<2>(const DemConfig&, const PackingConfig&);
+template std::int64_t random_placement_capacity<3>(const DemConfig&, const PackingConfig&);
+template ParticleStore<2> place_random<2>(const DemConfig&, const PackingConfig&);
+template ParticleStore<3> place_random<3>(const DemConfig&, const PackingConfig&);
+template double bed_height<2>(const ParticleStore<2>&, double, int);
+template double bed_height<3>(const ParticleStore<3>&, double, int);
 
 }  // namespace fluidbed

@@ -4,48 +4,39 @@
 
 namespace fluidbed {
 
-namespace {
-template <class T>
-void apply_order(std::vector<T>& a, const std::vector<std::size_t>& order, std::vector<T>& scratch) {
-  scratch.resize(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = a[order[k]];
-  a.swap(scratch);
-}
-}  // namespace
-
-void ParticleStore::permute(const std::vector<std::size_t>& order) {
+template <int Dim>
+void ParticleStore<Dim>::permute(const std::vector<std::size_t>& order) {
   std::vector<double> d;
   std::vector<std::int32_t> i32;
   std::vector<std::int64_t> i64;
-  apply_order(id, order, i64);
-  apply_order(species, order, i32);
-  apply_order(layer, order, i32);
-  for (auto* a : {&x, &y, &vx, &vy, &omega, &radius, &mass, &inv_mass, &inv_inertia, &fx, &fy, &torque, &fx_ext,
-                  &fy_ext, &drag_k, &ugx, &ugy}) {
-    apply_order(*a, order, d);
-  }
+  auto scratch_for = [&](auto& a) -> auto& {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if constexpr (std::is_same_v<T, double>) {
+      return d;
+    } else if constexpr (std::is_same_v<T, std::int32_t>) {
+      return i32;
+    } else {
+      return i64;
+    }
+  };
+  for_each_array([&](const std::string&, auto& a, ArrayRole) {
+    auto& scratch = scratch_for(a);
+    scratch.resize(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = a[order[k]];
+    a.swap(scratch);
+  });
 }
 
-void ParticleStore::clear() {
-  id.clear();
-  species.clear();
-  layer.clear();
-  for (auto* a : {&x, &y, &vx, &vy, &omega, &radius, &mass, &inv_mass, &inv_inertia, &fx, &fy, &torque, &fx_ext,
-                  &fy_ext, &drag_k, &ugx, &ugy}) {
-    a->clear();
-  }
-}
-
-}  // namespace fluidbed
-
-namespace fluidbed {
-
-void ParticleStore::sort_by_id() {
+template <int Dim>
+void ParticleStore<Dim>::sort_by_id() {
   std::vector<std::size_t> order(size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   if (std::is_sorted(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; })) return;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
   permute(order);
 }
+
+template struct ParticleStore<2>;
+template struct ParticleStore<3>;
 
 }  // namespace fluidbed

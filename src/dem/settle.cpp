@@ -5,9 +5,10 @@
 
 namespace fluidbed {
 
-SettleResult settle_bed(DemSolver& dem, double energy_per_particle, double max_time) {
+template <int Dim>
+SettleResult settle_bed(DemSolver<Dim>& dem, double energy_per_particle, double max_time) {
   SettleResult r;
-  ParticleStore& p = dem.particles();
+  ParticleStore<Dim>& p = dem.particles();
   const double n = std::max<double>(1.0, static_cast<double>(p.size()));
   const double dt = dem.config().dt;
   const auto check_every = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(0.01 / dt)));
@@ -29,11 +30,13 @@ SettleResult settle_bed(DemSolver& dem, double energy_per_particle, double max_t
   r.time = static_cast<double>(k) * dt;
   r.steps = k;
   r.kinetic_energy_per_particle = dem.kinetic_energy() / n;
-  std::fill(p.vx.begin(), p.vx.end(), 0.0);
-  std::fill(p.vy.begin(), p.vy.end(), 0.0);
-  std::fill(p.omega.begin(), p.omega.end(), 0.0);
+  for (int a = 0; a < Dim; ++a) std::fill(p.velocity(a).begin(), p.velocity(a).end(), 0.0);
+  for (int c = 0; c < kSpinComponents<Dim>; ++c) std::fill(p.spin_component(c).begin(), p.spin_component(c).end(), 0.0);
   dem.set_time(0.0, 0);
   return r;
 }
+
+template SettleResult settle_bed<2>(DemSolver<2>&, double, double);
+template SettleResult settle_bed<3>(DemSolver<3>&, double, double);
 
 }  // namespace fluidbed

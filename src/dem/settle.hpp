@@ -15,6 +15,7 @@ struct SettleResult {
 
 /// Step `dem` (no gas) until the mean kinetic energy per particle is below `energy_per_particle` (checked every
 /// 0.01 s of simulated time) or `max_time` has passed. Velocities are then zeroed: the bed starts at rest.
-SettleResult settle_bed(DemSolver& dem, double energy_per_particle, double max_time);
+template <int Dim>
+SettleResult settle_bed(DemSolver<Dim>& dem, double energy_per_particle, double max_time);
 
 }  // namespace fluidbed

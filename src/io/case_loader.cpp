@@ -45,13 +45,6 @@ double dem_stable_time_step(const DemConfig& dem) {
 
 namespace {
 
-// Placement sites across the depth of a 3D bed, on the lattice random_placement_capacity counts in x and y.
-std::int64_t placement_sites_across_depth(const DemConfig& dem, const PackingConfig& cfg, double depth) {
-  double d_max = 0.0;
-  for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
-  return std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(depth / (d_max + 2.0 * cfg.min_gap) + 1e-9)));
-}
-
 void read_case(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   // [case]
@@ -102,9 +95,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
                                          "or set case.dimension = 3", grav[2]));
   }
   c.domain.gravity = {grav[0], grav[1], grav.size() == 3 ? grav[2] : 0.0};
-  c.dem.width = c.domain.width;
-  c.dem.height = c.domain.height;
-  c.dem.gravity = c.domain.gravity_vector<2>();
+  c.dem.domain = c.domain;
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
                                     "outflow (they leave, removed and counted in monitor.csv); the sides, the "
@@ -203,12 +194,14 @@ void read_case(CaseReader& r, CaseConfig& c) {
   if (c.particles.packing.y_max > c.domain.height) {
     r.fail("particles.fill_height", fmt::format("{} m is above the domain height {} m", c.particles.packing.y_max, c.domain.height));
   }
+  c.particles.packing.z_min = 0.0;
+  c.particles.packing.z_max = three_d ? c.domain.depth : 0.0;
   c.particles.packing.min_gap = r.number("particles.gap", 0.05 * c.dem.species[0].diameter, "m",
                                          "smallest gap between randomly placed particles", R::non_negative());
   c.particles.packing.seed = c.seed;
   if (c.particles.source == ParticleSource::Random) {
-    std::int64_t capacity = random_placement_capacity(c.dem, c.particles.packing);
-    if (three_d) capacity *= placement_sites_across_depth(c.dem, c.particles.packing, c.domain.depth);
+    const std::int64_t capacity = three_d ? random_placement_capacity<3>(c.dem, c.particles.packing)
+                                          : random_placement_capacity<2>(c.dem, c.particles.packing);
     if (c.particles.packing.count > capacity) {
       r.fail("particles.count", fmt::format("{} particles do not fit in the {} x {}{} m placement region: at most {} "
                                             "with a gap of {} m; raise particles.fill_height or domain.height",

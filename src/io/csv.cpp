@@ -205,7 +205,7 @@ void CsvWriter::row(std::span<const std::optional<double>> values) {
 // ---------------------------------------------------------------------------------------------------------------
 // Particle CSV
 
-std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
+std::vector<std::size_t> order_by_id(const ParticleStore<2>& particles) {
   std::vector<std::size_t> order(particles.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
@@ -213,7 +213,7 @@ std::vector<std::size_t> order_by_id(const ParticleStore& particles) {
   return order;
 }
 
-void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles, Sync sync) {
+void write_particles_csv(const std::filesystem::path& path, const ParticleStore<2>& particles, Sync sync) {
   write_particles_csv(path, particle_arrays(particles), sync);
 }
 

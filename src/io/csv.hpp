@@ -76,10 +76,10 @@ inline const char* particle_csv_header_of(int dimension) {
 
 /// Storage slots of `particles` in increasing id order (ties in storage order), for output that does not
 /// depend on how the store happens to be sorted.
-std::vector<std::size_t> order_by_id(const ParticleStore& particles);
+std::vector<std::size_t> order_by_id(const ParticleStore<2>& particles);
 
 /// Write `particles` sorted by id at full precision, atomically. Throws Error(BadInput) when it cannot write.
-void write_particles_csv(const std::filesystem::path& path, const ParticleStore& particles,
+void write_particles_csv(const std::filesystem::path& path, const ParticleStore<2>& particles,
                          Sync sync = Sync::Durable);
 /// The same from plain arrays, in their dimension (a 2D view gives exactly the bytes of the overload above).
 void write_particles_csv(const std::filesystem::path& path, const ParticleArrays& particles,

@@ -20,9 +20,9 @@
 
 namespace fluidbed {
 
-ParticleStore particles_from_csv(const std::string& path, const DemConfig& dem) {
+ParticleStore<2> particles_from_csv(const std::string& path, const DemConfig& dem) {
   const std::vector<ParticleCsvRow> rows = read_particles_csv(path);
-  ParticleStore p;
+  ParticleStore<2> p;
   p.reserve(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const ParticleCsvRow& row = rows[r];
@@ -31,9 +31,9 @@ ParticleStore particles_from_csv(const std::string& path, const DemConfig& dem) 
                                     path, r + 2, row.species, dem.n_species()));
     }
     const Species& s = dem.species[static_cast<std::size_t>(row.species)];
-    if (!(row.x >= 0.0 && row.x <= dem.width && row.y >= 0.0 && row.y <= dem.height)) {
+    if (!(row.x >= 0.0 && row.x <= dem.domain.width && row.y >= 0.0 && row.y <= dem.domain.height)) {
       throw_input_error(fmt::format("{}: row {}, columns x,y: particle {} at ({}, {}) m is not inside the "
-                                    "{} x {} m domain", path, r + 2, row.id, row.x, row.y, dem.width, dem.height));
+                                    "{} x {} m domain", path, r + 2, row.id, row.x, row.y, dem.domain.width, dem.domain.height));
     }
     p.add(row.id, row.species, s, {row.x, row.y}, {row.vx, row.vy}, row.omega);
   }
@@ -67,10 +67,10 @@ std::string settled_bed_record(const CaseConfig& c) {
     line(fmt::format("contact.wall({}).restitution", k), d.wall[k].restitution);
     line(fmt::format("contact.wall({}).friction", k), d.wall[k].friction);
   }
-  line("domain.width", d.width);
-  line("domain.gravity.x", d.gravity.x);
-  line("domain.gravity.y", d.gravity.y);
-  if (d.walls.top) line("domain.height (top wall)", d.height);
+  line("domain.width", d.domain.width);
+  line("domain.gravity.x", d.domain.gravity.x);
+  line("domain.gravity.y", d.domain.gravity.y);
+  if (d.walls.top) line("domain.height (top wall)", d.domain.height);
   line("dem.time_step", d.dt);
   line("dem.skin", d.skin);
   line("settle.kinetic_energy_per_particle", c.settle.kinetic_energy_per_particle);
@@ -105,32 +105,18 @@ std::filesystem::path case_relative_path(const std::string& case_file, const std
 
 namespace {
 
-std::vector<double> wall_xi_flat(const std::vector<std::array<Vec2, 4>>& w) {
-  std::vector<double> out;
-  out.reserve(w.size() * 8);
-  for (const auto& a : w) {
-    for (const Vec2& v : a) {
-      out.push_back(v.x);
-      out.push_back(v.y);
-    }
-  }
-  return out;
-}
-
 // Writes from the solver's own arrays; the list is converted one array at a time, so a checkpoint needs at most
 // one list-sized temporary on top of the solver (docs/performance.md, memory).
-void save_dem(Hdf5File& f, const DemSolver::StateView& s) {
-    const ParticleStore& p = s.particles;
+void save_dem(Hdf5File& f, const DemSolver<2>::StateView& s) {
+    const ParticleStore<2>& p = s.particles;
     f.create_group("dem");
-    f.write("dem/id", p.id);
-    f.write("dem/species", p.species);
-    f.write("dem/layer", p.layer);
-    for (const auto& [name, a] : std::initializer_list<std::pair<const char*, const std::vector<double>*>>{
-             {"x", &p.x}, {"y", &p.y}, {"vx", &p.vx}, {"vy", &p.vy}, {"omega", &p.omega}, {"fx_ext", &p.fx_ext},
-             {"fy_ext", &p.fy_ext}, {"drag_k", &p.drag_k}, {"ugx", &p.ugx}, {"ugy", &p.ugy},
-             {"x_build", &s.x_build}, {"y_build", &s.y_build}}) {
-      f.write(std::string("dem/") + name, *a);
-    }
+    // Every state attribute of the store under its own name (ParticleStore::for_each_array), then the
+    // positions of the last list build.
+    p.for_each_array([&](const std::string& name, const auto& a, ArrayRole role) {
+      if (role == ArrayRole::State) f.write("dem/" + name, a);
+    });
+    static constexpr const char* kBuild[3] = {"x_build", "y_build", "z_build"};
+    for (std::size_t a = 0; a < s.build.size(); ++a) f.write(std::string("dem/") + kBuild[a], s.build[a]);
     f.write("dem/nbr_offset", std::vector<std::int64_t>(s.neighbors.offset.begin(), s.neighbors.offset.end()));
     f.write("dem/nbr_partner", std::vector<std::int64_t>(s.neighbors.partner.begin(), s.neighbors.partner.end()));
     {
@@ -140,7 +126,6 @@ void save_dem(Hdf5File& f, const DemSolver::StateView& s) {
       for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k].y;
       f.write("dem/nbr_xi_y", h);
     }
-    f.write("dem/wall_xi", wall_xi_flat(s.wall_xi));
     f.set_attribute("dem", "time", s.time);
     f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
     f.set_attribute("dem", "rebuilds", static_cast<std::int64_t>(s.rebuilds));
@@ -151,15 +136,15 @@ void save_dem(Hdf5File& f, const DemSolver::StateView& s) {
     f.set_attribute("dem", "removed_mass", s.removed_mass);
 }
 
-DemSolver::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
-    DemSolver::State s;
+DemSolver<2>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
+    DemSolver<2>::State s;
     const auto id = f.read_int64("dem/id");
     const auto species = f.read_int32("dem/species");
     const auto layer = f.read_int32("dem/layer");
     if (species.size() != id.size() || layer.size() != id.size()) {
       throw_input_error(fmt::format("{}: inconsistent particle arrays", f.path().string()));
     }
-    ParticleStore& p = s.particles;
+    ParticleStore<2>& p = s.particles;
     p.reserve(id.size());
     for (std::size_t i = 0; i < id.size(); ++i) {
       if (species[i] < 0 || static_cast<std::size_t>(species[i]) >= config_.dem.n_species()) {
@@ -168,30 +153,28 @@ DemSolver::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
       }
       p.add(id[i], species[i], config_.dem.species[static_cast<std::size_t>(species[i])], {}, {}, 0.0, layer[i]);
     }
-    auto read = [&](const char* name, std::vector<double>& dst) {
-      std::vector<double> v = f.read_double(std::string("dem/") + name);
+    auto read = [&](const std::string& name, std::vector<double>& dst) {
+      std::vector<double> v = f.read_double("dem/" + name);
       if (v.size() != id.size()) {
         throw_input_error(fmt::format("{}: dem/{} has {} values for {} particles", f.path().string(), name, v.size(), id.size()));
       }
       dst = std::move(v);
     };
-    read("x", p.x);
-    read("y", p.y);
-    read("vx", p.vx);
-    read("vy", p.vy);
-    read("omega", p.omega);
-    read("fx_ext", p.fx_ext);
-    read("fy_ext", p.fy_ext);
-    read("drag_k", p.drag_k);
-    read("ugx", p.ugx);
-    read("ugy", p.ugy);
-    read("x_build", s.x_build);
-    read("y_build", s.y_build);
+    // Checkpoints written before the wall springs had a name per wall keep them in one array of 8 per particle.
+    const bool flat_walls = !f.has("dem/wall_xi_left_x");
+    p.for_each_array([&](const std::string& name, auto& a, ArrayRole role) {
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      if constexpr (std::is_same_v<T, double>) {
+        if (role == ArrayRole::State && !(flat_walls && name.starts_with("wall_xi_"))) read(name, a);
+      }
+    });
+    static constexpr const char* kBuild[2] = {"x_build", "y_build"};
+    for (std::size_t a = 0; a < s.build.size(); ++a) read(kBuild[a], s.build[a]);
     const auto offset = f.read_int64("dem/nbr_offset");
     const auto partner = f.read_int64("dem/nbr_partner");
     const auto hx = f.read_double("dem/nbr_xi_x");
     const auto hy = f.read_double("dem/nbr_xi_y");
-    const auto wall = f.read_double("dem/wall_xi");
+    const auto wall = flat_walls ? f.read_double("dem/wall_xi") : std::vector<double>(8 * id.size());
     const std::size_t n = id.size();
     if (offset.size() != n + 1 || offset.front() != 0 || static_cast<std::size_t>(offset.back()) != partner.size() ||
         hx.size() != partner.size() || hy.size() != partner.size() || wall.size() != 8 * n) {
@@ -210,9 +193,10 @@ DemSolver::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
       s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
       s.neighbors.history[k] = {hx[k], hy[k]};
     }
-    s.wall_xi.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int w = 0; w < 4; ++w) s.wall_xi[i][static_cast<std::size_t>(w)] = {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]};
+    if (flat_walls) {
+      for (std::size_t i = 0; i < n; ++i) {
+        for (int w = 0; w < 4; ++w) p.set_wall_spring(i, w, {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]});
+      }
     }
     s.time = f.attribute_double("dem", "time");
     s.steps = static_cast<std::uint64_t>(f.attribute_int64("dem", "steps"));
@@ -234,7 +218,7 @@ class DemModel final : public ModelRun {
  public:
   DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
       : config_(c),
-        sim_(DemSolver(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}),
+        sim_(DemSolver<2>(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore<2>{}),
              c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid.grid2(), c.gas)) : std::nullopt, c.coupling),
         log_(&log) {
     if (fresh) sim_.initialize();
@@ -289,7 +273,7 @@ class DemModel final : public ModelRun {
             "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "linear_solver_fallbacks"};
   }
   std::vector<std::optional<double>> monitor_values() override {
-    const ParticleStore& p = sim_.dem().particles();
+    const ParticleStore<2>& p = sim_.dem().particles();
     double mass = 0.0;
     for (double m : p.mass) mass += m;
     std::vector<std::optional<double>> v{sim_.dem().kinetic_energy(), std::nullopt, sim_.dem().max_overlap(),
@@ -378,10 +362,10 @@ class DemModel final : public ModelRun {
   }
 
  private:
-  static ParticleStore initial_particles(const CaseConfig& c, const std::string& out_dir, spdlog::logger& log) {
+  static ParticleStore<2> initial_particles(const CaseConfig& c, const std::string& out_dir, spdlog::logger& log) {
     namespace fs = std::filesystem;
     auto resolve = [&](const std::string& f) { return case_relative_path(c.source_path, f); };
-    ParticleStore p;
+    ParticleStore<2> p;
     const fs::path cache = c.settle.cache.empty() ? fs::path() : resolve(c.settle.cache);
     const bool cached = !cache.empty() && c.settle.enabled && fs::exists(cache);
     const std::string stale = cached ? settle_cache_mismatch(c, cache) : std::string();
@@ -398,7 +382,7 @@ class DemModel final : public ModelRun {
                                             settled_bed_record_path(cache).string() + ")"
                                       : "it was settled with other parameters: " + stale);
       }
-      p = place_random(c.dem, c.particles.packing);
+      p = place_random<2>(c.dem, c.particles.packing);
       log.info("placed {} particles at random (seed {})", p.size(), c.particles.packing.seed);
       if (c.settle.enabled) {
         // The bed settles under a lid: light particles rebounding off the pile can rise above a top placed at the
@@ -407,7 +391,7 @@ class DemModel final : public ModelRun {
         DemConfig vacuum = c.dem;
         vacuum.walls.top = true;
         vacuum.walls.top_outflow = false;
-        DemSolver settler(vacuum, std::move(p));
+        DemSolver<2> settler(vacuum, std::move(p));
         const auto t0 = std::chrono::steady_clock::now();
         SettleResult r;
         try {
@@ -430,7 +414,7 @@ class DemModel final : public ModelRun {
         }
       }
     }
-    const double h = bed_height(p, c.dem.width, 30);
+    const double h = bed_height<2>(p, c.dem.domain.width, 30);
     assign_layers(p, c.particles.layers, h);
     log.info("bed height {:.4f} m, {} colour layers", h, c.particles.layers);
     return p;
@@ -439,8 +423,8 @@ class DemModel final : public ModelRun {
   /// Where the deepest contact (relative to its own diameter) is, for the overlap diagnosis: the particle pair
   /// (from the neighbour list) or the particle and wall. Runs only on the failure path.
   std::string deepest_contact() const {
-    const ParticleStore& p = sim_.dem().particles();
-    const NeighborList& nbr = sim_.dem().neighbors();
+    const ParticleStore<2>& p = sim_.dem().particles();
+    const NeighborList<2>& nbr = sim_.dem().neighbors();
     double worst = -1.0;
     std::string where;
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -456,7 +440,7 @@ class DemModel final : public ModelRun {
                               p.x[b], p.y[b]);
         }
       }
-      const double W = config_.dem.width, H = config_.dem.height, r = p.radius[i];
+      const double W = config_.dem.domain.width, H = config_.dem.domain.height, r = p.radius[i];
       for (const auto& [ov, wall] : {std::pair{(r - p.x[i]) / (2.0 * r), "left"}, std::pair{(p.x[i] + r - W) / (2.0 * r), "right"},
                                      std::pair{(r - p.y[i]) / (2.0 * r), "bottom"}, std::pair{(p.y[i] + r - H) / (2.0 * r), "top"}}) {
         if (ov > worst && (std::string(wall) != "top" || config_.dem.walls.top)) {

@@ -32,6 +32,6 @@ std::string settle_cache_mismatch(const CaseConfig& config, const std::filesyste
 std::filesystem::path case_relative_path(const std::string& case_file, const std::string& path);
 
 /// Particles of a CSV file (`id,x,y,vx,vy,omega,species`), checked against the case (species, domain).
-ParticleStore particles_from_csv(const std::string& path, const DemConfig& dem);
+ParticleStore<2> particles_from_csv(const std::string& path, const DemConfig& dem);
 
 }  // namespace fluidbed

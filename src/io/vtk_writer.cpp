@@ -262,7 +262,7 @@ void write_vtu(const std::filesystem::path& path, double time, const ParticleArr
   write_file_atomic(path, file.finish("UnstructuredGrid"), Sync::Atomic);
 }
 
-void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles) {
+void write_vtu(const std::filesystem::path& path, double time, const ParticleStore<2>& particles) {
   write_vtu(path, time, particle_arrays(particles));
 }
 
@@ -299,7 +299,7 @@ std::size_t FieldSeries::write(double time, const Grid2& grid, const std::vector
 ParticleSeries::ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time)
     : out_dir_(out_dir), pvd_(open_series(out_dir, "particles", restart_time)) {}
 
-std::size_t ParticleSeries::write(double time, const ParticleStore& particles, bool with_csv) {
+std::size_t ParticleSeries::write(double time, const ParticleStore<2>& particles, bool with_csv) {
   return write(time, particle_arrays(particles), with_csv);
 }
 

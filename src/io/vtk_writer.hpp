@@ -66,7 +66,7 @@ void write_vti(const std::filesystem::path& path, const Grid2& grid, double time
 /// Point arrays: id (Int64), species (Int32), diameter (Float64, m), velocity (Float64 x3, z = 0, m/s),
 /// angular_velocity (Float64 scalar: spin about z, rad/s, anticlockwise positive), layer (Int32);
 /// FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
-void write_vtu(const std::filesystem::path& path, double time, const ParticleStore& particles);
+void write_vtu(const std::filesystem::path& path, double time, const ParticleStore<2>& particles);
 /// The same from plain arrays in their dimension; in 3D the points and velocities have their z and
 /// angular_velocity is a Float64 x 3 vector (rad/s). A 2D view gives exactly the bytes of the overload above.
 void write_vtu(const std::filesystem::path& path, double time, const ParticleArrays& particles);
@@ -94,7 +94,7 @@ class ParticleSeries {
  public:
   explicit ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
   /// Write one frame (and its CSV when `with_csv`); returns its frame number.
-  std::size_t write(double time, const ParticleStore& particles, bool with_csv = false);
+  std::size_t write(double time, const ParticleStore<2>& particles, bool with_csv = false);
   /// The same in either dimension.
   std::size_t write(double time, const ParticleArrays& particles, bool with_csv = false);
   const PvdCollection& collection() const { return pvd_; }

@@ -72,7 +72,7 @@ TEST(CellTracers, PiecewiseConstantVelocityAndClampedToDomain) {
 }
 
 TEST(AssignLayers, ByInitialHeight) {
-  ParticleStore p;
+  ParticleStore<2> p;
   const Species s;
   const double ys[] = {0.001, 0.059, 0.061, 0.31, 0.539, 0.6};
   for (int k = 0; k < 6; ++k) p.add(k, 0, s, {0.1, ys[k]});

@@ -168,8 +168,8 @@ TEST(CaseCheck, AGridTheGasSolverRefusesIsRefusedByTheLoaderGasOrNot) {
 TEST(CaseDomain, GravityReachesEveryModelFromTheDomain) {
   const CaseConfig d = load_case_text(dem_case("domain.gravity = [0.5, -5.0]\n"), "t.toml").config;
   EXPECT_DOUBLE_EQ(d.domain.gravity.y, -5.0);
-  EXPECT_DOUBLE_EQ(d.dem.gravity.x, 0.5);
-  EXPECT_DOUBLE_EQ(d.dem.gravity.y, -5.0);
+  EXPECT_DOUBLE_EQ(d.dem.domain.gravity.x, 0.5);
+  EXPECT_DOUBLE_EQ(d.dem.domain.gravity.y, -5.0);
   EXPECT_DOUBLE_EQ(d.gas.gravity.y, -5.0);
   // Before: a two-fluid case could not set gravity at all (dem.gravity was an unknown key there).
   const CaseConfig t = load_case_text(kTfm + "domain.gravity = [0.0, -5.0]\ndomain.width = 0.4\n", "t.toml").config;
@@ -181,7 +181,7 @@ TEST(CaseDomain, GravityReachesEveryModelFromTheDomain) {
 
 TEST(CaseDomain, TheOldNameDemGravityIsReadAsDomainGravity) {
   const LoadedCase lc = load_case_text(dem_case("[dem]\ngravity = [0.0, -3.0]\n"), "t.toml");
-  EXPECT_DOUBLE_EQ(lc.config.dem.gravity.y, -3.0);
+  EXPECT_DOUBLE_EQ(lc.config.dem.domain.gravity.y, -3.0);
   EXPECT_TRUE(contains(lc.resolved_toml, "[domain]")) << lc.resolved_toml;
   EXPECT_FALSE(contains(lc.resolved_toml, "[dem]\ngravity")) << lc.resolved_toml;
   EXPECT_DOUBLE_EQ(load_case_text(kTfm, "t.toml", {"dem.gravity=[0.0, -2.0]"}).config.tfm.gravity.y, -2.0);

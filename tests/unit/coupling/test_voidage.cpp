@@ -13,11 +13,11 @@ namespace {
 // A 5 x 4 grid offset from the origin, so that x0 and y0 enter every formula.
 Grid2 test_grid() { return Grid2{5, 4, 0.02, 0.03, 0.1, -0.05}; }
 
-ParticleStore random_particles(const Grid2& g, int n, std::uint64_t seed) {
+ParticleStore<2> random_particles(const Grid2& g, int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> ux(g.x0, g.x0 + g.width()), uy(g.y0, g.y0 + g.height());
   std::uniform_real_distribution<double> ud(0.001, 0.004), uv(-2.0, 2.0);
-  ParticleStore p;
+  ParticleStore<2> p;
   for (int k = 0; k < n; ++k) {
     Species s;
     s.diameter = ud(rng);
@@ -95,9 +95,9 @@ TEST(CellWeights, FoldAtWallsIntoBoundaryCells) {
 
 TEST(ComputeVoidage, DepositedVolumeEqualsParticleVolume) {
   const Grid2 g = test_grid();
-  const ParticleStore p = random_particles(g, 500, 7);
+  const ParticleStore<2> p = random_particles(g, 500, 7);
   // Particles on walls and corners too, where the folding must keep their whole volume.
-  ParticleStore q = p;
+  ParticleStore<2> q = p;
   Species s;
   for (Vec2 pos : {Vec2{g.x0, g.y0}, Vec2{g.x0 + g.width(), g.y0}, Vec2{g.x0, g.y0 + g.height()},
                    Vec2{g.x0 + g.width(), g.y0 + g.height()}, Vec2{g.x0 + 0.5 * g.dx, g.y0 + 0.01 * g.dy}}) {
@@ -120,7 +120,7 @@ TEST(ComputeVoidage, DepositedVolumeEqualsParticleVolume) {
 
 TEST(ComputeVoidage, CentreMethodCountsWholeParticleInItsCell) {
   const Grid2 g = test_grid();
-  ParticleStore p;
+  ParticleStore<2> p;
   Species s;
   s.diameter = 0.003;
   p.add(0, 0, s, {g.xc(2) + 0.45 * g.dx, g.yc(1) - 0.45 * g.dy});
@@ -157,7 +157,7 @@ TEST(Gather, LinearFieldIsExactInTheInterior) {
 
 TEST(CellSolidsVelocity, UniformVelocityIsReproduced) {
   const Grid2 g = test_grid();
-  ParticleStore p = random_particles(g, 300, 3);
+  ParticleStore<2> p = random_particles(g, 300, 3);
   for (std::size_t i = 0; i < p.size(); ++i) {
     p.vx[i] = 0.7;
     p.vy[i] = -1.3;
@@ -174,7 +174,7 @@ TEST(CellSolidsVelocity, UniformVelocityIsReproduced) {
 
 TEST(CellSolidsVelocity, VolumeWeightedMeanAndZeroInEmptyCells) {
   const Grid2 g = test_grid();
-  ParticleStore p;
+  ParticleStore<2> p;
   Species small, big;
   small.diameter = 0.001;
   big.diameter = 0.002;  // eight times the volume

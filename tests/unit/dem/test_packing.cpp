@@ -33,7 +33,7 @@ PackingConfig region(std::int64_t count) {
   return pc;
 }
 
-double min_surface_gap(const ParticleStore& p) {
+double min_surface_gap(const ParticleStore<2>& p) {
   double g = 1e300;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::size_t j = i + 1; j < p.size(); ++j) {
@@ -46,7 +46,7 @@ double min_surface_gap(const ParticleStore& p) {
 TEST(DemPacking, PlacesWithoutOverlapInsideTheRegion) {
   const DemConfig c = two_species();
   const PackingConfig pc = region(400);  // every one of the 20 x 20 = 400 sites
-  const ParticleStore p = place_random(c, pc);
+  const ParticleStore<2> p = place_random<2>(c, pc);
   ASSERT_EQ(p.size(), 400u);
   EXPECT_GE(min_surface_gap(p), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -66,24 +66,24 @@ TEST(DemPacking, PlacesWithoutOverlapInsideTheRegion) {
 TEST(DemPacking, ReproducibleForASeedAndDifferentForAnother) {
   const DemConfig c = two_species();
   PackingConfig pc = region(300);
-  const ParticleStore a = place_random(c, pc);
-  const ParticleStore b = place_random(c, pc);
+  const ParticleStore<2> a = place_random<2>(c, pc);
+  const ParticleStore<2> b = place_random<2>(c, pc);
   EXPECT_EQ(a.x, b.x);
   EXPECT_EQ(a.y, b.y);
   EXPECT_EQ(a.species, b.species);
   pc.seed = 18;
-  const ParticleStore d = place_random(c, pc);
+  const ParticleStore<2> d = place_random<2>(c, pc);
   EXPECT_NE(a.x, d.x);
 }
 
 TEST(DemPacking, FillsEverySiteAndRejectsOneMore) {
   const DemConfig c = two_species();
   // 0.1 m / (0.004 + 0.0005) m = 22.2: 22 x 22 sites.
-  const ParticleStore full = place_random(c, region(400));
+  const ParticleStore<2> full = place_random<2>(c, region(400));
   EXPECT_EQ(full.size(), 400u);
   EXPECT_GE(min_surface_gap(full), 0.0);
   try {
-    place_random(c, region(401));
+    place_random<2>(c, region(401));
     FAIL() << "401 particles should not fit in 400 sites";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::BadInput);
@@ -96,12 +96,12 @@ TEST(DemPacking, KeepsTheDocumentedMinimumGap) {
   DemConfig c;  // one species: every site is d + 2 min_gap wide
   PackingConfig pc = region(400);
   pc.species_fraction.clear();
-  const ParticleStore p = place_random(c, pc);
+  const ParticleStore<2> p = place_random<2>(c, pc);
   EXPECT_GE(min_surface_gap(p), pc.min_gap * (1.0 - 1e-12));
 }
 
 TEST(DemParticleStore, PermuteMovesEveryAttributeTogether) {
-  ParticleStore p;
+  ParticleStore<2> p;
   const Species s0{0.004, 2700.0}, s1{0.002, 1000.0};
   for (int i = 0; i < 6; ++i) {
     p.add(100 + i, i % 2, (i % 2) ? s1 : s0, {0.1 * i, 0.2 * i}, {1.0 + i, 2.0 + i}, 3.0 + i, 7 - i);
@@ -114,7 +114,7 @@ TEST(DemParticleStore, PermuteMovesEveryAttributeTogether) {
     p.ugx[i] = 70.0 + i;
     p.ugy[i] = 80.0 + i;
   }
-  const ParticleStore old = p;
+  const ParticleStore<2> old = p;
   const std::vector<std::size_t> order{3, 0, 5, 1, 4, 2};
   p.permute(order);
   ASSERT_EQ(p.size(), 6u);

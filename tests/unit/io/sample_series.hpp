@@ -40,8 +40,8 @@ inline SampleFields sample_fields(double t, const Grid2& g = sample_grid()) {
 }
 
 /// Five particles stored out of id order, so the writers' sorting is exercised.
-inline ParticleStore sample_particles(double t) {
-  ParticleStore p;
+inline ParticleStore<2> sample_particles(double t) {
+  ParticleStore<2> p;
   const Species s{0.004, 2700.0};
   for (const std::int64_t id : std::array<std::int64_t, 5>{4, 0, 3, 1, 2}) {
     const double d = static_cast<double>(id);
@@ -52,8 +52,8 @@ inline ParticleStore sample_particles(double t) {
 }
 
 /// `n` particles of the same formulas as sample_particles, stored in decreasing id order.
-inline ParticleStore sample_particles(double t, std::int64_t n) {
-  ParticleStore p;
+inline ParticleStore<2> sample_particles(double t, std::int64_t n) {
+  ParticleStore<2> p;
   const Species s{0.004, 2700.0};
   for (std::int64_t id = n - 1; id >= 0; --id) {
     const double d = static_cast<double>(id);

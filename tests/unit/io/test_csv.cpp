@@ -97,7 +97,7 @@ TEST(CsvWriter, MovedWriterKeepsAppending) {
 TEST(ParticlesCsv, WritesSortedByIdAndReadsBackBitExact) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  ParticleStore p = test::sample_particles(0.1 / 3.0);
+  ParticleStore<2> p = test::sample_particles(0.1 / 3.0);
   p.vx[2] = -0.0;
   p.omega[0] = 1e-300;
   write_particles_csv(dir / "p.csv", p);

@@ -90,8 +90,8 @@ TEST(VtkWriter, FieldOfWrongShapeIsRejectedAndNothingWritten) {
 TEST(VtkWriter, UnstructuredGridSortedByIdWithoutTouchingStore) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  const ParticleStore store = test::sample_particles(0.25);
-  const ParticleStore before = store;
+  const ParticleStore<2> store = test::sample_particles(0.25);
+  const ParticleStore<2> before = store;
   write_vtu(dir / "p.vtu", 0.25, store);
   EXPECT_EQ(store.id, before.id);  // the store's order is not changed
 
@@ -139,7 +139,7 @@ TEST(VtkWriter, UnstructuredGridSortedByIdWithoutTouchingStore) {
 TEST(VtkWriter, EmptyParticleStoreGivesEmptyPiece) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  write_vtu(dir / "p.vtu", 1.0, ParticleStore{});
+  write_vtu(dir / "p.vtu", 1.0, ParticleStore<2>{});
   const auto parsed = parse_vtk(test::slurp(dir / "p.vtu"));
   EXPECT_NE(parsed.header.find(R"(<Piece NumberOfPoints="0" NumberOfCells="0">)"), std::string::npos);
   EXPECT_TRUE(parsed.values<std::int64_t>("id").empty());
@@ -193,7 +193,7 @@ TEST(VtkWriter, CompressedInVtkBlocksBitForBit) {
   }
 
   // 20,000 particles: 480,000 bytes of points are 7 full blocks and a last one of 21,248 bytes.
-  const ParticleStore store = test::sample_particles(0.25, test::sample_large_particles);
+  const ParticleStore<2> store = test::sample_particles(0.25, test::sample_large_particles);
   write_vtu(dir / "p.vtu", 0.25, store);
   const std::string text = test::slurp(dir / "p.vtu");
   const auto vtu = parse_vtk(text);
@@ -222,7 +222,7 @@ TEST(VtkWriter, CompressedInVtkBlocksBitForBit) {
 TEST(VtkWriter, CompressedBytesDoNotDependOnThreadCount) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  const ParticleStore store = test::sample_particles(0.5, test::sample_large_particles);
+  const ParticleStore<2> store = test::sample_particles(0.5, test::sample_large_particles);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   write_vtu(dir / "one.vtu", 0.5, store);
@@ -269,7 +269,7 @@ TEST(VtkWriter, WritesSampleSeriesForReadback) {
              VtiArray::vector("gas_velocity", lf.ug, lf.vg)});
   write_vtu(dir / "large.vtu", test::sample_time(1),
             test::sample_particles(test::sample_time(1), test::sample_large_particles));
-  write_vtu(dir / "empty.vtu", 0.0, ParticleStore{});
+  write_vtu(dir / "empty.vtu", 0.0, ParticleStore<2>{});
   const auto entries = read_pvd(dir / "fields.pvd");
   ASSERT_EQ(entries.size(), static_cast<std::size_t>(test::sample_frames));
   EXPECT_EQ(entries.back().file, "fields/000002.vti");

@@ -36,7 +36,7 @@ inline constexpr int kCount = 1000;
 
 struct SettledBed {
   DemConfig dem;
-  ParticleStore particles;
+  ParticleStore<2> particles;
   double bed_height = 0.0;  ///< m
   double eps_interior = 0.0;  ///< mean counted voidage of the cells well inside the bed
   double settle_time = 0.0;
@@ -46,15 +46,15 @@ inline Grid2 bed_grid() { return Grid2::uniform(kWidth, kHeight, kNx, kNy); }
 
 inline DemConfig bed_dem_config() {
   DemConfig c;  // paper particles, k = 800 N/m, restitution 0.9, friction 0.3
-  c.width = kWidth;
-  c.height = kHeight;
+  c.domain.width = kWidth;
+  c.domain.height = kHeight;
   c.dt = 2e-4;
   return c;
 }
 
 /// Mean counted voidage (bilinear, depth = d_p) over the cells at least one cell away from the side walls and
 /// the distributor and two cells below the bed surface, where neither folding nor the surface enters.
-inline double interior_voidage(const ParticleStore& p, double bed_height) {
+inline double interior_voidage(const ParticleStore<2>& p, double bed_height) {
   const Grid2 g = bed_grid();
   Field2 eps;
   compute_voidage(p, g, VoidageMethod::Bilinear, Species{}.diameter, eps);
@@ -81,13 +81,13 @@ inline const SettledBed& settled_bed() {
     pc.x_max = kWidth;
     pc.y_min = 0.0;
     pc.y_max = 0.3;
-    DemSolver dem(b.dem, place_random(b.dem, pc));
+    DemSolver<2> dem(b.dem, place_random<2>(b.dem, pc));
     // 1e-8 J per particle is a mean speed of ~15 mm/s: at rest for the gas, whose velocities here are metres
     // per second.
     const SettleResult r = settle_bed(dem, 1e-8, 2.0);
     b.particles = dem.particles();
     b.settle_time = r.time;
-    b.bed_height = bed_height(b.particles, kWidth, 10);
+    b.bed_height = bed_height<2>(b.particles, kWidth, 10);
     b.eps_interior = interior_voidage(b.particles, b.bed_height);
     std::printf("[ bed      ] %d particles settled in %.2f s (converged %d), bed height %.4f m, interior voidage %.4f\n",
                 kCount, r.time, r.converged ? 1 : 0, b.bed_height, b.eps_interior);
@@ -109,7 +109,7 @@ inline CfdDemSimulation bed_simulation(const GasConfig& gas, double wall_frictio
   CouplingConfig cc;  // bilinear voidage, depth = one diameter, one DEM step per gas step
   DemConfig dem = bed.dem;
   dem.wall[0].friction = wall_friction;
-  return CfdDemSimulation(DemSolver(dem, bed.particles), GasSolver(bed_grid(), gas), cc);
+  return CfdDemSimulation(DemSolver<2>(dem, bed.particles), GasSolver(bed_grid(), gas), cc);
 }
 
 /// A full-width inflow of superficial velocity u for t_start <= t < t_end, expressed as a jet so that a
@@ -127,13 +127,13 @@ inline double distributor_pressure(const GasSolver& gas) {
   return s / p.nx;
 }
 
-inline double total_particle_weight(const ParticleStore& p, double g) {
+inline double total_particle_weight(const ParticleStore<2>& p, double g) {
   double m = 0.0;
   for (double mi : p.mass) m += mi;
   return m * g;
 }
 
-inline double total_particle_volume(const ParticleStore& p) {
+inline double total_particle_volume(const ParticleStore<2>& p) {
   double v = 0.0;
   for (double r : p.radius) v += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   return v;

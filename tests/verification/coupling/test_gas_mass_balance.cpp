@@ -48,7 +48,7 @@ TEST(CoupledGasMassBalance, ClosedEveryStepWithJetSwitching) {
     // cells exchange gas as the voidage changes, and each cell's balance is what the residual measures.
     max_accumulation = std::max(max_accumulation, std::abs(r.accumulation) / r.reference_mass_flow);
   }
-  const ParticleStore& p = sim.dem().particles();
+  const ParticleStore<2>& p = sim.dem().particles();
   for (std::size_t i = 0; i < p.size(); ++i) max_speed = std::max(max_speed, std::hypot(p.vx[i], p.vy[i]));
   std::printf("[ mass     ] %d gas steps (%d with the jet): max |balance| / reference %.2e (tolerance %.0e), max "
               "residual %.2e, max |total accumulation| / reference %.2e, largest voidage change in a step %.2e, fastest "

@@ -56,7 +56,7 @@ TEST(MinimumFluidisation, PressureDropLevelsOffAtBedWeight) {
   CfdDemSimulation sim = bed_simulation(gas, 0.0);
   sim.initialize();
   const double area = kWidth * sp.diameter;
-  const ParticleStore& p = sim.dem().particles();
+  const ParticleStore<2>& p = sim.dem().particles();
   const double weight = total_particle_weight(p, g);
   const double gas_weight = gas.rho_g * g * (area * kHeight - total_particle_volume(p));
   // The particles feel drag plus -V_p grad P, so the gas holds up their full weight (buoyancy is part of the

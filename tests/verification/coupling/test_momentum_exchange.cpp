@@ -27,7 +27,7 @@ TEST(MomentumExchange, FluidForceMatchesPressureDropAndGasReaction) {
   // 0.05 s: the packed bed settles onto the gas force within a few steps (it moves by less than its overlaps).
   while (sim.time() < 0.05) sim.advance();
 
-  const ParticleStore& p = sim.dem().particles();
+  const ParticleStore<2>& p = sim.dem().particles();
   const double area = kWidth * sp.diameter;
   const double v_s = total_particle_volume(p);
   // Gas momentum over the whole domain: the pressure drop carries the gas's own weight and the force the gas

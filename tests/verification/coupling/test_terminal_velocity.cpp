@@ -27,14 +27,14 @@ constexpr double kFallTime = 0.5;  // about 9 relaxation times
 DemConfig single_particle_dem(double dt) {
   DemConfig c;
   c.species = {Species{kDiameter, kDensity}};
-  c.width = kWidth;
-  c.height = kHeight;
+  c.domain.width = kWidth;
+  c.domain.height = kHeight;
   c.dt = dt;
   return c;
 }
 
-ParticleStore one_particle() {
-  ParticleStore p;
+ParticleStore<2> one_particle() {
+  ParticleStore<2> p;
   p.add(0, 0, Species{kDiameter, kDensity}, {0.5 * kWidth, kHeight - 0.01});
   return p;
 }
@@ -64,8 +64,8 @@ class TerminalVelocity : public ::testing::Test {
 TEST_F(TerminalVelocity, OneWayDragLawWithGasAtRest) {
   const GasConfig gas;  // air of Table 1
   const double dt = 1e-4;
-  DemSolver dem(single_particle_dem(dt), one_particle());
-  ParticleStore& p = dem.particles();
+  DemSolver<2> dem(single_particle_dem(dt), one_particle());
+  ParticleStore<2>& p = dem.particles();
   const double r = p.radius[0];
   const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
   // Gas at rest: the pressure gradient is hydrostatic, so -V_p grad P is the buoyancy V_p rho_g g.
@@ -130,7 +130,7 @@ TEST_F(TerminalVelocity, TwoWayCoupledInStillGas) {
   // Start from the hydrostatic pressure of gas at rest, so SIMPLE need not build it in the first step.
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) solver.fields().p(i, j) = gas.rho_g * gas.gravity.y * (grid.yc(j) - kHeight);
-  CfdDemSimulation sim(DemSolver(single_particle_dem(dt), one_particle()), std::move(solver), cc);
+  CfdDemSimulation sim(DemSolver<2>(single_particle_dem(dt), one_particle()), std::move(solver), cc);
   sim.initialize();
   const auto steps = static_cast<int>(std::lround(kFallTime / sim.macro_dt()));
   double max_mass = 0.0;
@@ -138,7 +138,7 @@ TEST_F(TerminalVelocity, TwoWayCoupledInStillGas) {
     sim.advance();
     max_mass = std::max(max_mass, sim.last_gas_report().mass_residual);
   }
-  const ParticleStore& p = sim.dem().particles();
+  const ParticleStore<2>& p = sim.dem().particles();
   const double exact = exact_terminal_velocity(gas);
   const double v_gas = sim.gas().velocity_at(p.pos(0)).y;
   const double v_far = gas.boundary.inlet_velocity;  // interstitial = superficial at eps = 1

@@ -94,13 +94,26 @@ inline DemConfig one_species_config(double d, double rho, double k, double e, do
   c.tangential_stiffness_ratio = 1.0;
   c.pair = {InteractionParams{e, mu}};
   c.wall = {InteractionParams{e, mu}};
-  c.width = width;
-  c.height = height;
+  c.domain.width = width;
+  c.domain.height = height;
   c.walls = walls;
-  c.gravity = g;
+  c.domain.gravity = {g.x, g.y, 0.0};
   c.dt = dt;
   return c;
 }
+
+/// The 3D box [0, box.x] x [0, box.y] x [0, box.z] with one species, as one_species_config.
+inline DemConfig one_species_config_3d(double d, double rho, double k, double e, double mu, double dt, Vec3 g,
+                                       Vec3 box, WallConfig walls) {
+  DemConfig c = one_species_config(d, rho, k, e, mu, dt, {g.x, g.y}, box.x, box.y, walls);
+  c.domain.dimension = 3;
+  c.domain.depth = box.z;
+  c.domain.gravity = g;
+  return c;
+}
+
+/// All six walls of a 3D box.
+inline WallConfig closed_box() { return WallConfig{true, true, true, true, false, true, true}; }
 
 /// Runs the enclosed code on `n` OpenMP threads. One-particle runs use one: on a shared, loaded machine each
 /// parallel region would otherwise wait for a second thread every step.

@@ -49,10 +49,10 @@ Dem01Errors run_dem01(double k, double e) {
     return r + v_r * tau - 0.5 * kG * tau * tau;
   };
 
-  ParticleStore p;
+  ParticleStore<2> p;
   p.add(0, 0, sp, {0.5, kY0});
-  DemSolver s(c, std::move(p));
-  const ParticleStore& q = s.particles();
+  DemSolver<2> s(c, std::move(p));
+  const ParticleStore<2>& q = s.particles();
   Dem01Errors out{};
   out.t_end_exact = t_c;
   out.v_r_exact = v_r;

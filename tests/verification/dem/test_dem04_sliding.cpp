@@ -32,10 +32,10 @@ TEST(DemDem04, SlidingSphereRollsAfterTwoSeventhsOfItsSpeed) {
     DemConfig c = test::one_species_config(kD, kRho, kK, e, mu, dt, {0.0, -kG}, 0.05, 0.05,
                                            WallConfig{false, false, true, false});
     c.skin = 1e-4;
-    ParticleStore p;
+    ParticleStore<2> p;
     p.add(0, 0, sp, {0.01, r - m * kG / kK}, {kV0, 0.0});  // at its static overlap: no bounce
-    DemSolver s(c, std::move(p));
-    const ParticleStore& q = s.particles();
+    DemSolver<2> s(c, std::move(p));
+    const ParticleStore<2>& q = s.particles();
 
     const double t_slide = 2.0 * kV0 / (7.0 * mu * kG);
     const double v_roll = 5.0 / 7.0 * kV0;

@@ -13,7 +13,7 @@ namespace fluidbed {
 namespace {
 
 /// Spring energy of every overlapping pair and wall contact, recomputed from the positions (O(N^2), test only).
-double spring_energy(const ParticleStore& p, double k, double width, double height) {
+double spring_energy(const ParticleStore<2>& p, double k, double width, double height) {
   double e = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::size_t j = i + 1; j < p.size(); ++j) {
@@ -50,14 +50,14 @@ TEST(DemEnergyBox, ElasticFrictionlessGasConservesEnergyOverTenThousandSteps) {
   pc.y_max = H;
   pc.min_gap = 0.001;  // 6 mm lattice sites, neighbours at least 1 mm apart
   pc.seed = 7;
-  ParticleStore p = place_random(c, pc);
+  ParticleStore<2> p = place_random<2>(c, pc);
   std::mt19937_64 rng(11);
   auto uniform = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   for (std::size_t i = 0; i < p.size(); ++i) {
     p.vx[i] = 2.0 * uniform() - 1.0;
     p.vy[i] = 2.0 * uniform() - 1.0;
   }
-  DemSolver s(c, std::move(p));
+  DemSolver<2> s(c, std::move(p));
   auto energy = [&]() { return s.kinetic_energy() + spring_energy(s.particles(), k, W, H); };
   const double e0 = energy();
   test::Table t("Elastic frictionless gas, 1000 particles in a closed box, dt = t_contact(pair) / 50",

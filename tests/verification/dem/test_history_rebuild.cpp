@@ -17,7 +17,7 @@ constexpr double kD = 0.004, kRho = 2700.0, kK = 800.0, kMu = 0.5, kG = 9.81, kV
 /// Sphere B rests on sphere A, which rests on the floor; both roll to the right at kV, and B's spin is off
 /// by s0 / r from rolling on A, so the A-B tangential spring rings while sticking (its force stays below
 /// mu m g) for the whole run.
-DemSolver stacked_pair(double skin) {
+DemSolver<2> stacked_pair(double skin) {
   DemConfig c = test::one_species_config(kD, kRho, kK, 0.9, kMu, 1e-5, {0.0, -kG}, 0.2, 0.1,
                                          WallConfig{false, false, true, false});
   c.skin = skin;
@@ -25,19 +25,19 @@ DemSolver stacked_pair(double skin) {
   const double r = sp.radius(), m = sp.mass(), s0 = 1e-3;
   const double ya = r - 2.0 * m * kG / kK;  // static overlaps: A carries both weights
   const double yb = ya + 2.0 * r - m * kG / kK;
-  ParticleStore p;
+  ParticleStore<2> p;
   p.add(0, 0, sp, {0.05, ya}, {kV, 0.0}, -kV / r);
   p.add(1, 0, sp, {0.05, yb}, {kV, 0.0}, kV / r - s0 / r);
-  return DemSolver(c, std::move(p));
+  return DemSolver<2>(c, std::move(p));
 }
 
-std::size_t slot_of(const ParticleStore& p, std::int64_t id) {
+std::size_t slot_of(const ParticleStore<2>& p, std::int64_t id) {
   return static_cast<std::size_t>(std::find(p.id.begin(), p.id.end(), id) - p.id.begin());
 }
 
 /// Largest difference between the two runs over positions, velocities, spins, forces and torques, relative
 /// to the size of each quantity.
-double max_rel_diff(const ParticleStore& a, const ParticleStore& b) {
+double max_rel_diff(const ParticleStore<2>& a, const ParticleStore<2>& b) {
   double worst = 0.0;
   for (std::int64_t id = 0; id < static_cast<std::int64_t>(a.size()); ++id) {
     const std::size_t i = slot_of(a, id), j = slot_of(b, id);
@@ -54,8 +54,8 @@ double max_rel_diff(const ParticleStore& a, const ParticleStore& b) {
 
 TEST(DemHistory, TangentialSpringSurvivesNeighbourListRebuilds) {
   const test::ScopedThreads one_thread(1);
-  DemSolver small = stacked_pair(1e-5);  // rebuilt whenever a particle moved 5 um, i.e. every step
-  DemSolver large = stacked_pair(0.1);   // never rebuilt after the first step over the 15 mm travelled
+  DemSolver<2> small = stacked_pair(1e-5);  // rebuilt whenever a particle moved 5 um, i.e. every step
+  DemSolver<2> large = stacked_pair(0.1);   // never rebuilt after the first step over the 15 mm travelled
   const int steps = 3000;
   double worst = 0.0;
   int identical = 0, sticking = 0;
@@ -67,7 +67,7 @@ TEST(DemHistory, TangentialSpringSurvivesNeighbourListRebuilds) {
     if (diff == 0.0) ++identical;
 
     // Mirror entries: both partners hold the same spring with opposite signs, bit for bit.
-    const NeighborList& nl = small.neighbors();
+    const NeighborList<2>& nl = small.neighbors();
     ASSERT_EQ(nl.entries(), 2u);
     EXPECT_EQ(nl.history[0].x, -nl.history[1].x) << "step " << n;
     EXPECT_EQ(nl.history[0].y, -nl.history[1].y) << "step " << n;
@@ -87,10 +87,10 @@ TEST(DemHistory, TangentialSpringSurvivesNeighbourListRebuilds) {
   EXPECT_LE(worst, 1e-12);
 
   // Sensitivity: the same state with the springs dropped gives a clearly different tangential force.
-  DemSolver::State st = small.state();
-  DemSolver::State dropped = st;
+  DemSolver<2>::State st = small.state();
+  DemSolver<2>::State dropped = st;
   for (Vec2& xi : dropped.neighbors.history) xi = Vec2{};
-  DemSolver keep(small.config(), ParticleStore{}), lose(small.config(), ParticleStore{});
+  DemSolver<2> keep(small.config(), ParticleStore<2>{}), lose(small.config(), ParticleStore<2>{});
   keep.restore(std::move(st));
   lose.restore(std::move(dropped));
   keep.compute_forces();
@@ -107,7 +107,7 @@ TEST(DemHistory, TangentialSpringSurvivesNeighbourListRebuilds) {
 /// (the grid starts at the lower-left particle; enough particles that the grid is not capped). Sphere B sits
 /// up and to the left of A, one cell column to its left, so their order in the row-major cell sort flips
 /// each time a row boundary passes between them: their storage slots swap while the spring is loaded.
-DemSolver flying_pair(double skin) {
+DemSolver<2> flying_pair(double skin) {
   DemConfig c = test::one_species_config(kD, kRho, kK, 0.9, 0.3, 1e-6, {0.0, 0.0}, 1.0, 1.0,
                                          WallConfig{false, false, false, false});
   c.skin = skin;
@@ -115,17 +115,17 @@ DemSolver flying_pair(double skin) {
   const double r = sp.radius(), approach = 0.5, slip = 0.05;
   const Vec2 u{-std::sqrt(0.5), std::sqrt(0.5)}, t{-u.y, u.x}, common{0.0, 20.0};
   const Vec2 a{0.5, 0.3};
-  ParticleStore p;
+  ParticleStore<2> p;
   p.add(0, 0, sp, a, common + (0.5 * approach) * u + (0.5 * slip) * t);
   p.add(1, 0, sp, a + (2.0 * r + 3.0 * approach * c.dt) * u, common - (0.5 * approach) * u - (0.5 * slip) * t);
   for (int k = 0; k < 9; ++k) p.add(2 + k, 0, sp, {0.4815, 0.29 + 0.005 * k});
-  return DemSolver(c, std::move(p));
+  return DemSolver<2>(c, std::move(p));
 }
 
 TEST(DemHistory, TangentialSpringSurvivesReorderingOfTheStore) {
   const test::ScopedThreads one_thread(1);
-  DemSolver small = flying_pair(1e-6);
-  DemSolver large = flying_pair(0.1);
+  DemSolver<2> small = flying_pair(1e-6);
+  DemSolver<2> large = flying_pair(0.1);
   double worst = 0.0;
   int loaded = 0, swaps_loaded = 0;
   std::size_t slot_a = slot_of(small.particles(), 0);
@@ -133,7 +133,7 @@ TEST(DemHistory, TangentialSpringSurvivesReorderingOfTheStore) {
     small.step();
     large.step();
     worst = std::max(worst, max_rel_diff(small.particles(), large.particles()));
-    const NeighborList& nl = small.neighbors();
+    const NeighborList<2>& nl = small.neighbors();
     bool spring = false;
     for (std::size_t k = 0; k < nl.entries(); ++k) spring = spring || norm2(nl.history[k]) > 0.0;
     if (spring) ++loaded;

@@ -16,17 +16,17 @@ namespace {
 
 struct Cloud {
   const char* name;
-  ParticleStore p;
+  ParticleStore<2> p;
   double cell_size;
   double skin;
 };
 
 /// n particles at uniform random positions in [x0, x1] x [y0, y1] (overlaps allowed), diameters drawn from `d`.
-ParticleStore random_cloud(std::size_t n, double x0, double x1, double y0, double y1, const std::vector<double>& d,
+ParticleStore<2> random_cloud(std::size_t n, double x0, double x1, double y0, double y1, const std::vector<double>& d,
                            std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   auto uniform = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-  ParticleStore p;
+  ParticleStore<2> p;
   for (std::size_t i = 0; i < n; ++i) {
     const auto s = static_cast<std::size_t>(uniform() * static_cast<double>(d.size())) % d.size();
     p.add(static_cast<std::int64_t>(i) * 3 + 5, static_cast<std::int32_t>(s), Species{d[s], 2700.0},
@@ -45,8 +45,8 @@ std::vector<Cloud> clouds() {
   {
     // Outside the domain and far apart: negative coordinates, one column and one row, and strays so far away
     // that the cell grid hits its size cap and its edge cells are far larger than the rest.
-    ParticleStore p = random_cloud(1500, -0.05, 0.05, -0.05, 0.05, poly, 5);
-    const ParticleStore strays = random_cloud(40, 500.0, 500.01, -300.0, -299.99, poly, 6);
+    ParticleStore<2> p = random_cloud(1500, -0.05, 0.05, -0.05, 0.05, poly, 5);
+    const ParticleStore<2> strays = random_cloud(40, 500.0, 500.01, -300.0, -299.99, poly, 6);
     for (std::size_t i = 0; i < strays.size(); ++i) {
       p.add(100000 + static_cast<std::int64_t>(i), strays.species[i], Species{2.0 * strays.radius[i], 2700.0},
             strays.pos(i));
@@ -55,7 +55,7 @@ std::vector<Cloud> clouds() {
   }
   {
     // Particles exactly on cell edges, and pairs a hair inside and outside the reach.
-    ParticleStore p;
+    ParticleStore<2> p;
     const double cs = 0.0045, d = 0.004, skin = 5e-4;
     std::int64_t id = 0;
     for (int j = 0; j < 20; ++j) {
@@ -71,7 +71,7 @@ std::vector<Cloud> clouds() {
   }
   {
     // Only one particle, and one column.
-    ParticleStore p;
+    ParticleStore<2> p;
     p.add(0, 0, Species{0.004, 2700.0}, {0.3, 0.3});
     c.push_back({"single particle", std::move(p), 0.0044, 4e-4});
     c.push_back({"one column", random_cloud(400, 0.2, 0.2, 0.0, 0.5, mono, 7), 0.0044, 4e-4});
@@ -83,9 +83,9 @@ TEST(DemNeighborSearch, VerletListEqualsBruteForceAndIsSymmetric) {
   test::Table t("Neighbour list vs brute force (pairs with centre distance < r_i + r_j + skin)",
                 {"particles", "pairs brute", "pairs list", "missing", "extra", "asymmetric"}, 28);
   for (Cloud& c : clouds()) {
-    ParticleStore& p = c.p;
+    ParticleStore<2>& p = c.p;
     p.permute(sort_by_cell(p, c.cell_size));
-    NeighborList nl;
+    NeighborList<2> nl;
     build_neighbor_list(p, c.cell_size, c.skin, nl);
     ASSERT_EQ(nl.offset.size(), p.size() + 1) << c.name;
     ASSERT_EQ(nl.history.size(), nl.partner.size()) << c.name;

@@ -14,7 +14,12 @@
 namespace fluidbed {
 namespace {
 
-constexpr double kD = 0.004, kRho = 2700.0, kK = 800.0, kE = 0.9, kV = 1.0;
+// Rigid-body impulse theory puts the contact point at the full radius; the model's lever arm is the distance
+// to the contact point, r - delta. The stiffness is chosen so that delta stays far below r: at k = 8e7 N/m the
+// largest overlap, v_n sqrt(m / k) <= 1.06e-6 m, is 5.3e-4 r, so the theory's lever arm is right to 0.05%.
+// Every other result of the linear law is independent of k at a fixed number of steps per contact (times
+// scale with sqrt(m / k), overlaps with sqrt(m / k), impulses not at all), so the tests keep their meaning.
+constexpr double kD = 0.004, kRho = 2700.0, kK = 8e7, kE = 0.9, kV = 1.0;
 // At 200 steps per contact the normal impulse of Eq. 10 is within about 0.1% of the closed form (the
 // restitution error falls with 1/N, test_restitution measures 0.1-0.5% at N = 50); friction proportional
 // to |f_n| carries the same relative error into the tangential impulse. 1% leaves a factor of two or more,
@@ -31,10 +36,10 @@ Outcome impact(double mu, double theta, double dt) {
                                                WallConfig{false, false, true, false});
   const double r = 0.5 * kD;
   const double vn = kV * std::cos(theta), vt = kV * std::sin(theta);
-  ParticleStore p;
+  ParticleStore<2> p;
   p.add(0, 0, c.species[0], {0.1, r + 2.5 * vn * dt}, {vt, -vn});
-  DemSolver s(c, std::move(p));
-  const ParticleStore& q = s.particles();
+  DemSolver<2> s(c, std::move(p));
+  const ParticleStore<2>& q = s.particles();
   bool touched = false;
   for (int n = 0; n < 1000000; ++n) {
     const bool in_contact = q.y[0] < r;
@@ -73,8 +78,11 @@ TEST(DemObliqueImpact, SlidingImpactsMatchImpulseTheoryAndStickingOnesStayWithin
       const double dvt = o.vt - vt;
       t.row({static_cast<double>(deg), sliding ? 1.0 : 0.0, dvt_theory, dvt, test::rel_err(dvt, dvt_theory),
              wr_theory, o.omega_r, test::rel_err(o.omega_r, wr_theory), mu * J / m});
-      // Exact for any friction history: linear and angular impulse come from the same tangential force.
-      EXPECT_NEAR(o.omega_r, 2.5 * dvt, 1e-12 * vt) << deg;
+      // Linear and angular impulse come from the same tangential force, the angular one with the lever arm
+      // r - delta(t): omega r - 2.5 dvt = -(2.5 / (m r)) int delta f_t dt, at most 2.5 (delta_max / r) mu J / m
+      // since |f_t| <= mu |f_n| (Eq. 6).
+      const double delta_max = vn * std::sqrt(m / kK);
+      EXPECT_LE(std::abs(o.omega_r - 2.5 * dvt), 2.5 * delta_max / (0.5 * kD) * mu * J / m + 1e-12 * vt) << deg;
       // Coulomb: the tangential impulse never exceeds mu times the integral of |normal force|.
       EXPECT_LE(std::abs(dvt), mu * J / m * (1.0 + kTol)) << deg;
       // No energy from the tangential spring: the contact-point slip cannot rebound faster than it came in.
@@ -132,10 +140,10 @@ TEST(DemObliqueImpact, StickingContactFollowsTheTangentialOscillatorUntilItSlips
 
     const DemConfig c = test::one_species_config(kD, kRho, kK, kE, mu, dt, {0.0, 0.0}, 1.0, 0.1,
                                                  WallConfig{false, false, true, false});
-    ParticleStore p;
+    ParticleStore<2> p;
     p.add(0, 0, c.species[0], {0.1, r + 2.5 * vn * dt}, {vt, -vn});  // first touch at t = 2.5 dt
-    DemSolver s(c, std::move(p));
-    const ParticleStore& q = s.particles();
+    DemSolver<2> s(c, std::move(p));
+    const ParticleStore<2>& q = s.particles();
     double worst = 0.0, last_t = 0.0, last_v = 0.0, last_wr = 0.0;
     for (int n = 0; n < 4 * steps_per_contact; ++n) {
       s.step();

@@ -27,9 +27,9 @@ ImpactResult wall_impact(double e, double dt, double v, double phase) {
   const DemConfig c = test::one_species_config(kPaperD, kPaperRho, kPaperK, e, 0.3, dt, {0.0, 0.0}, 0.1, 0.1,
                                                WallConfig{false, false, true, false});
   const double r = 0.5 * kPaperD;
-  ParticleStore p;
+  ParticleStore<2> p;
   p.add(0, 0, c.species[0], {0.05, r + (2.0 + phase) * v * dt}, {0.0, -v});
-  DemSolver s(c, std::move(p));
+  DemSolver<2> s(c, std::move(p));
   ImpactResult res;
   bool touched = false;
   for (int n = 0; n < 100000; ++n) {
@@ -55,11 +55,11 @@ PairResult pair_impact(double e, double dt, double v1, double v2, double phase) 
                                                WallConfig{false, false, false, false});
   const double r = 0.5 * kPaperD;
   const double gap = (2.0 + phase) * (v1 - v2) * dt;
-  ParticleStore p;
+  ParticleStore<2> p;
   p.add(0, 0, c.species[0], {0.5 - r - 0.5 * gap, 0.5}, {v1, 0.3});
   p.add(1, 0, c.species[0], {0.5 + r + 0.5 * gap, 0.5}, {v2, 0.3});
-  DemSolver s(c, std::move(p));
-  const ParticleStore& q = s.particles();
+  DemSolver<2> s(c, std::move(p));
+  const ParticleStore<2>& q = s.particles();
   auto momentum = [&]() { return Vec2{q.mass[0] * q.vx[0] + q.mass[1] * q.vx[1], q.mass[0] * q.vy[0] + q.mass[1] * q.vy[1]}; };
   const Vec2 p0 = momentum();
   const double scale = q.mass[0] * (std::abs(v1) + std::abs(v2) + 0.6);
