@@ -9,11 +9,11 @@
 
 namespace fluidbed {
 
-CfdDemSimulation::CfdDemSimulation(DemSolver dem, std::optional<GasSolver> gas, CouplingConfig coupling)
+CfdDemSimulation::CfdDemSimulation(DemSolver dem, std::optional<GasSolver<2>> gas, CouplingConfig coupling)
     : dem_(std::move(dem)), gas_(std::move(gas)), coupling_(coupling) {
   depth_ = coupling_.depth > 0.0 ? coupling_.depth : dem_.config().species[0].diameter;
   if (gas_) {
-    const Grid2& g = gas_->grid();
+    const Grid2& g = gas_->grid2();
     for (Field2* f : {&eps_, &eps_gas_old_, &eps_gas_, &beta_, &us_, &vs_, &us_gas_, &vs_gas_, &ug_, &vg_}) *f = Field2(g.nx, g.ny);
   }
 }
@@ -23,7 +23,7 @@ void CfdDemSimulation::clip_voidage() {
 }
 
 void CfdDemSimulation::deposit() {
-  const Grid2& g = gas_->grid();
+  const Grid2& g = gas_->grid2();
   // One set of kernel weights per gas step serves the deposition here and the interpolation to the particles in
   // update_particle_forces (the particles do not move in between).
   particle_cell_weights(dem_.particles(), g, coupling_.voidage, weights_);
@@ -55,7 +55,7 @@ void CfdDemSimulation::deposit() {
 }
 
 void CfdDemSimulation::update_particle_forces() {
-  const Grid2& g = gas_->grid();
+  const Grid2& g = gas_->grid2();
   const GasConfig& gc = gas_->config();
   ParticleStore& p = dem_.particles();
   const auto n = static_cast<std::ptrdiff_t>(p.size());
@@ -141,7 +141,7 @@ Vec2 CfdDemSimulation::total_fluid_force() const {
 
 Vec2 CfdDemSimulation::total_gas_reaction() const {
   if (!gas_) return {};
-  const Grid2& g = gas_->grid();
+  const Grid2& g = gas_->grid2();
   const double vcell = g.dx * g.dy * depth_;
   Vec2 f{};
   for (std::size_t c = 0; c < g.cells(); ++c) {
@@ -155,7 +155,7 @@ void CfdDemSimulation::restore(Field2 eps, std::uint64_t gas_steps) {
   gas_steps_ = gas_steps;
   if (!gas_) return;
   eps_ = std::move(eps);
-  const Grid2& g = gas_->grid();
+  const Grid2& g = gas_->grid2();
   clip_voidage();
   particle_cell_weights(dem_.particles(), g, coupling_.voidage, weights_);  // of the restored particles
   cell_solids_velocity(dem_.particles(), weights_, g, us_, vs_);

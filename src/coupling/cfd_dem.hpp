@@ -15,7 +15,7 @@ namespace fluidbed {
 class CfdDemSimulation {
  public:
   /// With no gas the simulation is the DEM alone, in vacuum.
-  CfdDemSimulation(DemSolver dem, std::optional<GasSolver> gas, CouplingConfig coupling);
+  CfdDemSimulation(DemSolver dem, std::optional<GasSolver<2>> gas, CouplingConfig coupling);
 
   /// Deposit the initial voidage and solve the gas once for the bed at rest, so that the first particle step
   /// already feels the gas (time does not advance). Call once for a fresh run, not after a restart.
@@ -30,8 +30,8 @@ class CfdDemSimulation {
   DemSolver& dem() { return dem_; }
   const DemSolver& dem() const { return dem_; }
   bool has_gas() const { return gas_.has_value(); }
-  GasSolver& gas() { return *gas_; }
-  const GasSolver& gas() const { return *gas_; }
+  GasSolver<2>& gas() { return *gas_; }
+  const GasSolver<2>& gas() const { return *gas_; }
   const CouplingConfig& coupling() const { return coupling_; }
   const GasStepReport& last_gas_report() const { return report_; }
   std::uint64_t gas_steps() const { return gas_steps_; }
@@ -59,7 +59,7 @@ class CfdDemSimulation {
   void update_particle_forces();
 
   DemSolver dem_;
-  std::optional<GasSolver> gas_;
+  std::optional<GasSolver<2>> gas_;
   CouplingConfig coupling_;
   double depth_ = 0.0;
   // us_, vs_: volume-weighted mean particle velocity (observers); us_gas_, vs_gas_: drag-weighted (the gas).

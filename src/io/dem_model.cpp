@@ -235,7 +235,7 @@ class DemModel final : public ModelRun {
   DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
       : config_(c),
         sim_(DemSolver(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore{}),
-             c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid, c.gas)) : std::nullopt, c.coupling),
+             c.gas_enabled ? std::optional<GasSolver<2>>(GasSolver<2>(c.grid, c.gas)) : std::nullopt, c.coupling),
         log_(&log) {
     if (fresh) sim_.initialize();
   }
@@ -319,9 +319,10 @@ class DemModel final : public ModelRun {
   FieldView fields() override {
     if (!sim_.has_gas()) return {};
     FieldView f;
-    f.grid = &sim_.gas().grid();
+    f.grid = &sim_.gas().grid2();
     f.eps = &sim_.voidage();
-    f.p = &sim_.gas().fields().p;
+    copy_interior(sim_.gas().fields().p, p_view_);
+    f.p = &p_view_;
     f.ug = &sim_.gas_u();
     f.vg = &sim_.gas_v();
     f.us = &sim_.solids_u();
@@ -334,11 +335,11 @@ class DemModel final : public ModelRun {
     save_dem(f, sim_.dem().view());
     f.set_attribute("dem", "gas_steps", static_cast<std::int64_t>(sim_.gas_steps()));
     if (sim_.has_gas()) {
-      const StaggeredFields& g = sim_.gas().fields();
+      const GasFields<2>& g = sim_.gas().fields();
       f.create_group("gas");
-      f.write("gas/p", g.p.v);
-      f.write("gas/u", g.u.v);
-      f.write("gas/v", g.v.v);
+      f.write("gas/p", g.p.interior());
+      f.write("gas/u", g.u[0].interior());
+      f.write("gas/v", g.u[1].interior());
       f.write("gas/eps", sim_.voidage().v);
     }
   }
@@ -349,20 +350,20 @@ class DemModel final : public ModelRun {
     lost_seen_ = sim_.dem().removed_count();
     Field2 eps;
     if (sim_.has_gas()) {
-      StaggeredFields& g = sim_.gas().fields();
-      auto read = [&](const char* name, Field2& dst) {
+      GasFields<2>& g = sim_.gas().fields();
+      auto read = [&](const char* name, std::size_t size) {
         std::vector<double> v = f.read_double(std::string("gas/") + name);
-        if (v.size() != dst.v.size()) {
+        if (v.size() != size) {
           throw_input_error(fmt::format("{}: gas/{} has {} values, the case's grid needs {}", f.path().string(), name,
-                                        v.size(), dst.v.size()));
+                                        v.size(), size));
         }
-        dst.v = std::move(v);
+        return v;
       };
-      read("p", g.p);
-      read("u", g.u);
-      read("v", g.v);
+      g.p.set_interior(read("p", g.p.box().count()));
+      g.u[0].set_interior(read("u", g.u[0].box().count()));
+      g.u[1].set_interior(read("v", g.u[1].box().count()));
       eps = Field2(config_.grid.nx, config_.grid.ny);
-      read("eps", eps);
+      eps.v = read("eps", eps.v.size());
     }
     sim_.restore(std::move(eps), static_cast<std::uint64_t>(f.attribute_int64("dem", "gas_steps")));
   }
@@ -496,6 +497,7 @@ class DemModel final : public ModelRun {
   CaseConfig config_;
   CfdDemSimulation sim_;
   spdlog::logger* log_;
+  Field2 p_view_;  ///< the gas pressure on the Grid2 array the writers and observers take
   int loss_level_ = 0;
   std::uint64_t lost_seen_ = 0;
 };
