@@ -3,6 +3,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <fmt/format.h>
 #include <string>
 #include <utility>
@@ -96,44 +97,74 @@ struct Momentum {
   CheckedSparseSolver solver;  // BiCGSTAB, a sparse LU when it stops short of the tolerance
 };
 
+/// The multilinear blend of the 2^Dim corner values v[bits] (bit a set: the high node along axis a), the last
+/// axis outermost: (1 - f_y) ((1 - f_x) v00 + f_x v10) + f_y ((1 - f_x) v01 + f_x v11) in 2D.
+template <int Dim>
+inline double blend(const std::array<double, 1 << Dim>& v, const Vec<Dim>& fr) {
+  const double xy = (1.0 - fr[1]) * ((1.0 - fr[0]) * v[0] + fr[0] * v[1]) + fr[1] * ((1.0 - fr[0]) * v[2] + fr[0] * v[3]);
+  if constexpr (Dim == 2) {
+    return xy;
+  } else {
+    const double xy_high =
+        (1.0 - fr[1]) * ((1.0 - fr[0]) * v[4] + fr[0] * v[5]) + fr[1] * ((1.0 - fr[0]) * v[6] + fr[0] * v[7]);
+    return (1.0 - fr[2]) * xy + fr[2] * xy_high;
+  }
+}
+
+/// The 2^Dim nodes around a point for multilinear interpolation on nodes first + i h (i over the box), clamped
+/// to the node box: the low node, the step to the high node per axis (0 on a one-node axis) and the fractions.
+template <int Dim>
+struct Corners {
+  Index<Dim> lo{};
+  Index<Dim> step{};
+  Vec<Dim> fr{};
+};
+
+template <int Dim>
+inline Corners<Dim> corners(const IndexBox<Dim>& b, const Vec<Dim>& s_raw) {
+  Corners<Dim> q;
+  for (int a = 0; a < Dim; ++a) {
+    const int n = b.extent(a);
+    const double s = std::clamp(s_raw[a], 0.0, static_cast<double>(n - 1));
+    const int i = std::min(static_cast<int>(s), std::max(n - 2, 0));
+    q.fr[a] = n > 1 ? s - i : 0.0;
+    q.lo[a] = b.lo[a] + i;
+    q.step[a] = std::min(i + 1, n - 1) - i;
+  }
+  return q;
+}
+
+/// Linear storage offset of corner `bits` from the low corner.
+template <int Dim>
+inline std::ptrdiff_t corner_offset(const Field<Dim>& f, const Corners<Dim>& q, int bits) {
+  std::ptrdiff_t o = 0;
+  for (int a = 0; a < Dim; ++a)
+    if (bits & (1 << a)) o += static_cast<std::ptrdiff_t>(q.step[a]) * static_cast<std::ptrdiff_t>(f.stride(a));
+  return o;
+}
+
 /// Multilinear interpolation of f between its nodes first + i h (i over f's box), clamped to the node box.
 template <int Dim>
 double multilinear(const Field<Dim>& f, const Vec<Dim>& first, const Vec<Dim>& h, const Vec<Dim>& x) {
-  const IndexBox<Dim>& b = f.box();
-  Index<Dim> lo{};
-  Index<Dim> hi{};
-  Vec<Dim> fr{};
-  for (int a = 0; a < Dim; ++a) {
-    const int n = b.extent(a);
-    const double s = std::clamp((x[a] - first[a]) / h[a], 0.0, static_cast<double>(n - 1));
-    const int i = std::min(static_cast<int>(s), std::max(n - 2, 0));
-    fr[a] = n > 1 ? s - i : 0.0;
-    lo[a] = b.lo[a] + i;
-    hi[a] = b.lo[a] + std::min(i + 1, n - 1);
-  }
-  // The last axis outermost: (1 - f_y) ((1 - f_x) f00 + f_x f10) + f_y (...) in 2D.
-  const auto blend = [&](auto&& self, int axis, Index<Dim> c) -> double {
-    if (axis < 0) return f[c];
-    c[axis] = lo[axis];
-    const double v_lo = self(self, axis - 1, c);
-    c[axis] = hi[axis];
-    const double v_hi = self(self, axis - 1, c);
-    return (1.0 - fr[axis]) * v_lo + fr[axis] * v_hi;
-  };
-  return blend(blend, Dim - 1, lo);
+  Vec<Dim> s{};
+  for (int a = 0; a < Dim; ++a) s[a] = (x[a] - first[a]) / h[a];
+  const Corners<Dim> q = corners(f.box(), s);
+  const double* base = f.data().data() + f.index(q.lo);
+  std::array<double, 1 << Dim> v{};
+  for (int bits = 0; bits < (1 << Dim); ++bits) v[static_cast<std::size_t>(bits)] = base[corner_offset(f, q, bits)];
+  return blend<Dim>(v, q.fr);
 }
 
-/// Component b of the cell-centred pressure gradient at cell c: central inside, one-sided in the outer layers.
+/// Component b of the cell-centred pressure gradient at cell c (storage offset k in p): central inside,
+/// one-sided in the outer layers.
 template <int Dim>
-double cell_gradient(const Grid<Dim>& g, const Field<Dim>& p, Index<Dim> c, int b) {
+inline double cell_gradient(const Grid<Dim>& g, const Field<Dim>& p, const Index<Dim>& c, std::size_t k, int b) {
   const int lo = std::max(c[b] - 1, g.domain.lo[b]);
   const int hi = std::min(c[b] + 1, g.domain.hi[b] - 1);
   if (!(hi > lo)) return 0.0;
-  Index<Dim> cl = c;
-  Index<Dim> ch = c;
-  cl[b] = lo;
-  ch[b] = hi;
-  return (p[ch] - p[cl]) / ((hi - lo) * g.h[b]);
+  const auto st = static_cast<std::ptrdiff_t>(p.stride(b));
+  const double* at = p.data().data() + k;
+  return (at[(hi - c[b]) * st] - at[(lo - c[b]) * st]) / ((hi - lo) * g.h[b]);
 }
 
 /// Copy the box values of `in` into `cell` (the grid's cells with ghosts) and fill the ghost layer of each side
@@ -355,7 +386,6 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
   const bool full_stress = cfg.viscous == ViscousStress::Full;
   const ConvectionScheme scheme = cfg.convection;
   const bool outlet_top = d == 1 && outlet;
-  const auto fixed = [&](const Index<Dim>& c) { return m.id[m.d.index(c)] < 0; };
   // The walls (and the distributor, and the lid or outlet) across the component: axis e, tangential kind, speed.
   struct Across {
     int e;
@@ -379,62 +409,82 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
     x.high_speed = e == 1 && d == 0 ? bc.lid_velocity : 0.0;
   }
   const int n = static_cast<int>(m.where.size());
+  // Storage offsets: every face field of component d shares one layout (phi, its old value, eps, beta, the solids
+  // velocity, the mass flux, d and the unknown numbers), the cell fields another, each across mass flux its own.
+  using Off = std::ptrdiff_t;
+  std::array<Off, Dim> sf{};
+  std::array<Off, Dim> sc{};
+  std::array<std::array<Off, Dim>, Dim> se{};
+  for (int b = 0; b < Dim; ++b) {
+    sf[static_cast<std::size_t>(b)] = static_cast<Off>(phi.stride(b));
+    sc[static_cast<std::size_t>(b)] = static_cast<Off>(eps_cell.stride(b));
+    for (int e = 0; e < Dim; ++e)
+      se[static_cast<std::size_t>(e)][static_cast<std::size_t>(b)] = static_cast<Off>(mflux[e].stride(b));
+  }
+  const Off sfd = sf[d];
+  const Off scd = sc[d];
+  double* const P = phi.data().data();
+  const double* const P_old = phi_old.data().data();
+  const double* const EF = eps_face.data().data();
+  const double* const EF_old = eps_face_old.data().data();
+  const double* const BF = beta_face.data().data();
+  const double* const UF = us_face.data().data();
+  const double* const MA = m_al.data().data();
+  const double* const E = eps_cell.data().data();
+  const double* const PR = f.p.data().data();
+  double* const D = m.d.data().data();
+  const int* const ID = m.id.data();
 
 #pragma omp parallel for schedule(static) if (static_cast<int>(cells.count()) >= kParallelCells)
   for (int r = 0; r < n; ++r) {
     const Index<Dim> c = m.where[static_cast<std::size_t>(r)];
+    const Off kf = static_cast<Off>(phi.index(c));       // the face, in the face layout
+    const Off kc = static_cast<Off>(eps_cell.index(c));  // the cell above it along d, in the cell layout
     const int a = c[d];
     const bool half = outlet_top && a == cells.hi[d];  // outlet face: half control volume inside the domain
     const double vol = vol_full * (half ? 0.5 : 1.0);
-    const double ef = eps_face[c];
-    const Index<Dim> cm = shifted<Dim>(c, d, -1);  // the face below along d, and the cell below the face
+    const double ef = EF[kf];
     double b_src = 0.0;
     double sum_nb = 0.0;
     double sum_unknown_nb = 0.0;
     std::array<double, 2 * Dim> off{};
-    // neighbour in slot: coefficient, and its value when it is fixed
-    const auto add = [&](int slot, const Index<Dim>& cn, double coeff) {
+    // neighbour (face offset kn) in slot: coefficient, and its value when it is fixed
+    const auto add = [&](int slot, Off kn, double coeff) {
       sum_nb += coeff;
-      if (fixed(cn)) {
-        b_src += coeff * phi[cn];
+      if (ID[kn] < 0) {
+        b_src += coeff * P[kn];
       } else {
         off[static_cast<std::size_t>(slot)] = -coeff;
         sum_unknown_nb += coeff;
       }
     };
-    const auto at_along = [&](int k) {
-      Index<Dim> x = c;
-      x[d] = k;
-      return x;
-    };
     // Along the component: faces at the cell centres a-1 (minus) and a (plus).
     {
-      const double fm = 0.5 * (m_al[cm] + m_al[c]);
-      const double dm = mu * eps_cell[cm] * area_d / h_al;
-      add(0, cm, dm + std::max(fm, 0.0));
+      const double fm = 0.5 * (MA[kf - sfd] + MA[kf]);
+      const double dm = mu * E[kc - scd] * area_d / h_al;
+      add(0, kf - sfd, dm + std::max(fm, 0.0));
       if (scheme != ConvectionScheme::Upwind && !half) {
         const bool fwd = fm > 0.0;
         const int far = fwd ? a - 2 : a + 1;
         if (far >= faces.lo[d] && far < faces.hi[d]) {
-          const double phi_far = phi[at_along(far)];
-          const double cc = fwd ? high_order_correction(scheme, phi_far, phi[cm], phi[c])
-                                : high_order_correction(scheme, phi_far, phi[c], phi[cm]);
+          const double phi_far = P[kf + (far - a) * sfd];
+          const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfd], P[kf])
+                                : high_order_correction(scheme, phi_far, P[kf], P[kf - sfd]);
           b_src += fm * cc;
         }
       }
     }
     if (!half) {
-      const Index<Dim> cp = shifted<Dim>(c, d, 1);
-      const double fp = 0.5 * (m_al[c] + m_al[cp]);
-      const double dp = mu * eps_cell[c] * area_d / h_al;
-      add(1, cp, dp + std::max(-fp, 0.0));
+      const double fp = 0.5 * (MA[kf] + MA[kf + sfd]);
+      const double dp = mu * E[kc] * area_d / h_al;
+      add(1, kf + sfd, dp + std::max(-fp, 0.0));
       if (scheme != ConvectionScheme::Upwind) {
         const bool fwd = fp > 0.0;
         const int far = fwd ? a - 1 : a + 2;
         if (far >= faces.lo[d] && far < faces.hi[d]) {
-          const double phi_far = phi[at_along(far)];
-          const double cc = fwd ? high_order_correction(scheme, phi_far, phi[c], phi[cp])
-                                : high_order_correction(scheme, phi_far, phi[cp], phi[c]);
+          const double phi_far = P[kf + (far - a) * sfd];
+          const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfd])
+                                : high_order_correction(scheme, phi_far, P[kf + sfd], P[kf]);
           b_src -= fp * cc;
         }
       }
@@ -443,25 +493,24 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
         const Across& x = across[static_cast<std::size_t>(k)];
         const int e = x.e;
         const int b = c[e];
-        const Field<Dim>& m_ac = mflux[e];
-        const auto at_across = [&](int j) {
-          Index<Dim> y = c;
-          y[e] = j;
-          return y;
-        };
-        const double fs = 0.5 * (m_ac[cm] + m_ac[c]);
+        const Off sfe = sf[static_cast<std::size_t>(e)];
+        const Off sce = sc[static_cast<std::size_t>(e)];
+        const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
+        const double* const ME = mflux[e].data().data();
+        const Off ke = static_cast<Off>(mflux[e].index(c));
+        const Off smd = sm[d];
+        const Off sme = sm[static_cast<std::size_t>(e)];
+        const double fs = 0.5 * (ME[ke - smd] + ME[ke]);
         if (b > cells.lo[e]) {
-          const Index<Dim> cs = shifted<Dim>(c, e, -1);
-          const double e_corner =
-              0.25 * (eps_cell[cm] + eps_cell[c] + eps_cell[shifted<Dim>(cm, e, -1)] + eps_cell[cs]);
-          add(2 + 2 * k, cs, mu * e_corner * x.area / x.h + std::max(fs, 0.0));
+          const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd - sce] + E[kc - sce]);
+          add(2 + 2 * k, kf - sfe, mu * e_corner * x.area / x.h + std::max(fs, 0.0));
           if (scheme != ConvectionScheme::Upwind) {
             const bool fwd = fs > 0.0;
             const int far = fwd ? b - 2 : b + 1;
             if (far >= cells.lo[e] && far < cells.hi[e]) {
-              const double phi_far = phi[at_across(far)];
-              const double cc = fwd ? high_order_correction(scheme, phi_far, phi[cs], phi[c])
-                                    : high_order_correction(scheme, phi_far, phi[c], phi[cs]);
+              const double phi_far = P[kf + (far - b) * sfe];
+              const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfe], P[kf])
+                                    : high_order_correction(scheme, phi_far, P[kf], P[kf - sfe]);
               b_src += fs * cc;
             }
           }
@@ -470,19 +519,17 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
           const double coeff = std::max(fs, 0.0) + (x.low_noslip ? mu * ef * x.area / (0.5 * x.h) : 0.0);
           sum_nb += coeff;
         }
-        const double fn = 0.5 * (m_ac[shifted<Dim>(cm, e, 1)] + m_ac[shifted<Dim>(c, e, 1)]);
+        const double fn = 0.5 * (ME[ke - smd + sme] + ME[ke + sme]);
         if (b < cells.hi[e] - 1) {
-          const Index<Dim> cn = shifted<Dim>(c, e, 1);
-          const double e_corner =
-              0.25 * (eps_cell[cm] + eps_cell[c] + eps_cell[shifted<Dim>(cm, e, 1)] + eps_cell[cn]);
-          add(3 + 2 * k, cn, mu * e_corner * x.area / x.h + std::max(-fn, 0.0));
+          const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd + sce] + E[kc + sce]);
+          add(3 + 2 * k, kf + sfe, mu * e_corner * x.area / x.h + std::max(-fn, 0.0));
           if (scheme != ConvectionScheme::Upwind) {
             const bool fwd = fn > 0.0;
             const int far = fwd ? b - 1 : b + 2;
             if (far >= cells.lo[e] && far < cells.hi[e]) {
-              const double phi_far = phi[at_across(far)];
-              const double cc = fwd ? high_order_correction(scheme, phi_far, phi[c], phi[cn])
-                                    : high_order_correction(scheme, phi_far, phi[cn], phi[c]);
+              const double phi_far = P[kf + (far - b) * sfe];
+              const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfe])
+                                    : high_order_correction(scheme, phi_far, P[kf + sfe], P[kf]);
               b_src -= fn * cc;
             }
           }
@@ -495,20 +542,21 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
       if (full_stress) {
         // Transpose part of the stress, div(eps mu (grad u)^T), lagged (deferred) from the current iterate:
         // along faces eps mu d(phi)/d(along), across faces eps mu d(other)/d(along). Zero at slip walls and outlets.
-        b_src += mu * area_d / h_al * (eps_cell[c] * (phi[cp] - phi[c]) - eps_cell[cm] * (phi[c] - phi[cm]));
+        b_src += mu * area_d / h_al * (E[kc] * (P[kf + sfd] - P[kf]) - E[kc - scd] * (P[kf] - P[kf - sfd]));
         for (int k = 0; k < Dim - 1; ++k) {
           const Across& x = across[static_cast<std::size_t>(k)];
           const int e = x.e;
           const int b = c[e];
-          const Field<Dim>& other = f.u[e];
+          const Off sce = sc[static_cast<std::size_t>(e)];
+          const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
+          const double* const O = f.u[e].data().data();  // the other component, in the layout of mflux[e]
+          const Off ke = static_cast<Off>(f.u[e].index(c));
+          const Off smd = sm[d];
+          const Off sme = sm[static_cast<std::size_t>(e)];
           const auto corner_eps = [&](int j) {
             if (j > cells.lo[e] && j < cells.hi[e]) {
-              Index<Dim> lo_m = cm;
-              Index<Dim> lo_p = c;
-              lo_m[e] = j - 1;
-              lo_p[e] = j - 1;
-              return 0.25 * (eps_cell[lo_m] + eps_cell[lo_p] + eps_cell[shifted<Dim>(lo_m, e, 1)] +
-                             eps_cell[shifted<Dim>(lo_p, e, 1)]);
+              const Off lo = kc + (j - 1 - b) * sce;  // cell (a, j - 1) along (d, e)
+              return 0.25 * (E[lo - scd] + E[lo] + E[lo - scd + sce] + E[lo + sce]);
             }
             return ef;
           };
@@ -516,27 +564,26 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
           const double lever = x.area / h_al;
           const bool low_open = b > cells.lo[e] || x.low_noslip;
           const bool high_open = b < cells.hi[e] - 1 || x.high_noslip_wall;
-          if (high_open)
-            b_src += mu * corner_eps(b + 1) * (other[shifted<Dim>(c, e, 1)] - other[shifted<Dim>(cm, e, 1)]) * lever;
-          if (low_open) b_src -= mu * corner_eps(b) * (other[c] - other[cm]) * lever;
+          if (high_open) b_src += mu * corner_eps(b + 1) * (O[ke + sme] - O[ke - smd + sme]) * lever;
+          if (low_open) b_src -= mu * corner_eps(b) * (O[ke] - O[ke - smd]) * lever;
         }
       }
     }
     // Eq. 12: backward Euler in the non-conservative form (continuity subtracted), implicit drag, gravity, pressure.
-    const double ap0 = rho * eps_face_old[c] * vol / dt;
-    const double drag = beta_face[c] * vol;
+    const double ap0 = rho * EF_old[kf] * vol / dt;
+    const double drag = BF[kf] * vol;
     const double ap = ap0 + sum_nb + drag;
     const double ap_relaxed = ap / alpha;
     const double area = ef * area_d;  // pressure force per unit pressure difference
-    const double p_low = f.p[cm];
-    const double p_high = half ? bc.top_pressure : f.p[c];
-    b_src += ap0 * phi_old[c] + drag * us_face[c] + rho * ef * g_c * vol + area * (p_low - p_high) +
-             (ap_relaxed - ap) * phi[c];
+    const double p_low = PR[kc - scd];
+    const double p_high = half ? bc.top_pressure : PR[kc];
+    b_src += ap0 * P_old[kf] + drag * UF[kf] + rho * ef * g_c * vol + area * (p_low - p_high) +
+             (ap_relaxed - ap) * P[kf];
     m.a.set_row(r, ap_relaxed, off);
     m.rhs[r] = b_src;
-    m.x[r] = phi[c];
+    m.x[r] = P[kf];
     const double denom = cfg.coupling == PressureCoupling::Simplec ? ap_relaxed - sum_unknown_nb : ap_relaxed;
-    m.d[c] = area / denom;
+    D[kf] = area / denom;
   }
   Eigen::VectorXd sol = m.x;
   const LinearSolveOutcome res = m.solver.solve(m.a.matrix(), m.rhs, sol);
@@ -763,30 +810,20 @@ template <int Dim>
 Vec<Dim> GasSolver<Dim>::pressure_gradient_at(const Vec<Dim>& x) const {
   const Grid<Dim>& g = impl_->grid;
   const Field<Dim>& p = impl_->f.p;
-  const IndexBox<Dim>& b = g.domain;
-  Index<Dim> lo{};
-  Index<Dim> hi{};
-  Vec<Dim> fr{};
-  for (int a = 0; a < Dim; ++a) {
-    const int n = b.extent(a);
-    const double s = std::clamp((x[a] - g.origin[a]) / g.h[a] - 0.5, 0.0, static_cast<double>(n - 1));
-    const int i = std::min(static_cast<int>(s), std::max(n - 2, 0));
-    lo[a] = b.lo[a] + i;
-    hi[a] = b.lo[a] + std::min(i + 1, n - 1);
-    fr[a] = n > 1 ? s - i : 0.0;
+  Vec<Dim> s{};
+  for (int a = 0; a < Dim; ++a) s[a] = (x[a] - g.origin[a]) / g.h[a] - 0.5;
+  const Corners<Dim> q = corners(g.domain, s);
+  std::array<std::array<double, 1 << Dim>, Dim> v{};
+  for (int bits = 0; bits < (1 << Dim); ++bits) {
+    Index<Dim> c = q.lo;
+    for (int a = 0; a < Dim; ++a)
+      if (bits & (1 << a)) c[a] += q.step[a];
+    const std::size_t k = p.index(c);
+    for (int comp = 0; comp < Dim; ++comp)
+      v[static_cast<std::size_t>(comp)][static_cast<std::size_t>(bits)] = cell_gradient<Dim>(g, p, c, k, comp);
   }
   Vec<Dim> out{};
-  for (int comp = 0; comp < Dim; ++comp) {
-    const auto blend = [&](auto&& self, int axis, Index<Dim> c) -> double {
-      if (axis < 0) return cell_gradient<Dim>(g, p, c, comp);
-      c[axis] = lo[axis];
-      const double v_lo = self(self, axis - 1, c);
-      c[axis] = hi[axis];
-      const double v_hi = self(self, axis - 1, c);
-      return (1.0 - fr[axis]) * v_lo + fr[axis] * v_hi;
-    };
-    out[comp] = blend(blend, Dim - 1, lo);
-  }
+  for (int comp = 0; comp < Dim; ++comp) out[comp] = blend<Dim>(v[static_cast<std::size_t>(comp)], q.fr);
   return out;
 }
 
@@ -805,7 +842,7 @@ void GasSolver<Dim>::cell_pressure_gradient(CellVector<Dim>& grad) const {
   const Grid<Dim>& g = impl_->grid;
   for (int a = 0; a < Dim; ++a) {
     grad[a] = Field<Dim>(g.domain, 0);
-    for_each(g.domain, [&](const Index<Dim>& c) { grad[a][c] = cell_gradient<Dim>(g, impl_->f.p, c, a); });
+    for_each(g.domain, [&](const Index<Dim>& c) { grad[a][c] = cell_gradient<Dim>(g, impl_->f.p, c, impl_->f.p.index(c), a); });
   }
 }
 
