@@ -59,7 +59,7 @@ void BM_DragMapping(benchmark::State& state) {
   ParticleStore<2> p = paper_particles(dem);
   const Grid2 grid = paper_grid();
   GasConfig gc;
-  GasSolver gas(grid, gc);
+  GasSolver<2> gas(grid, gc);
   Field2 eps;
   compute_voidage(p, grid, VoidageMethod::Bilinear, dem.species[0].diameter, eps);
   for (double& e : eps.v) e = std::clamp(e, 0.3, 1.0);
@@ -90,7 +90,7 @@ void BM_CfdDemAdvance(benchmark::State& state) {
   const DemConfig dem = paper_dem();
   CouplingConfig cc;
   cc.dem_substeps = static_cast<int>(state.range(0));
-  CfdDemSimulation sim(DemSolver<2>(dem, paper_particles(dem)), GasSolver(paper_grid(), GasConfig{}), cc);
+  CfdDemSimulation<2> sim(DemSolver<2>(dem, paper_particles(dem)), GasSolver<2>(paper_grid(), GasConfig{}), cc);
   sim.initialize();
   for (auto _ : state) sim.advance();
   state.counters["particle_steps_per_s"] = benchmark::Counter(

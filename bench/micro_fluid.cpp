@@ -14,7 +14,7 @@ void BM_GasStepPaperGrid(benchmark::State& state) {
   const Grid2 grid = Grid2::uniform(0.6, 1.0, 30, 50);
   GasConfig cfg;  // paper defaults: U_mf = 1.8 m/s everywhere, 30 m/s jet at the centre
   const PressureSolverKind kind = state.range(1) == 0 ? PressureSolverKind::Direct : PressureSolverKind::ConjugateGradient;
-  GasSolver gas(grid, cfg, kind);
+  GasSolver<2> gas(grid, cfg, kind);
   Field2 eps(30, 50, 1.0), beta(30, 50, 0.0), zero(30, 50, 0.0);
   for (int j = 0; j < 50; ++j)
     for (int i = 0; i < 30; ++i) {

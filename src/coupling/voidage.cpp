@@ -2,96 +2,150 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace fluidbed {
 
-CellWeights cell_weights(const Grid2& g, VoidageMethod method, double x, double y) {
-  CellWeights cw;
+template <int Dim>
+CellWeights<Dim> cell_weights(const Grid<Dim>& g, const Field<Dim>& layout, VoidageMethod method, const Vec<Dim>& x) {
+  CellWeights<Dim> cw;
   if (method == VoidageMethod::Centre) {
-    cw.cell[0] = g.index(g.cell_i(x), g.cell_j(y));
+    cw.cell[0] = layout.index(g.cell(x));
     cw.w[0] = 1.0;
     cw.count = 1;
     return cw;
   }
-  // Bilinear weights between the four surrounding cell centres; an index outside the grid is clamped, which
-  // folds the weight of the missing ghost cell into the boundary cell.
-  const double fx = (x - g.x0) / g.dx - 0.5;
-  const double fy = (y - g.y0) / g.dy - 0.5;
-  const double ffx = std::floor(fx), ffy = std::floor(fy);
-  const double ax = std::clamp(fx - ffx, 0.0, 1.0), ay = std::clamp(fy - ffy, 0.0, 1.0);
-  const int i0 = static_cast<int>(ffx), j0 = static_cast<int>(ffy);
-  const int ia = std::clamp(i0, 0, g.nx - 1), ib = std::clamp(i0 + 1, 0, g.nx - 1);
-  const int ja = std::clamp(j0, 0, g.ny - 1), jb = std::clamp(j0 + 1, 0, g.ny - 1);
-  cw.cell = {g.index(ia, ja), g.index(ib, ja), g.index(ia, jb), g.index(ib, jb)};
-  cw.w = {(1.0 - ax) * (1.0 - ay), ax * (1.0 - ay), (1.0 - ax) * ay, ax * ay};
-  cw.count = 4;
+  // Multilinear weights between the 2^Dim surrounding cell centres; an index outside the domain is clamped, which
+  // folds the weight of the missing cell into the boundary cell.
+  std::array<int, Dim> lo{}, hi{};
+  std::array<double, Dim> frac{};
+  for (int a = 0; a < Dim; ++a) {
+    const double f = (x[a] - g.origin[a]) / g.h[a] - 0.5;
+    const double ff = std::floor(f);
+    frac[a] = std::clamp(f - ff, 0.0, 1.0);
+    const int i0 = static_cast<int>(ff);
+    lo[a] = std::clamp(i0, g.domain.lo[a], g.domain.hi[a] - 1);
+    hi[a] = std::clamp(i0 + 1, g.domain.lo[a], g.domain.hi[a] - 1);
+  }
+  // Corner k takes the high neighbour along axis a when bit a of k is set (axis 0 fastest, as the 2D code had it).
+  for (int k = 0; k < CellWeights<Dim>::kMax; ++k) {
+    Index<Dim> c{};
+    double w = 1.0;
+    for (int a = 0; a < Dim; ++a) {
+      const bool up = (k >> a) & 1;
+      c[a] = up ? hi[a] : lo[a];
+      w = a == 0 ? (up ? frac[a] : 1.0 - frac[a]) : w * (up ? frac[a] : 1.0 - frac[a]);
+    }
+    cw.cell[static_cast<std::size_t>(k)] = layout.index(c);
+    cw.w[static_cast<std::size_t>(k)] = w;
+  }
+  cw.count = CellWeights<Dim>::kMax;
   return cw;
 }
 
-double gather(const Field2& f, const CellWeights& cw) {
-  double s = 0.0;
-  for (int k = 0; k < cw.count; ++k) s += cw.w[static_cast<std::size_t>(k)] * f.v[cw.cell[static_cast<std::size_t>(k)]];
-  return s;
-}
-
-void particle_cell_weights(const ParticleStore<2>& p, const Grid2& g, VoidageMethod method,
-                           std::vector<CellWeights>& out) {
+template <int Dim>
+void particle_cell_weights(const ParticleStore<Dim>& p, const Grid<Dim>& g, const Field<Dim>& layout,
+                           VoidageMethod method, std::vector<CellWeights<Dim>>& out) {
   out.resize(p.size());
   const auto n = static_cast<std::ptrdiff_t>(p.size());
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    out[i] = cell_weights(g, method, p.x[i], p.y[i]);
+    out[i] = cell_weights(g, layout, method, p.pos(i));
   }
 }
 
 // The scatters below run serially in storage order: a fixed order makes the sums independent of the thread
 // count, and they cost little next to the contact forces.
-void compute_voidage(const ParticleStore<2>& p, const std::vector<CellWeights>& weights, const Grid2& g, double depth,
-                     Field2& eps) {
-  if (eps.nx != g.nx || eps.ny != g.ny) eps = Field2(g.nx, g.ny);
-  std::vector<double> vol(g.cells(), 0.0);
+template <int Dim>
+void compute_voidage(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights, const Grid<Dim>& g,
+                     double depth, Field<Dim>& eps) {
+  if (eps.box() != g.owned) eps = Field<Dim>(g.owned, 0);
+  std::vector<double> vol(eps.data().size(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double vp = 4.0 / 3.0 * M_PI * p.radius[i] * p.radius[i] * p.radius[i];
-    const CellWeights& cw = weights[i];
+    const CellWeights<Dim>& cw = weights[i];
     for (int k = 0; k < cw.count; ++k) vol[cw.cell[static_cast<std::size_t>(k)]] += cw.w[static_cast<std::size_t>(k)] * vp;
   }
-  const double vcell = g.dx * g.dy * depth;
-  for (std::size_t c = 0; c < g.cells(); ++c) eps.v[c] = 1.0 - vol[c] / vcell;
+  const double vcell = deposition_volume(g, depth);
+  for (std::size_t c = 0; c < vol.size(); ++c) eps.data()[c] = 1.0 - vol[c] / vcell;
 }
 
-void compute_voidage(const ParticleStore<2>& p, const Grid2& g, VoidageMethod method, double depth, Field2& eps) {
-  std::vector<CellWeights> w;
-  particle_cell_weights(p, g, method, w);
-  compute_voidage(p, w, g, depth, eps);
-}
-
-void cell_solids_velocity(const ParticleStore<2>& p, const std::vector<CellWeights>& weights, const Grid2& g,
-                          Field2& us, Field2& vs) {
-  if (us.nx != g.nx || us.ny != g.ny) us = Field2(g.nx, g.ny);
-  if (vs.nx != g.nx || vs.ny != g.ny) vs = Field2(g.nx, g.ny);
-  std::vector<double> vol(g.cells(), 0.0), mu(g.cells(), 0.0), mv(g.cells(), 0.0);
+template <int Dim>
+void cell_solids_velocity(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights,
+                          const Grid<Dim>& g, std::array<Field<Dim>, Dim>& us) {
+  for (Field<Dim>& f : us) {
+    if (f.box() != g.owned) f = Field<Dim>(g.owned, 0);
+  }
+  const std::size_t n = us[0].data().size();
+  std::vector<double> vol(n, 0.0);
+  std::array<std::vector<double>, Dim> mom;
+  for (auto& m : mom) m.assign(n, 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double vp = p.radius[i] * p.radius[i] * p.radius[i];  // constant factor cancels
-    const CellWeights& cw = weights[i];
+    const CellWeights<Dim>& cw = weights[i];
     for (int k = 0; k < cw.count; ++k) {
       const std::size_t c = cw.cell[static_cast<std::size_t>(k)];
       const double w = cw.w[static_cast<std::size_t>(k)] * vp;
       vol[c] += w;
-      mu[c] += w * p.vx[i];
-      mv[c] += w * p.vy[i];
+      for (int a = 0; a < Dim; ++a) mom[a][c] += w * p.velocity(a)[i];
     }
   }
-  for (std::size_t c = 0; c < g.cells(); ++c) {
-    us.v[c] = vol[c] > 0.0 ? mu[c] / vol[c] : 0.0;
-    vs.v[c] = vol[c] > 0.0 ? mv[c] / vol[c] : 0.0;
+  for (std::size_t c = 0; c < n; ++c) {
+    for (int a = 0; a < Dim; ++a) us[a].data()[c] = vol[c] > 0.0 ? mom[a][c] / vol[c] : 0.0;
   }
 }
 
-void cell_solids_velocity(const ParticleStore<2>& p, const Grid2& g, VoidageMethod method, Field2& us, Field2& vs) {
-  std::vector<CellWeights> w;
-  particle_cell_weights(p, g, method, w);
-  cell_solids_velocity(p, w, g, us, vs);
+Grid<2> to_grid(const Grid2& g) {
+  Grid<2> out = Grid<2>::uniform({g.width(), g.height()}, {g.nx, g.ny}, 0);
+  out.h = {g.dx, g.dy};
+  out.origin = {g.x0, g.y0};
+  return out;
 }
+
+CellWeights<2> cell_weights(const Grid2& grid, VoidageMethod method, double x, double y) {
+  const Grid<2> g = to_grid(grid);
+  return cell_weights(g, Field<2>(g.owned, 0), method, Vec2{x, y});
+}
+
+double gather(const Field2& f, const CellWeights<2>& cw) {
+  double s = 0.0;
+  for (int k = 0; k < cw.count; ++k) s += cw.w[static_cast<std::size_t>(k)] * f.v[cw.cell[static_cast<std::size_t>(k)]];
+  return s;
+}
+
+void compute_voidage(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, double depth, Field2& eps) {
+  const Grid<2> g = to_grid(grid);
+  Field<2> e(g.owned, 0);
+  std::vector<CellWeights<2>> w;
+  particle_cell_weights(p, g, e, method, w);
+  compute_voidage(p, w, g, depth, e);
+  eps = Field2(grid.nx, grid.ny);
+  eps.v = e.data();
+}
+
+void cell_solids_velocity(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, Field2& us, Field2& vs) {
+  const Grid<2> g = to_grid(grid);
+  std::array<Field<2>, 2> u{Field<2>(g.owned, 0), Field<2>(g.owned, 0)};
+  std::vector<CellWeights<2>> w;
+  particle_cell_weights(p, g, u[0], method, w);
+  cell_solids_velocity<2>(p, w, g, u);
+  us = Field2(grid.nx, grid.ny);
+  vs = Field2(grid.nx, grid.ny);
+  us.v = u[0].data();
+  vs.v = u[1].data();
+}
+
+#define FLUIDBED_VOIDAGE(D)                                                                                       \
+  template CellWeights<D> cell_weights(const Grid<D>&, const Field<D>&, VoidageMethod, const Vec<D>&);           \
+  template void particle_cell_weights(const ParticleStore<D>&, const Grid<D>&, const Field<D>&, VoidageMethod,   \
+                                      std::vector<CellWeights<D>>&);                                             \
+  template void compute_voidage(const ParticleStore<D>&, const std::vector<CellWeights<D>>&, const Grid<D>&,     \
+                                double, Field<D>&);                                                              \
+  template void cell_solids_velocity<D>(const ParticleStore<D>&, const std::vector<CellWeights<D>>&, const Grid<D>&, \
+                                     std::array<Field<D>, D>&);
+FLUIDBED_VOIDAGE(2)
+FLUIDBED_VOIDAGE(3)
+#undef FLUIDBED_VOIDAGE
 
 }  // namespace fluidbed

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 
@@ -72,6 +73,97 @@ void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, d
   }
 }
 
+Grid2 to_grid2(const Grid<2>& g) { return Grid2{g.n(0), g.n(1), g.h[0], g.h[1], g.origin[0], g.origin[1]}; }
+
+namespace {
+
+// Integral of sqrt(r^2 - x^2) from 0 to x, |x| <= r: the area under the upper half of a circle.
+double half_disc_primitive(double r, double x) {
+  const double s = std::sqrt(std::max(r * r - x * x, 0.0));
+  return 0.5 * (x * s + r * r * std::asin(std::clamp(x / r, -1.0, 1.0)));
+}
+
+// Area of the disc of radius r about the origin inside [x1, x2] x [z1, z2]: the integral over x of the part of
+// the chord inside [z1, z2], split where a chord end crosses z1 or z2 so that each piece has a closed form.
+double disc_rectangle_area(double r, double x1, double x2, double z1, double z2) {
+  const double a = std::max(x1, -r);
+  const double b = std::min(x2, r);
+  if (!(b > a) || !(z2 > z1)) return 0.0;
+  std::vector<double> cuts{a, b};
+  for (double z : {z1, z2}) {
+    if (std::abs(z) >= r) continue;
+    const double xs = std::sqrt(r * r - z * z);
+    for (double x : {-xs, xs})
+      if (x > a && x < b) cuts.push_back(x);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double area = 0.0;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double p = cuts[k];
+    const double q = cuts[k + 1];
+    const double m = 0.5 * (p + q);
+    const double s = std::sqrt(std::max(r * r - m * m, 0.0));
+    const bool top_flat = z2 < s;
+    const bool bottom_flat = z1 > -s;
+    if ((top_flat ? z2 : s) <= (bottom_flat ? z1 : -s)) continue;
+    const double chord = half_disc_primitive(r, q) - half_disc_primitive(r, p);
+    area += (top_flat ? z2 * (q - p) : chord) - (bottom_flat ? z1 * (q - p) : -chord);
+  }
+  return area;
+}
+
+double overlap(double lo1, double hi1, double lo2, double hi2) {
+  return std::max(0.0, std::min(hi1, hi2) - std::max(lo1, lo2));
+}
+
+}  // namespace
+
+double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_lo, double z_hi) {
+  switch (jet.shape) {
+    case InletShape::Slot:
+      return overlap(x_lo, x_hi, jet.x_centre - 0.5 * jet.width, jet.x_centre + 0.5 * jet.width) * (z_hi - z_lo);
+    case InletShape::Rectangle:
+      return overlap(x_lo, x_hi, jet.x_centre - 0.5 * jet.width, jet.x_centre + 0.5 * jet.width) *
+             overlap(z_lo, z_hi, jet.z_centre - 0.5 * jet.depth, jet.z_centre + 0.5 * jet.depth);
+    case InletShape::Disc:
+      return disc_rectangle_area(0.5 * jet.width, x_lo - jet.x_centre, x_hi - jet.x_centre, z_lo - jet.z_centre,
+                                 z_hi - jet.z_centre);
+  }
+  return 0.0;
+}
+
+template <int Dim>
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out) {
+  if constexpr (Dim == 2) {
+    inlet_superficial_profile(bc, to_grid2(grid), t, out);
+  } else {
+    const int nx = grid.n(0);
+    const int nz = grid.n(2);
+    out.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz));
+    const std::vector<double> noise = inlet_noise_factors(bc, nx * nz);
+    const double u_bg = background_inlet_velocity(bc, t);
+    const double area = grid.h[0] * grid.h[2];
+    for (int k = 0; k < nz; ++k)
+      for (int i = 0; i < nx; ++i) {
+        const double x_lo = grid.face(0, grid.domain.lo[0] + i);
+        const double z_lo = grid.face(2, grid.domain.lo[2] + k);
+        double flux = u_bg * area;
+        double covered = 0.0;
+        for (const InletJet& jet : bc.jets) {
+          if (t < jet.t_start || t >= jet.t_end) continue;
+          const double a = jet_overlap_area(jet, x_lo, x_lo + grid.h[0], z_lo, z_lo + grid.h[2]);
+          flux += (jet.velocity - u_bg) * a;
+          covered += a;
+        }
+        const std::size_t f = static_cast<std::size_t>(k) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i);
+        // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
+        out[f] = flux / area + (noise[f] - 1.0) * u_bg * std::max(0.0, 1.0 - covered / area);
+      }
+  }
+}
+template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<2>&, double, std::vector<double>&);
+template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<3>&, double, std::vector<double>&);
+
 void validate(const GasConfig& c) {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw_input_error("gas: " + what);
@@ -90,6 +182,7 @@ void validate(const GasConfig& c) {
   require(c.boundary.inlet_noise >= 0.0 && c.boundary.inlet_noise < 1.0, "inlet noise must lie in [0, 1)");
   for (const InletJet& jet : c.boundary.jets) {
     require(jet.width > 0.0, "jet width must be positive");
+    require(jet.shape != InletShape::Rectangle || jet.depth > 0.0, "a rectangular jet's depth must be positive");
     require(jet.t_end >= jet.t_start, "jet t_end must not precede t_start");
   }
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Boundary-condition helpers of the gas phase, shared by the CFD-DEM gas solver and the two-fluid model.
 #include "core/field2.hpp"
+#include "core/grid.hpp"
 #include "core/grid2.hpp"
 #include "fluid/gas_config.hpp"
 
@@ -20,6 +21,20 @@ std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx);
 /// Superficial inlet velocity of every bottom face of the grid (size nx) at time t: inlet_superficial_velocity of
 /// each face, its background part scaled by the distributor factors.
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out);
+
+/// Area of the jet's region (Slot: the strip |x - x_centre| <= width / 2 over the whole depth; Rectangle; Disc)
+/// inside the rectangle [x_lo, x_hi] x [z_lo, z_hi] of a 3D bed's bottom face, m^2 (exact, also for a disc).
+double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_lo, double z_hi);
+
+/// Superficial inlet velocity of every bottom face of the grid's domain at time t, axis 0 fastest (then z in 3D).
+/// 2D: inlet_superficial_profile of the same grid as a Grid2 (slots only). 3D: each active jet replaces the
+/// background velocity over the area of the face it covers (jet_overlap_area), and the background part of face
+/// (i, k) is scaled by the distributor factor i + nx k of inlet_noise_factors(bc, nx nz).
+template <int Dim>
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out);
+
+/// The Grid2 of a 2D grid's domain (same cell sizes and origin, bit for bit).
+Grid2 to_grid2(const Grid<2>& grid);
 
 /// Throws an input error naming the offending setting.
 void validate(const GasConfig& config);

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/vec2.hpp"
+#include "core/vec.hpp"
 
 namespace fluidbed {
 
@@ -33,7 +33,9 @@ enum class PressureCoupling { Simple, Simplec };
 /// a rectangle or a disc of the bottom face of a 3D bed.
 enum class InletShape { Slot, Rectangle, Disc };
 
-/// A jet through the bottom distributor, active for t_start <= t < t_end.
+/// A jet through the bottom distributor, active for t_start <= t < t_end. A bottom face takes the jet's velocity
+/// over the fraction of its area the region covers (exact overlap: a length in 2D, an area in 3D), the background
+/// velocity over the rest, so the jet's volume flux is exact at any resolution.
 struct InletJet {
   double x_centre = 0.3;  ///< [m]
   double width = 0.02;    ///< x extent of a Slot or Rectangle, diameter of a Disc [m]
@@ -66,13 +68,14 @@ struct GasBoundaryConfig {
   WallKind side_walls = WallKind::NoSlip;
   WallKind bottom_wall = WallKind::NoSlip;  ///< tangential condition along the distributor
   WallKind top_wall = WallKind::NoSlip;     ///< top Wall only
+  WallKind front_back_walls = WallKind::NoSlip;  ///< the walls normal to z (3D only)
 };
 
 /// Gas phase: physical properties, discretisation and the SIMPLE loop.
 struct GasConfig {
   double rho_g = 1.205;          ///< [kg/m^3]
   double mu_g = 1.8e-5;          ///< [Pa s]
-  Vec2 gravity{0.0, -9.81};      ///< [m/s^2]
+  Vec3 gravity{0.0, -9.81, 0.0}; ///< [m/s^2], the domain's (a 2D solver reads x and y)
   ViscousStress viscous = ViscousStress::Off;
   ConvectionScheme convection = ConvectionScheme::VanLeer;
   PressureCoupling coupling = PressureCoupling::Simplec;

@@ -3,7 +3,10 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <fmt/format.h>
+#include <string>
+#include <utility>
 
 #include "core/error.hpp"
 #include "fluid/stencil_matrix.hpp"
@@ -11,8 +14,6 @@
 namespace fluidbed {
 
 namespace {
-
-enum class Comp { U, V };
 
 double limiter(ConvectionScheme scheme, double r) {
   switch (scheme) {
@@ -33,178 +34,425 @@ double high_order_correction(ConvectionScheme scheme, double phi_far, double phi
   return 0.5 * limiter(scheme, (phi_up - phi_far) / jump) * jump;
 }
 
+/// Area of a face normal to axis a (a length per metre of depth in 2D): the product of the other cell sizes,
+/// taken in axis order so that 2D keeps its single factor exactly.
+template <int Dim>
+double face_area(const Grid<Dim>& g, int a) {
+  double m = 1.0;
+  for (int b = 0; b < Dim; ++b)
+    if (b != a) m *= g.h[b];
+  return m;
+}
+
+/// Call f(index) for every index of box b with axis d fastest, then the other axes in increasing order: the
+/// numbering of the unknowns of velocity component d (the 2D solver's u by rows, v by columns).
+template <int Dim, class F>
+void for_each_along(const IndexBox<Dim>& b, int d, F&& f) {
+  if (b.empty()) return;
+  std::array<int, Dim> order{};
+  order[0] = d;
+  for (int a = 0, k = 1; a < Dim; ++a)
+    if (a != d) order[static_cast<std::size_t>(k++)] = a;
+  Index<Dim> c = b.lo;
+  for (;;) {
+    f(c);
+    int level = 0;
+    for (; level < Dim; ++level) {
+      const int a = order[static_cast<std::size_t>(level)];
+      if (++c[a] < b.hi[a]) break;
+      c[a] = b.lo[a];
+    }
+    if (level == Dim) return;
+  }
+}
+
+/// The first index of every line of box b along axis 0 (the rows that loops split between threads).
+template <int Dim>
+std::vector<Index<Dim>> line_starts(const IndexBox<Dim>& b) {
+  IndexBox<Dim> lines = b;
+  lines.hi[0] = lines.lo[0] + 1;
+  std::vector<Index<Dim>> out;
+  out.reserve(lines.count());
+  for_each(lines, [&](const Index<Dim>& c) { out.push_back(c); });
+  return out;
+}
+
+template <int Dim>
+std::string index_name(const Index<Dim>& c) {
+  std::string s = "(";
+  for (int a = 0; a < Dim; ++a) s += fmt::format("{}{}", a > 0 ? ", " : "", c[a]);
+  return s + ")";
+}
+
+constexpr const char* kComponent[3] = {"u", "v", "w"};
+
+template <int Dim>
 struct Momentum {
-  std::vector<int> id;                    // unknown number per face of the component's array, -1 if fixed
-  std::vector<std::array<int, 2>> where;  // (along, across) index of each unknown
+  std::vector<int> id;              // unknown number per face (indexed as the component's face field), -1 if fixed
+  std::vector<Index<Dim>> where;    // face of each unknown
   StencilMatrix a;
   Eigen::VectorXd rhs;
   Eigen::VectorXd x;
-  Field2 d;  // velocity change per unit pressure-correction difference, per face
+  Field<Dim> d;  // velocity change per unit pressure-correction difference, per face
   CheckedSparseSolver solver;  // BiCGSTAB, a sparse LU when it stops short of the tolerance
 };
 
-}  // namespace
+/// The multilinear blend of the 2^Dim corner values v[bits] (bit a set: the high node along axis a), the last
+/// axis outermost: (1 - f_y) ((1 - f_x) v00 + f_x v10) + f_y ((1 - f_x) v01 + f_x v11) in 2D.
+template <int Dim>
+inline double blend(const std::array<double, 1 << Dim>& v, const Vec<Dim>& fr) {
+  const double xy = (1.0 - fr[1]) * ((1.0 - fr[0]) * v[0] + fr[0] * v[1]) + fr[1] * ((1.0 - fr[0]) * v[2] + fr[0] * v[3]);
+  if constexpr (Dim == 2) {
+    return xy;
+  } else {
+    const double xy_high =
+        (1.0 - fr[1]) * ((1.0 - fr[0]) * v[4] + fr[0] * v[5]) + fr[1] * ((1.0 - fr[0]) * v[6] + fr[0] * v[7]);
+    return (1.0 - fr[2]) * xy + fr[2] * xy_high;
+  }
+}
 
-struct GasSolver::Impl {
-  Grid2 grid;
-  GasConfig cfg;
-  StaggeredFields f;
-  PressureCorrectionSolver pressure;
-  Momentum mom_u;
-  Momentum mom_v;
-  bool outlet = false;
-  // Per-step face data and work arrays.
-  Field2 epsx, epsy, epsx_old, epsy_old, betax, betay, usx, vsy, mx, my, u_old, v_old, ax, ay, imbalance, p_corr;
-  Field2 eps_cell;
-  std::vector<double> inlet;
-
-  Impl(const Grid2& g, const GasConfig& c, PressureSolverKind kind) : grid(g), cfg(c), pressure(g, kind) {}
-
-  template <Comp C>
-  void setup(Momentum& m);
-  template <Comp C>
-  void solve_momentum(Momentum& m, double dt);
-  int linear_fallbacks = 0;  // momentum solves of the current step answered by the LU
-  void mass_fluxes();
-  double continuity(const Field2& eps_old, const Field2& eps_new, double dt);  // sum |imbalance|
-  double reference_mass_flow() const;
+/// The 2^Dim nodes around a point for multilinear interpolation on nodes first + i h (i over the box), clamped
+/// to the node box: the low node, the step to the high node per axis (0 on a one-node axis) and the fractions.
+template <int Dim>
+struct Corners {
+  Index<Dim> lo{};
+  Index<Dim> step{};
+  Vec<Dim> fr{};
 };
 
-template <Comp C>
-void GasSolver::Impl::setup(Momentum& m) {
-  const int nx = grid.nx;
-  const int ny = grid.ny;
-  const int n_al = C == Comp::U ? nx : ny;
-  const int n_ac = C == Comp::U ? ny : nx;
-  const int faces_al = n_al + 1;
-  m.id.assign(static_cast<std::size_t>(faces_al) * static_cast<std::size_t>(n_ac), -1);
-  m.where.clear();
-  const auto idx = [&](int a, int b) { return static_cast<std::size_t>(b) * faces_al + static_cast<std::size_t>(a); };
-  const bool top_unknown = C == Comp::V && outlet;
-  for (int b = 0; b < n_ac; ++b)
-    for (int a = 1; a <= n_al; ++a) {
-      if (a == n_al && !top_unknown) continue;
-      m.id[idx(a, b)] = static_cast<int>(m.where.size());
-      m.where.push_back({a, b});
+template <int Dim>
+inline Corners<Dim> corners(const IndexBox<Dim>& b, const Vec<Dim>& s_raw) {
+  Corners<Dim> q;
+  for (int a = 0; a < Dim; ++a) {
+    const int n = b.extent(a);
+    const double s = std::clamp(s_raw[a], 0.0, static_cast<double>(n - 1));
+    const int i = std::min(static_cast<int>(s), std::max(n - 2, 0));
+    q.fr[a] = n > 1 ? s - i : 0.0;
+    q.lo[a] = b.lo[a] + i;
+    q.step[a] = std::min(i + 1, n - 1) - i;
+  }
+  return q;
+}
+
+/// Linear storage offset of corner `bits` from the low corner.
+template <int Dim>
+inline std::ptrdiff_t corner_offset(const Field<Dim>& f, const Corners<Dim>& q, int bits) {
+  std::ptrdiff_t o = 0;
+  for (int a = 0; a < Dim; ++a)
+    if (bits & (1 << a)) o += static_cast<std::ptrdiff_t>(q.step[a]) * static_cast<std::ptrdiff_t>(f.stride(a));
+  return o;
+}
+
+/// Multilinear interpolation of f between its nodes first + i h (i over f's box), clamped to the node box.
+template <int Dim>
+double multilinear(const Field<Dim>& f, const Vec<Dim>& first, const Vec<Dim>& h, const Vec<Dim>& x) {
+  Vec<Dim> s{};
+  for (int a = 0; a < Dim; ++a) s[a] = (x[a] - first[a]) / h[a];
+  const Corners<Dim> q = corners(f.box(), s);
+  const double* base = f.data().data() + f.index(q.lo);
+  std::array<double, 1 << Dim> v{};
+  for (int bits = 0; bits < (1 << Dim); ++bits) v[static_cast<std::size_t>(bits)] = base[corner_offset(f, q, bits)];
+  return blend<Dim>(v, q.fr);
+}
+
+/// Component b of the cell-centred pressure gradient at cell c (storage offset k in p): central inside,
+/// one-sided in the outer layers.
+template <int Dim>
+inline double cell_gradient(const Grid<Dim>& g, const Field<Dim>& p, const Index<Dim>& c, std::size_t k, int b) {
+  const int lo = std::max(c[b] - 1, g.domain.lo[b]);
+  const int hi = std::min(c[b] + 1, g.domain.hi[b] - 1);
+  if (!(hi > lo)) return 0.0;
+  const auto st = static_cast<std::ptrdiff_t>(p.stride(b));
+  const double* at = p.data().data() + k;
+  return (at[(hi - c[b]) * st] - at[(lo - c[b]) * st]) / ((hi - lo) * g.h[b]);
+}
+
+/// Copy the box values of `in` into `cell` (the grid's cells with ghosts) and fill the ghost layer of each side
+/// with the adjacent cell: the zero-gradient condition of the cell inputs at walls, inlet and outlet.
+template <int Dim>
+void load_cells(const Comm& comm, const Field<Dim>& in, Field<Dim>& cell) {
+  const IndexBox<Dim>& b = cell.box();
+  for_each(b, [&](const Index<Dim>& c) { cell[c] = in[c]; });
+  for (int a = 0; a < Dim; ++a)
+    for (bool high : {false, true})
+      for_each(b.outside(a, high), [&](const Index<Dim>& c) { cell[c] = cell[shifted<Dim>(c, a, high ? -1 : 1)]; });
+  comm.exchange_halo(cell);
+}
+
+/// Cell values to the faces normal to axis a: the mean of the two cells (a copy at the domain's sides, where
+/// the ghost repeats the cell).
+template <int Dim>
+void cells_to_faces(const Field<Dim>& cell, int a, Field<Dim>& face) {
+  for_each(face.box(), [&](const Index<Dim>& c) { face[c] = 0.5 * (cell[shifted<Dim>(c, a, -1)] + cell[c]); });
+}
+
+Grid<2> grid_of(const Grid2& g) {
+  Grid<2> out = Grid<2>::uniform({g.width(), g.height()}, {g.nx, g.ny});
+  out.h = {g.dx, g.dy};
+  out.origin = {g.x0, g.y0};
+  return out;
+}
+
+}  // namespace
+
+Field<2> to_field(const Field2& f, int ghost) {
+  Field<2> out(IndexBox<2>{{0, 0}, {f.nx, f.ny}}, ghost);
+  for (int j = 0; j < f.ny; ++j)
+    for (int i = 0; i < f.nx; ++i) out(i, j) = f(i, j);
+  return out;
+}
+
+void copy_interior(const Field<2>& f, Field2& out) {
+  const IndexBox<2>& b = f.box();
+  out = Field2(b.extent(0), b.extent(1));
+  for (int j = 0; j < out.ny; ++j)
+    for (int i = 0; i < out.nx; ++i) out(i, j) = f(b.lo[0] + i, b.lo[1] + j);
+}
+
+template <int Dim>
+struct GasSolver<Dim>::Impl {
+  Grid<Dim> grid;
+  Grid2 grid2;  // 2D only: the same grid for the Grid2 bridge
+  GasConfig cfg;
+  const Comm* comm;
+  Vec<Dim> gravity;
+  GasFields<Dim> f;
+  std::unique_ptr<StructuredSolver<Dim>> pressure;
+  std::array<Momentum<Dim>, Dim> mom;
+  bool outlet = false;
+  // Per-step face data and work arrays.
+  FaceFields<Dim> eps_f, eps_f_old, beta_f, us_f, mflux, u_old, coeff;
+  Field<Dim> eps_cell, work, imbalance, p_corr;
+  std::vector<double> inlet;
+  int linear_fallbacks = 0;  // momentum solves of the current step answered by the LU
+
+  Impl(const Grid<Dim>& g, const GasConfig& c, PressureSolverKind kind, const Comm& cm)
+      : grid(g), cfg(c), comm(&cm), pressure(make_eigen_structured_solver<Dim>(g, kind)) {
+    if constexpr (Dim == 2) {
+      gravity = {c.gravity.x, c.gravity.y};
+      grid2 = to_grid2(g);
+    } else {
+      gravity = c.gravity;
     }
+  }
+
+  template <int d>
+  void setup();
+  template <int d>
+  void solve_momentum(double dt);
+  void mass_fluxes();
+  double continuity(const Field<Dim>& eps_old, const Field<Dim>& eps_new, double dt);  // sum |imbalance|
+  double reference_mass_flow() const;
+  /// The bottom faces (normal to axis 1 at the domain's low side) and the top faces.
+  IndexBox<Dim> bottom() const {
+    IndexBox<Dim> b = grid.domain.faces(1);
+    b.hi[1] = b.lo[1] + 1;
+    return b;
+  }
+  IndexBox<Dim> top() const {
+    IndexBox<Dim> b = grid.domain.faces(1);
+    b.lo[1] = b.hi[1] - 1;
+    return b;
+  }
+};
+
+template <int Dim>
+template <int d>
+void GasSolver<Dim>::Impl::setup() {
+  Momentum<Dim>& m = mom[d];
+  const IndexBox<Dim> faces = grid.domain.faces(d);
+  m.d = Field<Dim>(faces, grid.ghost);
+  m.id.assign(m.d.data().size(), -1);
+  m.where.clear();
+  // Unknowns: the faces strictly inside along d, and the outlet's top faces (normal velocity free there).
+  IndexBox<Dim> unknown = faces;
+  unknown.lo[d] += 1;
+  if (!(d == 1 && outlet)) unknown.hi[d] -= 1;
+  for_each_along(unknown, d, [&](const Index<Dim>& c) {
+    m.id[m.d.index(c)] = static_cast<int>(m.where.size());
+    m.where.push_back(c);
+  });
   const int n = static_cast<int>(m.where.size());
-  std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(n));
-  const auto get = [&](int a, int b) { return (a < 0 || a > n_al || b < 0 || b >= n_ac) ? -1 : m.id[idx(a, b)]; };
+  const auto get = [&](const Index<Dim>& c) { return faces.contains(c) ? m.id[m.d.index(c)] : -1; };
+  std::vector<std::array<int, 2 * Dim>> nb(static_cast<std::size_t>(n));
   for (int r = 0; r < n; ++r) {
-    const int a = m.where[static_cast<std::size_t>(r)][0];
-      const int b = m.where[static_cast<std::size_t>(r)][1];
-    nb[static_cast<std::size_t>(r)] = {get(a - 1, b), get(a + 1, b), get(a, b - 1), get(a, b + 1)};
-    if (a == n_al) nb[static_cast<std::size_t>(r)] = {get(a - 1, b), -1, -1, -1};  // outlet half cell
+    const Index<Dim>& c = m.where[static_cast<std::size_t>(r)];
+    std::array<int, 2 * Dim>& row = nb[static_cast<std::size_t>(r)];
+    row.fill(-1);
+    row[0] = get(shifted<Dim>(c, d, -1));
+    if (c[d] == faces.hi[d] - 1) continue;  // outlet half cell: its only neighbour is below
+    row[1] = get(shifted<Dim>(c, d, 1));
+    for (int e = 0, k = 1; e < Dim; ++e) {
+      if (e == d) continue;
+      row[static_cast<std::size_t>(2 * k)] = get(shifted<Dim>(c, e, -1));
+      row[static_cast<std::size_t>(2 * k + 1)] = get(shifted<Dim>(c, e, 1));
+      ++k;
+    }
   }
   m.a.build(n, nb);
   m.rhs.resize(n);
   m.x.resize(n);
-  m.d = C == Comp::U ? Field2(nx + 1, ny) : Field2(nx, ny + 1);
   m.solver.set_tolerance(cfg.momentum_solver_tolerance);
   m.solver.set_max_iterations(cfg.momentum_solver_max_iterations);
 }
 
-void GasSolver::Impl::mass_fluxes() {
-  const int nx = grid.nx;
-  const int ny = grid.ny;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i <= nx; ++i) mx(i, j) = cfg.rho_g * epsx(i, j) * f.u(i, j) * grid.dy;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i < nx; ++i) my(i, j) = cfg.rho_g * epsy(i, j) * f.v(i, j) * grid.dx;
+template <int Dim>
+void GasSolver<Dim>::Impl::mass_fluxes() {
+  for (int a = 0; a < Dim; ++a) {
+    const double area = face_area(grid, a);
+    const Field<Dim>& e = eps_f[a];
+    const Field<Dim>& u = f.u[a];
+    Field<Dim>& m = mflux[a];
+    for_each(m.box(), [&](const Index<Dim>& c) { m[c] = cfg.rho_g * e[c] * u[c] * area; });
+  }
 }
 
-double GasSolver::Impl::continuity(const Field2& eps_old, const Field2& eps_new, double dt) {
-  const int nx = grid.nx;
-  const int ny = grid.ny;
-  const double vol = grid.dx * grid.dy;
-  std::vector<double> row_sum(static_cast<std::size_t>(ny), 0.0);
-#pragma omp parallel for schedule(static) if (nx * ny >= kParallelCells)
-  for (int j = 0; j < ny; ++j) {
+template <int Dim>
+double GasSolver<Dim>::Impl::continuity(const Field<Dim>& eps_old, const Field<Dim>& eps_new, double dt) {
+  const IndexBox<Dim>& cells = grid.domain;
+  const double vol = grid.cell_measure();
+  const std::vector<Index<Dim>> starts = line_starts(cells);
+  const int n_lines = static_cast<int>(starts.size());
+  std::vector<double> line_sum(starts.size(), 0.0);
+#pragma omp parallel for schedule(static) if (static_cast<int>(cells.count()) >= kParallelCells)
+  for (int l = 0; l < n_lines; ++l) {
+    Index<Dim> c = starts[static_cast<std::size_t>(l)];
     double s = 0.0;
-    for (int i = 0; i < nx; ++i) {
+    for (c[0] = cells.lo[0]; c[0] < cells.hi[0]; ++c[0]) {
       // Eq. 11 integrated over the cell: accumulation plus net outflow.
-      const double r = cfg.rho_g * (eps_new(i, j) - eps_old(i, j)) * vol / dt + mx(i + 1, j) - mx(i, j) +
-                       my(i, j + 1) - my(i, j);
-      imbalance(i, j) = r;
+      double r = cfg.rho_g * (eps_new[c] - eps_old[c]) * vol / dt;
+      for (int a = 0; a < Dim; ++a) {
+        r = r + mflux[a][shifted<Dim>(c, a, 1)];
+        r = r - mflux[a][c];
+      }
+      imbalance[c] = r;
       s += std::abs(r);
     }
-    row_sum[static_cast<std::size_t>(j)] = s;
+    line_sum[static_cast<std::size_t>(l)] = s;
   }
   double total = 0.0;
-  for (double s : row_sum) total += s;  // fixed order: independent of the thread count
-  return total;
+  for (double s : line_sum) total += s;  // fixed order: independent of the thread count
+  return comm->sum(total);
 }
 
-double GasSolver::Impl::reference_mass_flow() const {
+template <int Dim>
+double GasSolver<Dim>::Impl::reference_mass_flow() const {
   double m_in = 0.0;
-  for (int i = 0; i < grid.nx; ++i) m_in += my(i, 0);
+  for_each(bottom(), [&](const Index<Dim>& c) { m_in += mflux[1][c]; });
+  m_in = comm->sum(m_in);
   double speed = std::abs(cfg.boundary.lid_velocity);
-  for (double x : f.u.v) speed = std::max(speed, std::abs(x));
-  for (double x : f.v.v) speed = std::max(speed, std::abs(x));
-  const double width = grid.width();
+  for (int a = 0; a < Dim; ++a)
+    for_each(f.u[a].box(), [&](const Index<Dim>& c) { speed = std::max(speed, std::abs(f.u[a][c])); });
+  speed = comm->max(speed);
+  // The cross-section the gas rises through: the domain's width in 2D (per metre of depth), width x depth in 3D.
+  double width = 1.0;
+  for (int a = 0; a < Dim; ++a)
+    if (a != 1) width = a == 0 ? grid.length(0) : width * grid.length(a);
   // With the gas at rest the reference must not fall below the round-off of the velocities, or SIMPLE can never
   // meet the tolerance: floor it at a micro-fraction of the free-fall speed over the domain height.
-  const double v_floor = std::max(1e-12, 1e-6 * std::sqrt(std::hypot(cfg.gravity.x, cfg.gravity.y) * grid.height()));
+  double g_norm = 0.0;
+  if constexpr (Dim == 2) {
+    g_norm = std::hypot(gravity.x, gravity.y);
+  } else {
+    g_norm = std::hypot(gravity.x, gravity.y, gravity.z);
+  }
+  const double v_floor = std::max(1e-12, 1e-6 * std::sqrt(g_norm * grid.length(1)));
   return std::max({std::abs(m_in), cfg.rho_g * speed * width, cfg.rho_g * v_floor * width});
 }
 
-template <Comp C>
-void GasSolver::Impl::solve_momentum(Momentum& m, double dt) {
-  const int nx = grid.nx;
-  const int ny = grid.ny;
-  const int n_al = C == Comp::U ? nx : ny;
-  const int n_ac = C == Comp::U ? ny : nx;
-  const double h_al = C == Comp::U ? grid.dx : grid.dy;
-  const double h_ac = C == Comp::U ? grid.dy : grid.dx;
-  const double g_c = C == Comp::U ? cfg.gravity.x : cfg.gravity.y;
+template <int Dim>
+template <int d>
+void GasSolver<Dim>::Impl::solve_momentum(double dt) {
+  Momentum<Dim>& m = mom[d];
+  const IndexBox<Dim>& cells = grid.domain;
+  const IndexBox<Dim> faces = cells.faces(d);
+  const double h_al = grid.h[d];
+  const double area_d = face_area(grid, d);
+  double vol_full = h_al;
+  for (int e = 0; e < Dim; ++e)
+    if (e != d) vol_full *= grid.h[e];
+  const double g_c = gravity[d];
   const double rho = cfg.rho_g;
   const double mu = cfg.viscous == ViscousStress::Off ? 0.0 : cfg.mu_g;
   const double alpha = cfg.relax_velocity;
   const GasBoundaryConfig& bc = cfg.boundary;
-  Field2& phi_field = C == Comp::U ? f.u : f.v;
-  const Field2& phi_old = C == Comp::U ? u_old : v_old;
-  const Field2& eps_f = C == Comp::U ? epsx : epsy;
-  const Field2& eps_f_old = C == Comp::U ? epsx_old : epsy_old;
-  const Field2& beta_f = C == Comp::U ? betax : betay;
-  const Field2& us_f = C == Comp::U ? usx : vsy;
-  // (along, across) addressing of face arrays, cell arrays and the two mass-flux arrays.
-  const auto face = [&](const Field2& fld, int a, int b) { return C == Comp::U ? fld(a, b) : fld(b, a); };
-  const auto cell = [&](const Field2& fld, int c, int b) { return C == Comp::U ? fld(c, b) : fld(b, c); };
-  const auto m_al = [&](int a, int b) { return C == Comp::U ? mx(a, b) : my(b, a); };
-  const auto m_ac = [&](int c, int k) { return C == Comp::U ? my(c, k) : mx(k, c); };
-  const auto pres = [&](int c, int b) { return C == Comp::U ? f.p(c, b) : f.p(b, c); };
-  const auto phi = [&](int a, int b) { return face(phi_field, a, b); };
-  // The other velocity component at (along cell c, across face k).
-  const auto other = [&](int c, int k) { return C == Comp::U ? f.v(c, k) : f.u(k, c); };
+  Field<Dim>& phi = f.u[d];
+  const Field<Dim>& phi_old = u_old[d];
+  const Field<Dim>& eps_face = eps_f[d];
+  const Field<Dim>& eps_face_old = eps_f_old[d];
+  const Field<Dim>& beta_face = beta_f[d];
+  const Field<Dim>& us_face = us_f[d];
+  const Field<Dim>& m_al = mflux[d];
   const bool full_stress = cfg.viscous == ViscousStress::Full;
-  const auto fixed = [&](int a, int b) {
-    return m.id[static_cast<std::size_t>(b) * static_cast<std::size_t>(n_al + 1) + static_cast<std::size_t>(a)] < 0;
-  };
-  // Across-boundary walls: tangential kind and speed. The top of U may be an outlet (zero gradient: no term).
-  const bool low_noslip = (C == Comp::U ? bc.bottom_wall : bc.side_walls) == WallKind::NoSlip;
-  const bool high_is_wall = C == Comp::V || bc.top == TopBoundary::Wall;
-  const bool high_noslip = C == Comp::U ? (bc.top == TopBoundary::Wall && bc.top_wall == WallKind::NoSlip)
-                                        : bc.side_walls == WallKind::NoSlip;
-  const double high_speed = C == Comp::U ? bc.lid_velocity : 0.0;
   const ConvectionScheme scheme = cfg.convection;
+  const bool outlet_top = d == 1 && outlet;
+  // The walls (and the distributor, and the lid or outlet) across the component: axis e, tangential kind, speed.
+  struct Across {
+    int e;
+    double h;
+    double area;
+    bool low_noslip;       // the low side is a no-slip wall (the distributor: bottom_wall)
+    bool high_noslip_wall; // the high side is a no-slip wall (not the outlet)
+    double high_speed;     // tangential speed of that wall (the lid moves along x)
+  };
+  std::array<Across, Dim - 1> across{};
+  for (int e = 0, k = 0; e < Dim; ++e) {
+    if (e == d) continue;
+    const WallKind side = e == 0 ? bc.side_walls : bc.front_back_walls;
+    Across& x = across[static_cast<std::size_t>(k++)];
+    x.e = e;
+    x.h = grid.h[e];
+    x.area = face_area(grid, e);
+    x.low_noslip = (e == 1 ? bc.bottom_wall : side) == WallKind::NoSlip;
+    x.high_noslip_wall = e == 1 ? (bc.top == TopBoundary::Wall && bc.top_wall == WallKind::NoSlip)
+                                : side == WallKind::NoSlip;
+    x.high_speed = e == 1 && d == 0 ? bc.lid_velocity : 0.0;
+  }
   const int n = static_cast<int>(m.where.size());
+  // Storage offsets: every face field of component d shares one layout (phi, its old value, eps, beta, the solids
+  // velocity, the mass flux, d and the unknown numbers), the cell fields another, each across mass flux its own.
+  using Off = std::ptrdiff_t;
+  std::array<Off, Dim> sf{};
+  std::array<Off, Dim> sc{};
+  std::array<std::array<Off, Dim>, Dim> se{};
+  for (int b = 0; b < Dim; ++b) {
+    sf[static_cast<std::size_t>(b)] = static_cast<Off>(phi.stride(b));
+    sc[static_cast<std::size_t>(b)] = static_cast<Off>(eps_cell.stride(b));
+    for (int e = 0; e < Dim; ++e)
+      se[static_cast<std::size_t>(e)][static_cast<std::size_t>(b)] = static_cast<Off>(mflux[e].stride(b));
+  }
+  const Off sfd = sf[d];
+  const Off scd = sc[d];
+  double* const P = phi.data().data();
+  const double* const P_old = phi_old.data().data();
+  const double* const EF = eps_face.data().data();
+  const double* const EF_old = eps_face_old.data().data();
+  const double* const BF = beta_face.data().data();
+  const double* const UF = us_face.data().data();
+  const double* const MA = m_al.data().data();
+  const double* const E = eps_cell.data().data();
+  const double* const PR = f.p.data().data();
+  double* const D = m.d.data().data();
+  const int* const ID = m.id.data();
 
-#pragma omp parallel for schedule(static) if (nx * ny >= kParallelCells)
+#pragma omp parallel for schedule(static) if (static_cast<int>(cells.count()) >= kParallelCells)
   for (int r = 0; r < n; ++r) {
-    const int a = m.where[static_cast<std::size_t>(r)][0];
-      const int b = m.where[static_cast<std::size_t>(r)][1];
-    const bool half = a == n_al;  // outlet face: half control volume inside the domain
-    const double vol = h_al * h_ac * (half ? 0.5 : 1.0);
-    const double ef = face(eps_f, a, b);
+    const Index<Dim> c = m.where[static_cast<std::size_t>(r)];
+    const Off kf = static_cast<Off>(phi.index(c));       // the face, in the face layout
+    const Off kc = static_cast<Off>(eps_cell.index(c));  // the cell above it along d, in the cell layout
+    const int a = c[d];
+    const bool half = outlet_top && a == cells.hi[d];  // outlet face: half control volume inside the domain
+    const double vol = vol_full * (half ? 0.5 : 1.0);
+    const double ef = EF[kf];
     double b_src = 0.0;
     double sum_nb = 0.0;
     double sum_unknown_nb = 0.0;
-    std::array<double, 4> off{0.0, 0.0, 0.0, 0.0};
-    // neighbour k: coefficient, and its value when it is fixed
-    const auto add = [&](int slot, int an, int bn, double coeff) {
+    std::array<double, 2 * Dim> off{};
+    // neighbour (face offset kn) in slot: coefficient, and its value when it is fixed
+    const auto add = [&](int slot, Off kn, double coeff) {
       sum_nb += coeff;
-      if (fixed(an, bn)) {
-        b_src += coeff * phi(an, bn);
+      if (ID[kn] < 0) {
+        b_src += coeff * P[kn];
       } else {
         off[static_cast<std::size_t>(slot)] = -coeff;
         sum_unknown_nb += coeff;
@@ -212,190 +460,230 @@ void GasSolver::Impl::solve_momentum(Momentum& m, double dt) {
     };
     // Along the component: faces at the cell centres a-1 (minus) and a (plus).
     {
-      const double fm = 0.5 * (m_al(a - 1, b) + m_al(a, b));
-      const double dm = mu * cell(eps_cell, a - 1, b) * h_ac / h_al;
-      add(0, a - 1, b, dm + std::max(fm, 0.0));
+      const double fm = 0.5 * (MA[kf - sfd] + MA[kf]);
+      const double dm = mu * E[kc - scd] * area_d / h_al;
+      add(0, kf - sfd, dm + std::max(fm, 0.0));
       if (scheme != ConvectionScheme::Upwind && !half) {
         const bool fwd = fm > 0.0;
         const int far = fwd ? a - 2 : a + 1;
-        if (far >= 0 && far <= n_al) {
-          const double c = fwd ? high_order_correction(scheme, phi(far, b), phi(a - 1, b), phi(a, b))
-                               : high_order_correction(scheme, phi(far, b), phi(a, b), phi(a - 1, b));
-          b_src += fm * c;
+        if (far >= faces.lo[d] && far < faces.hi[d]) {
+          const double phi_far = P[kf + (far - a) * sfd];
+          const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfd], P[kf])
+                                : high_order_correction(scheme, phi_far, P[kf], P[kf - sfd]);
+          b_src += fm * cc;
         }
       }
     }
     if (!half) {
-      const double fp = 0.5 * (m_al(a, b) + m_al(a + 1, b));
-      const double dp = mu * cell(eps_cell, a, b) * h_ac / h_al;
-      add(1, a + 1, b, dp + std::max(-fp, 0.0));
+      const double fp = 0.5 * (MA[kf] + MA[kf + sfd]);
+      const double dp = mu * E[kc] * area_d / h_al;
+      add(1, kf + sfd, dp + std::max(-fp, 0.0));
       if (scheme != ConvectionScheme::Upwind) {
         const bool fwd = fp > 0.0;
         const int far = fwd ? a - 1 : a + 2;
-        if (far >= 0 && far <= n_al) {
-          const double c = fwd ? high_order_correction(scheme, phi(far, b), phi(a, b), phi(a + 1, b))
-                               : high_order_correction(scheme, phi(far, b), phi(a + 1, b), phi(a, b));
-          b_src -= fp * c;
+        if (far >= faces.lo[d] && far < faces.hi[d]) {
+          const double phi_far = P[kf + (far - a) * sfd];
+          const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfd])
+                                : high_order_correction(scheme, phi_far, P[kf + sfd], P[kf]);
+          b_src -= fp * cc;
         }
       }
-      // Across the component: faces at the corners b -/+ 1/2.
-      const double fs = 0.5 * (m_ac(a - 1, b) + m_ac(a, b));
-      if (b > 0) {
-        const double e_corner = 0.25 * (cell(eps_cell, a - 1, b) + cell(eps_cell, a, b) + cell(eps_cell, a - 1, b - 1) +
-                                        cell(eps_cell, a, b - 1));
-        add(2, a, b - 1, mu * e_corner * h_al / h_ac + std::max(fs, 0.0));
-        if (scheme != ConvectionScheme::Upwind) {
-          const bool fwd = fs > 0.0;
-          const int far = fwd ? b - 2 : b + 1;
-          if (far >= 0 && far < n_ac) {
-            const double c = fwd ? high_order_correction(scheme, phi(a, far), phi(a, b - 1), phi(a, b))
-                                 : high_order_correction(scheme, phi(a, far), phi(a, b), phi(a, b - 1));
-            b_src += fs * c;
+      // Across the component, per axis e: faces at the corners b -/+ 1/2.
+      for (int k = 0; k < Dim - 1; ++k) {
+        const Across& x = across[static_cast<std::size_t>(k)];
+        const int e = x.e;
+        const int b = c[e];
+        const Off sfe = sf[static_cast<std::size_t>(e)];
+        const Off sce = sc[static_cast<std::size_t>(e)];
+        const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
+        const double* const ME = mflux[e].data().data();
+        const Off ke = static_cast<Off>(mflux[e].index(c));
+        const Off smd = sm[d];
+        const Off sme = sm[static_cast<std::size_t>(e)];
+        const double fs = 0.5 * (ME[ke - smd] + ME[ke]);
+        if (b > cells.lo[e]) {
+          const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd - sce] + E[kc - sce]);
+          add(2 + 2 * k, kf - sfe, mu * e_corner * x.area / x.h + std::max(fs, 0.0));
+          if (scheme != ConvectionScheme::Upwind) {
+            const bool fwd = fs > 0.0;
+            const int far = fwd ? b - 2 : b + 1;
+            if (far >= cells.lo[e] && far < cells.hi[e]) {
+              const double phi_far = P[kf + (far - b) * sfe];
+              const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfe], P[kf])
+                                    : high_order_correction(scheme, phi_far, P[kf], P[kf - sfe]);
+              b_src += fs * cc;
+            }
           }
+        } else {
+          // Low across boundary: inflow (bottom inlet) brings no tangential momentum; wall friction if no-slip.
+          const double coeff = std::max(fs, 0.0) + (x.low_noslip ? mu * ef * x.area / (0.5 * x.h) : 0.0);
+          sum_nb += coeff;
         }
-      } else {
-        // Low across boundary: inflow (bottom inlet) brings no tangential momentum; wall friction if no-slip.
-        const double coeff = std::max(fs, 0.0) + (low_noslip ? mu * ef * h_al / (0.5 * h_ac) : 0.0);
-        sum_nb += coeff;
-      }
-      const double fn = 0.5 * (m_ac(a - 1, b + 1) + m_ac(a, b + 1));
-      if (b < n_ac - 1) {
-        const double e_corner = 0.25 * (cell(eps_cell, a - 1, b) + cell(eps_cell, a, b) + cell(eps_cell, a - 1, b + 1) +
-                                        cell(eps_cell, a, b + 1));
-        add(3, a, b + 1, mu * e_corner * h_al / h_ac + std::max(-fn, 0.0));
-        if (scheme != ConvectionScheme::Upwind) {
-          const bool fwd = fn > 0.0;
-          const int far = fwd ? b - 1 : b + 2;
-          if (far >= 0 && far < n_ac) {
-            const double c = fwd ? high_order_correction(scheme, phi(a, far), phi(a, b), phi(a, b + 1))
-                                 : high_order_correction(scheme, phi(a, far), phi(a, b + 1), phi(a, b));
-            b_src -= fn * c;
+        const double fn = 0.5 * (ME[ke - smd + sme] + ME[ke + sme]);
+        if (b < cells.hi[e] - 1) {
+          const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd + sce] + E[kc + sce]);
+          add(3 + 2 * k, kf + sfe, mu * e_corner * x.area / x.h + std::max(-fn, 0.0));
+          if (scheme != ConvectionScheme::Upwind) {
+            const bool fwd = fn > 0.0;
+            const int far = fwd ? b - 1 : b + 2;
+            if (far >= cells.lo[e] && far < cells.hi[e]) {
+              const double phi_far = P[kf + (far - b) * sfe];
+              const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfe])
+                                    : high_order_correction(scheme, phi_far, P[kf + sfe], P[kf]);
+              b_src -= fn * cc;
+            }
           }
+        } else if (x.high_noslip_wall) {
+          const double coeff = mu * ef * x.area / (0.5 * x.h);
+          sum_nb += coeff;
+          b_src += coeff * x.high_speed;
         }
-      } else if (high_is_wall && high_noslip) {
-        const double coeff = mu * ef * h_al / (0.5 * h_ac);
-        sum_nb += coeff;
-        b_src += coeff * high_speed;
       }
       if (full_stress) {
         // Transpose part of the stress, div(eps mu (grad u)^T), lagged (deferred) from the current iterate:
         // along faces eps mu d(phi)/d(along), across faces eps mu d(other)/d(along). Zero at slip walls and outlets.
-        b_src += mu * h_ac / h_al *
-                 (cell(eps_cell, a, b) * (phi(a + 1, b) - phi(a, b)) -
-                  cell(eps_cell, a - 1, b) * (phi(a, b) - phi(a - 1, b)));
-        const auto corner_eps = [&](int k) {
-          if (k > 0 && k < n_ac)
-            return 0.25 * (cell(eps_cell, a - 1, k - 1) + cell(eps_cell, a, k - 1) + cell(eps_cell, a - 1, k) +
-                           cell(eps_cell, a, k));
-          return ef;
-        };
-        const bool low_open = b > 0 || low_noslip;
-        const bool high_open = b < n_ac - 1 || (high_is_wall && high_noslip);
-        if (high_open) b_src += mu * corner_eps(b + 1) * (other(a, b + 1) - other(a - 1, b + 1));
-        if (low_open) b_src -= mu * corner_eps(b) * (other(a, b) - other(a - 1, b));
+        b_src += mu * area_d / h_al * (E[kc] * (P[kf + sfd] - P[kf]) - E[kc - scd] * (P[kf] - P[kf - sfd]));
+        for (int k = 0; k < Dim - 1; ++k) {
+          const Across& x = across[static_cast<std::size_t>(k)];
+          const int e = x.e;
+          const int b = c[e];
+          const Off sce = sc[static_cast<std::size_t>(e)];
+          const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
+          const double* const O = f.u[e].data().data();  // the other component, in the layout of mflux[e]
+          const Off ke = static_cast<Off>(f.u[e].index(c));
+          const Off smd = sm[d];
+          const Off sme = sm[static_cast<std::size_t>(e)];
+          const auto corner_eps = [&](int j) {
+            if (j > cells.lo[e] && j < cells.hi[e]) {
+              const Off lo = kc + (j - 1 - b) * sce;  // cell (a, j - 1) along (d, e)
+              return 0.25 * (E[lo - scd] + E[lo] + E[lo - scd + sce] + E[lo + sce]);
+            }
+            return ef;
+          };
+          // The across face's area over the along spacing (1 in 2D, where the face is as long as the cell).
+          const double lever = x.area / h_al;
+          const bool low_open = b > cells.lo[e] || x.low_noslip;
+          const bool high_open = b < cells.hi[e] - 1 || x.high_noslip_wall;
+          if (high_open) b_src += mu * corner_eps(b + 1) * (O[ke + sme] - O[ke - smd + sme]) * lever;
+          if (low_open) b_src -= mu * corner_eps(b) * (O[ke] - O[ke - smd]) * lever;
+        }
       }
     }
     // Eq. 12: backward Euler in the non-conservative form (continuity subtracted), implicit drag, gravity, pressure.
-    const double ap0 = rho * face(eps_f_old, a, b) * vol / dt;
-    const double drag = face(beta_f, a, b) * vol;
+    const double ap0 = rho * EF_old[kf] * vol / dt;
+    const double drag = BF[kf] * vol;
     const double ap = ap0 + sum_nb + drag;
     const double ap_relaxed = ap / alpha;
-    const double area = ef * h_ac;  // pressure force per unit pressure difference
-    const double p_low = pres(a - 1, b);
-    const double p_high = half ? bc.top_pressure : pres(a, b);
-    b_src += ap0 * face(phi_old, a, b) + drag * face(us_f, a, b) + rho * ef * g_c * vol + area * (p_low - p_high) +
-             (ap_relaxed - ap) * phi(a, b);
+    const double area = ef * area_d;  // pressure force per unit pressure difference
+    const double p_low = PR[kc - scd];
+    const double p_high = half ? bc.top_pressure : PR[kc];
+    b_src += ap0 * P_old[kf] + drag * UF[kf] + rho * ef * g_c * vol + area * (p_low - p_high) +
+             (ap_relaxed - ap) * P[kf];
     m.a.set_row(r, ap_relaxed, off);
     m.rhs[r] = b_src;
-    m.x[r] = phi(a, b);
+    m.x[r] = P[kf];
     const double denom = cfg.coupling == PressureCoupling::Simplec ? ap_relaxed - sum_unknown_nb : ap_relaxed;
-    (C == Comp::U ? m.d(a, b) : m.d(b, a)) = area / denom;
+    D[kf] = area / denom;
   }
   Eigen::VectorXd sol = m.x;
   const LinearSolveOutcome res = m.solver.solve(m.a.matrix(), m.rhs, sol);
   if (res.fell_back) ++linear_fallbacks;
   if (!res.ok) {
     std::string at;
-    if (res.bad_row >= 0) {
-      const auto& w = m.where[static_cast<std::size_t>(res.bad_row)];
-      at = fmt::format(" at the {} face ({}, {})", C == Comp::U ? "u" : "v", C == Comp::U ? w[0] : w[1],
-                       C == Comp::U ? w[1] : w[0]);
-    }
-    throw_simulation_error(fmt::format("gas {} momentum: linear solve failed{}: {}", C == Comp::U ? "u" : "v", at, res.why));
+    if (res.bad_row >= 0)
+      at = fmt::format(" at the {} face {}", kComponent[d], index_name<Dim>(m.where[static_cast<std::size_t>(res.bad_row)]));
+    throw_simulation_error(fmt::format("gas {} momentum: linear solve failed{}: {}", kComponent[d], at, res.why));
   }
-  for (int r = 0; r < n; ++r) {
-    const int a = m.where[static_cast<std::size_t>(r)][0];
-      const int b = m.where[static_cast<std::size_t>(r)][1];
-    (C == Comp::U ? phi_field(a, b) : phi_field(b, a)) = sol[r];
-  }
+  for (int r = 0; r < n; ++r) phi[m.where[static_cast<std::size_t>(r)]] = sol[r];
 }
 
-GasSolver::GasSolver(const Grid2& grid, const GasConfig& config, PressureSolverKind pressure_solver)
-    : impl_(std::make_unique<Impl>(grid, config, pressure_solver)) {
+template <int Dim>
+GasSolver<Dim>::GasSolver(const Grid<Dim>& grid, const GasConfig& config, PressureSolverKind pressure_solver,
+                          const Comm& comm) {
   validate(config);
-  if (grid.nx < 2 || grid.ny < 2 || !(grid.dx > 0.0) || !(grid.dy > 0.0))
-    throw_input_error("gas: the grid needs at least 2 x 2 cells of positive size");
+  bool ok = true;
+  for (int a = 0; a < Dim; ++a) ok = ok && grid.n(a) >= 2 && grid.h[a] > 0.0;
+  if (!ok) {
+    throw_input_error(Dim == 2 ? "gas: the grid needs at least 2 x 2 cells of positive size"
+                               : "gas: the grid needs at least 2 x 2 x 2 cells of positive size");
+  }
+  if constexpr (Dim == 2) {
+    for (const InletJet& jet : config.boundary.jets)
+      if (jet.shape != InletShape::Slot) throw_input_error("gas: a 2D bed's jets are slots (rectangles and discs are 3D)");
+  }
+  impl_ = std::make_unique<Impl>(grid, config, pressure_solver, comm);
   Impl& s = *impl_;
   s.outlet = config.boundary.top == TopBoundary::PressureOutlet;
-  s.f = StaggeredFields::zeros(grid);
-  s.setup<Comp::U>(s.mom_u);
-  s.setup<Comp::V>(s.mom_v);
-  const int nx = grid.nx;
-  const int ny = grid.ny;
-  s.mx = Field2(nx + 1, ny);
-  s.my = Field2(nx, ny + 1);
-  s.ax = Field2(nx + 1, ny);
-  s.ay = Field2(nx, ny + 1);
-  s.imbalance = Field2(nx, ny);
-  s.p_corr = Field2(nx, ny);
+  const IndexBox<Dim>& cells = grid.domain;
+  s.f.p = Field<Dim>(cells, grid.ghost);
+  s.f.u = FaceFields<Dim>(cells, grid.ghost);
+  [&]<int... d>(std::integer_sequence<int, d...>) { (s.template setup<d>(), ...); }(std::make_integer_sequence<int, Dim>{});
+  for (FaceFields<Dim>* ff : {&s.eps_f, &s.eps_f_old, &s.beta_f, &s.us_f, &s.mflux, &s.coeff})
+    *ff = FaceFields<Dim>(cells, grid.ghost);
+  s.eps_cell = Field<Dim>(cells, grid.ghost);
+  s.work = Field<Dim>(cells, grid.ghost);
+  s.imbalance = Field<Dim>(cells, grid.ghost);
+  s.p_corr = Field<Dim>(cells, grid.ghost);
 }
 
-GasSolver::~GasSolver() = default;
-GasSolver::GasSolver(GasSolver&&) noexcept = default;
-GasSolver& GasSolver::operator=(GasSolver&&) noexcept = default;
+template <int Dim>
+GasSolver<Dim>::~GasSolver() = default;
+template <int Dim>
+GasSolver<Dim>::GasSolver(GasSolver&&) noexcept = default;
+template <int Dim>
+GasSolver<Dim>& GasSolver<Dim>::operator=(GasSolver&&) noexcept = default;
 
-GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new,
-                                 const Field2& beta, const Field2& us, const Field2& vs) {
+template <int Dim>
+GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>& eps_old, const Field<Dim>& eps_new,
+                                      const Field<Dim>& beta, const CellVector<Dim>& us) {
   Impl& s = *impl_;
-  const Grid2& g = s.grid;
-  const int nx = g.nx;
-  const int ny = g.ny;
-  for (const Field2* fld : {&eps_old, &eps_new, &beta, &us, &vs}) {
-    if (fld->nx != nx || fld->ny != ny) throw_input_error("gas advance: cell fields must be nx x ny");
-  }
+  const Grid<Dim>& g = s.grid;
+  const IndexBox<Dim>& cells = g.domain;
+  const Comm& comm = *s.comm;
+  for (const Field<Dim>* fld : {&eps_old, &eps_new, &beta})
+    if (!(fld->box() == cells)) throw_input_error("gas advance: cell fields must be on the grid's cells");
+  for (const Field<Dim>& fld : us)
+    if (!(fld.box() == cells)) throw_input_error("gas advance: cell fields must be on the grid's cells");
   if (!(dt > 0.0)) throw_input_error("gas advance: dt must be positive");
-  for (std::size_t k = 0; k < eps_new.size(); ++k) {
+  for_each(cells, [&](const Index<Dim>& c) {
     // eps divides the inlet flux and scales every control volume; beta < 0 would make the drag anti-dissipative.
-    if (!(eps_new.v[k] > 0.0 && eps_new.v[k] <= 1.0) || !(eps_old.v[k] > 0.0 && eps_old.v[k] <= 1.0) ||
-        !(beta.v[k] >= 0.0) || !std::isfinite(beta.v[k]) || !std::isfinite(us.v[k]) || !std::isfinite(vs.v[k])) {
+    bool ok = eps_new[c] > 0.0 && eps_new[c] <= 1.0 && eps_old[c] > 0.0 && eps_old[c] <= 1.0 && beta[c] >= 0.0 &&
+              std::isfinite(beta[c]);
+    for (int a = 0; a < Dim; ++a) ok = ok && std::isfinite(us[a][c]);
+    if (!ok) {
+      std::string vel;
+      for (int a = 0; a < Dim; ++a) vel += fmt::format("{}{:.4g}", a > 0 ? ", " : "", us[a][c]);
       throw_simulation_error(fmt::format(
-          "gas advance at t = {:.6g} s: cell ({}, {}) has eps_old = {:.4g}, eps_new = {:.4g}, beta = {:.4g}, "
-          "solids velocity ({:.4g}, {:.4g}); need 0 < eps <= 1, beta >= 0 and finite values",
-          t_new, k % static_cast<std::size_t>(nx), k / static_cast<std::size_t>(nx), eps_old.v[k], eps_new.v[k],
-          beta.v[k], us.v[k], vs.v[k]));
+          "gas advance at t = {:.6g} s: cell {} has eps_old = {:.4g}, eps_new = {:.4g}, beta = {:.4g}, "
+          "solids velocity ({}); need 0 < eps <= 1, beta >= 0 and finite values",
+          t_new, index_name<Dim>(c), eps_old[c], eps_new[c], beta[c], vel));
     }
-  }
+  });
   const GasConfig& cfg = s.cfg;
-  s.eps_cell = eps_new;
-  cell_to_u_faces(eps_new, s.epsx);
-  cell_to_v_faces(eps_new, s.epsy);
-  cell_to_u_faces(eps_old, s.epsx_old);
-  cell_to_v_faces(eps_old, s.epsy_old);
-  cell_to_u_faces(beta, s.betax);
-  cell_to_v_faces(beta, s.betay);
-  cell_to_u_faces(us, s.usx);
-  cell_to_v_faces(vs, s.vsy);
+  // The cell inputs with their ghosts (zero gradient at the domain's sides), then on the faces.
+  load_cells(comm, eps_old, s.work);
+  for (int a = 0; a < Dim; ++a) cells_to_faces(s.work, a, s.eps_f_old[a]);
+  load_cells(comm, beta, s.work);
+  for (int a = 0; a < Dim; ++a) cells_to_faces(s.work, a, s.beta_f[a]);
+  for (int a = 0; a < Dim; ++a) {
+    load_cells(comm, us[a], s.work);
+    cells_to_faces(s.work, a, s.us_f[a]);
+  }
+  load_cells(comm, eps_new, s.eps_cell);
+  for (int a = 0; a < Dim; ++a) cells_to_faces(s.eps_cell, a, s.eps_f[a]);
   s.u_old = s.f.u;
-  s.v_old = s.f.v;
   // Boundary values: walls, and the inlet's superficial velocity turned into the interstitial face velocity.
-  for (int j = 0; j < ny; ++j) {
-    s.f.u(0, j) = 0.0;
-    s.f.u(nx, j) = 0.0;
+  for (int a = 0; a < Dim; ++a) {
+    if (a == 1) continue;
+    const IndexBox<Dim> faces = cells.faces(a);
+    s.f.u[a].fill(faces.inside(a, false), 0.0);
+    s.f.u[a].fill(faces.inside(a, true), 0.0);
   }
   inlet_superficial_profile(cfg.boundary, g, t_new - 0.5 * dt, s.inlet);
-  for (int i = 0; i < nx; ++i) {
-    s.f.v(i, 0) = s.inlet[static_cast<std::size_t>(i)] / eps_new(i, 0);
-    if (!s.outlet) s.f.v(i, ny) = 0.0;
+  {
+    std::size_t k = 0;
+    for_each(s.bottom(), [&](const Index<Dim>& c) { s.f.u[1][c] = s.inlet[k++] / eps_new[c]; });
+    if (!s.outlet) s.f.u[1].fill(s.top(), 0.0);
   }
 
   GasStepReport rep;
@@ -406,8 +694,9 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
   for (int it = 1; it <= cfg.max_simple_iterations; ++it) {
     s.mass_fluxes();
     try {
-      s.solve_momentum<Comp::U>(s.mom_u, dt);
-      s.solve_momentum<Comp::V>(s.mom_v, dt);
+      [&]<int... d>(std::integer_sequence<int, d...>) {
+        (s.template solve_momentum<d>(dt), ...);
+      }(std::make_integer_sequence<int, Dim>{});
     } catch (const Error& e) {
       throw_simulation_error(fmt::format(
           "gas at t = {:.6g} s (dt = {:.3g} s), SIMPLE iteration {}: {}. Likely cause: an inflow or a drag too strong "
@@ -421,31 +710,39 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
     rep.simple_iterations = it;
     converged = residual < cfg.mass_tolerance;
     // Pressure correction (SIMPLE): face coefficients rho eps A d, p' = 0 beyond the outlet.
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i <= nx; ++i) s.ax(i, j) = cfg.rho_g * s.epsx(i, j) * g.dy * s.mom_u.d(i, j);
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i < nx; ++i) s.ay(i, j) = cfg.rho_g * s.epsy(i, j) * g.dx * s.mom_v.d(i, j);
-    for (std::size_t k = 0; k < s.imbalance.size(); ++k) s.imbalance.v[k] = -s.imbalance.v[k];
+    for (int a = 0; a < Dim; ++a) {
+      const double area = face_area(g, a);
+      const Field<Dim>& e = s.eps_f[a];
+      const Field<Dim>& dd = s.mom[a].d;
+      Field<Dim>& k = s.coeff[a];
+      for_each(k.box(), [&](const Index<Dim>& c) { k[c] = cfg.rho_g * e[c] * area * dd[c]; });
+    }
+    for_each(cells, [&](const Index<Dim>& c) { s.imbalance[c] = -s.imbalance[c]; });
     s.p_corr.fill(0.0);
     // Factorised at the first SIMPLE iteration of each step only (the same in a restarted run).
     try {
-      s.pressure.solve(s.ax, s.ay, s.imbalance, s.p_corr, it > 1);
+      s.pressure->solve(s.coeff, s.imbalance, s.p_corr, it > 1);
     } catch (const Error& e) {
       throw_simulation_error(fmt::format(
           "gas at t = {:.6g} s (dt = {:.3g} s), SIMPLE iteration {}: {}. Likely cause: a voidage, drag or velocity "
           "that is no longer finite or usable; remedy: reduce the time step, check the inlet and jet velocities",
           t_new, dt, it, e.what()));
     }
-    const Field2& pc = s.p_corr;
-    for (std::size_t k = 0; k < s.f.p.size(); ++k) s.f.p.v[k] += cfg.relax_pressure * pc.v[k];
-    for (int j = 0; j < ny; ++j)
-      for (int i = 1; i < nx; ++i) s.f.u(i, j) += s.mom_u.d(i, j) * (pc(i - 1, j) - pc(i, j));
-    for (int j = 1; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) s.f.v(i, j) += s.mom_v.d(i, j) * (pc(i, j - 1) - pc(i, j));
+    const Field<Dim>& pc = s.p_corr;
+    for_each(cells, [&](const Index<Dim>& c) { s.f.p[c] += cfg.relax_pressure * pc[c]; });
+    for (int a = 0; a < Dim; ++a) {
+      IndexBox<Dim> inner = cells.faces(a);
+      inner.lo[a] += 1;
+      inner.hi[a] -= 1;
+      const Field<Dim>& dd = s.mom[a].d;
+      Field<Dim>& u = s.f.u[a];
+      for_each(inner, [&](const Index<Dim>& c) { u[c] += dd[c] * (pc[shifted<Dim>(c, a, -1)] - pc[c]); });
+    }
     if (s.outlet)
-      for (int i = 0; i < nx; ++i) s.f.v(i, ny) += s.mom_v.d(i, ny) * pc(i, ny - 1);
-    for (double x : s.f.p.v)
-      if (!std::isfinite(x)) throw_simulation_error(fmt::format("gas: pressure is not finite at t = {:.6g} s", t_new));
+      for_each(s.top(), [&](const Index<Dim>& c) { s.f.u[1][c] += s.mom[1].d[c] * pc[shifted<Dim>(c, 1, -1)]; });
+    bool finite = true;
+    for_each(cells, [&](const Index<Dim>& c) { finite = finite && std::isfinite(s.f.p[c]); });
+    if (!finite) throw_simulation_error(fmt::format("gas: pressure is not finite at t = {:.6g} s", t_new));
     if (converged) break;
   }
   rep.mass_residual = residual;
@@ -459,52 +756,158 @@ GasStepReport GasSolver::advance(double t_new, double dt, const Field2& eps_old,
   }
   // Gas mass balance of the corrected velocities.
   s.mass_fluxes();
-  const double vol = g.dx * g.dy;
-  for (int i = 0; i < nx; ++i) {
-    rep.mass_in += s.my(i, 0);
-    rep.mass_out += s.my(i, ny);
-  }
-  for (int j = 0; j < ny; ++j) {
+  const double vol = g.cell_measure();
+  for_each(s.bottom(), [&](const Index<Dim>& c) { rep.mass_in += s.mflux[1][c]; });
+  for_each(s.top(), [&](const Index<Dim>& c) { rep.mass_out += s.mflux[1][c]; });
+  for (Index<Dim> c : line_starts(cells)) {
     double row = 0.0;
-    for (int i = 0; i < nx; ++i) row += eps_new(i, j) - eps_old(i, j);
+    for (c[0] = cells.lo[0]; c[0] < cells.hi[0]; ++c[0]) row += eps_new[c] - eps_old[c];
     rep.accumulation += cfg.rho_g * row * vol / dt;
   }
+  rep.mass_in = comm.sum(rep.mass_in);
+  rep.mass_out = comm.sum(rep.mass_out);
+  rep.accumulation = comm.sum(rep.accumulation);
   rep.mass_balance = rep.mass_out - rep.mass_in + rep.accumulation;
   rep.mass_balance_relative = std::abs(rep.mass_balance) / m_ref;
-  for (const Field2* fld : {&s.f.u, &s.f.v})
-    for (double x : fld->v)
-      if (!std::isfinite(x)) throw_simulation_error(fmt::format("gas: velocity is not finite at t = {:.6g} s", t_new));
+  bool finite = true;
+  for (int a = 0; a < Dim; ++a)
+    for_each(s.f.u[a].box(), [&](const Index<Dim>& c) { finite = finite && std::isfinite(s.f.u[a][c]); });
+  if (!finite) throw_simulation_error(fmt::format("gas: velocity is not finite at t = {:.6g} s", t_new));
   return rep;
 }
 
-const Grid2& GasSolver::grid() const { return impl_->grid; }
-const GasConfig& GasSolver::config() const { return impl_->cfg; }
-const StaggeredFields& GasSolver::fields() const { return impl_->f; }
-StaggeredFields& GasSolver::fields() { return impl_->f; }
-
-Vec2 GasSolver::velocity_at(Vec2 x) const {
-  return {interpolate_u(impl_->grid, impl_->f.u, x), interpolate_v(impl_->grid, impl_->f.v, x)};
+template <int Dim>
+const Grid<Dim>& GasSolver<Dim>::grid() const {
+  return impl_->grid;
+}
+template <int Dim>
+const GasConfig& GasSolver<Dim>::config() const {
+  return impl_->cfg;
+}
+template <int Dim>
+const GasFields<Dim>& GasSolver<Dim>::fields() const {
+  return impl_->f;
+}
+template <int Dim>
+GasFields<Dim>& GasSolver<Dim>::fields() {
+  return impl_->f;
 }
 
-Vec2 GasSolver::pressure_gradient_at(Vec2 x) const {
-  return interpolate_pressure_gradient(impl_->grid, impl_->f.p, x);
+template <int Dim>
+Vec<Dim> GasSolver<Dim>::velocity_at(const Vec<Dim>& x) const {
+  const Grid<Dim>& g = impl_->grid;
+  Vec<Dim> out{};
+  for (int a = 0; a < Dim; ++a) {
+    const Field<Dim>& u = impl_->f.u[a];
+    Vec<Dim> first{};
+    for (int b = 0; b < Dim; ++b) first[b] = b == a ? g.face(b, u.box().lo[b]) : g.centre(b, u.box().lo[b]);
+    out[a] = multilinear(u, first, g.h, x);
+  }
+  return out;
 }
 
-void GasSolver::cell_velocity(Field2& ug, Field2& vg) const { cell_centre_velocity(impl_->f.u, impl_->f.v, ug, vg); }
-
-void GasSolver::cell_pressure_gradient(Field2& dpdx, Field2& dpdy) const {
-  fluidbed::cell_pressure_gradient(impl_->grid, impl_->f.p, dpdx, dpdy);
+template <int Dim>
+Vec<Dim> GasSolver<Dim>::pressure_gradient_at(const Vec<Dim>& x) const {
+  const Grid<Dim>& g = impl_->grid;
+  const Field<Dim>& p = impl_->f.p;
+  Vec<Dim> s{};
+  for (int a = 0; a < Dim; ++a) s[a] = (x[a] - g.origin[a]) / g.h[a] - 0.5;
+  const Corners<Dim> q = corners(g.domain, s);
+  std::array<std::array<double, 1 << Dim>, Dim> v{};
+  for (int bits = 0; bits < (1 << Dim); ++bits) {
+    Index<Dim> c = q.lo;
+    for (int a = 0; a < Dim; ++a)
+      if (bits & (1 << a)) c[a] += q.step[a];
+    const std::size_t k = p.index(c);
+    for (int comp = 0; comp < Dim; ++comp)
+      v[static_cast<std::size_t>(comp)][static_cast<std::size_t>(bits)] = cell_gradient<Dim>(g, p, c, k, comp);
+  }
+  Vec<Dim> out{};
+  for (int comp = 0; comp < Dim; ++comp) out[comp] = blend<Dim>(v[static_cast<std::size_t>(comp)], q.fr);
+  return out;
 }
 
-double GasSolver::pressure_drop() const {
-  const Grid2& g = impl_->grid;
+template <int Dim>
+void GasSolver<Dim>::cell_velocity(CellVector<Dim>& u) const {
+  const IndexBox<Dim>& cells = impl_->grid.domain;
+  for (int a = 0; a < Dim; ++a) {
+    u[a] = Field<Dim>(cells, 0);
+    const Field<Dim>& face = impl_->f.u[a];
+    for_each(cells, [&](const Index<Dim>& c) { u[a][c] = 0.5 * (face[c] + face[shifted<Dim>(c, a, 1)]); });
+  }
+}
+
+template <int Dim>
+void GasSolver<Dim>::cell_pressure_gradient(CellVector<Dim>& grad) const {
+  const Grid<Dim>& g = impl_->grid;
+  for (int a = 0; a < Dim; ++a) {
+    grad[a] = Field<Dim>(g.domain, 0);
+    for_each(g.domain, [&](const Index<Dim>& c) { grad[a][c] = cell_gradient<Dim>(g, impl_->f.p, c, impl_->f.p.index(c), a); });
+  }
+}
+
+template <int Dim>
+double GasSolver<Dim>::pressure_drop() const {
+  const Grid<Dim>& g = impl_->grid;
+  const Comm& comm = *impl_->comm;
   double bottom = 0.0;
   double top = 0.0;
-  for (int i = 0; i < g.nx; ++i) {
-    bottom += impl_->f.p(i, 0);
-    top += impl_->f.p(i, g.ny - 1);
-  }
-  return (bottom - top) / g.nx;
+  double count = 0.0;
+  for_each(g.domain.inside(1, false), [&](const Index<Dim>& c) {
+    bottom += impl_->f.p[c];
+    top += impl_->f.p[shifted<Dim>(c, 1, g.domain.extent(1) - 1)];
+    count += 1.0;
+  });
+  return (comm.sum(bottom) - comm.sum(top)) / comm.sum(count);
 }
+
+// ---- the 2D bridge to Grid2 / Field2
+
+template <int Dim>
+GasSolver<Dim>::GasSolver(const Grid2& grid, const GasConfig& config, PressureSolverKind pressure_solver)
+  requires(Dim == 2)
+    : GasSolver(grid_of(grid), config, pressure_solver) {}
+
+template <int Dim>
+GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new,
+                                      const Field2& beta, const Field2& us, const Field2& vs)
+  requires(Dim == 2)
+{
+  const Grid2& g = impl_->grid2;
+  for (const Field2* fld : {&eps_old, &eps_new, &beta, &us, &vs}) {
+    if (fld->nx != g.nx || fld->ny != g.ny) throw_input_error("gas advance: cell fields must be nx x ny");
+  }
+  return advance(t_new, dt, to_field(eps_old), to_field(eps_new), to_field(beta), CellVector<2>{to_field(us), to_field(vs)});
+}
+
+template <int Dim>
+const Grid2& GasSolver<Dim>::grid2() const
+  requires(Dim == 2)
+{
+  return impl_->grid2;
+}
+
+template <int Dim>
+void GasSolver<Dim>::cell_velocity(Field2& ug, Field2& vg) const
+  requires(Dim == 2)
+{
+  CellVector<2> u;
+  cell_velocity(u);
+  copy_interior(u[0], ug);
+  copy_interior(u[1], vg);
+}
+
+template <int Dim>
+void GasSolver<Dim>::cell_pressure_gradient(Field2& dpdx, Field2& dpdy) const
+  requires(Dim == 2)
+{
+  CellVector<2> grad;
+  cell_pressure_gradient(grad);
+  copy_interior(grad[0], dpdx);
+  copy_interior(grad[1], dpdy);
+}
+
+template class GasSolver<2>;
+template class GasSolver<3>;
 
 }  // namespace fluidbed

@@ -1,18 +1,25 @@
 #pragma once
-// Locally averaged gas of Anderson & Jackson (Eqs. 11-12) on a staggered grid, advanced by backward Euler with
-// SIMPLE/SIMPLEC pressure-velocity coupling. Voidage, beta and the solids velocity come from outside each step.
+// Locally averaged gas of Anderson & Jackson (Eqs. 11-12) on a staggered grid in Dim = 2 or 3 dimensions,
+// advanced by backward Euler with SIMPLE/SIMPLEC pressure-velocity coupling. Voidage, beta and the solids
+// velocity come from outside each step. Axis 1 is vertical (the distributor at its low side, the outlet or lid at
+// its high side); axis 0 and, in 3D, axis 2 end at walls. Mass flows are per metre of depth [kg/s/m] in 2D and
+// [kg/s] in 3D.
+#include <array>
 #include <memory>
 
+#include "core/comm.hpp"
+#include "core/field.hpp"
 #include "core/field2.hpp"
+#include "core/grid.hpp"
 #include "core/grid2.hpp"
-#include "core/vec2.hpp"
+#include "core/vec.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "fluid/gas_config.hpp"
 #include "fluid/pressure_correction.hpp"
 
 namespace fluidbed {
 
-/// What one gas step did. Mass flows are per metre of depth [kg/s/m].
+/// What one gas step did. Mass flows are per metre of depth [kg/s/m] in 2D, [kg/s] in 3D.
 struct GasStepReport {
   int simple_iterations = 0;
   double mass_residual = 0.0;        ///< normalised continuity residual of the last predicted velocities
@@ -27,42 +34,77 @@ struct GasStepReport {
   int linear_fallbacks = 0;
 };
 
+/// The gas unknowns on the staggered (MAC) grid: P at cell centres, u[a] on the faces normal to axis a (face i
+/// of axis a at origin + i h), both with the grid's ghost layers.
+template <int Dim>
+struct GasFields {
+  Field<Dim> p;
+  FaceFields<Dim> u;
+};
+
+/// A vector quantity at cell centres, one cell field per axis.
+template <int Dim>
+using CellVector = std::array<Field<Dim>, Dim>;
+
+template <int Dim>
 class GasSolver {
  public:
-  /// Validates the configuration (input error on bad values); fields start at rest with P = 0.
-  GasSolver(const Grid2& grid, const GasConfig& config,
-            PressureSolverKind pressure_solver = PressureSolverKind::Direct);
+  /// Validates the configuration (input error on bad values); fields start at rest with P = 0. The grid needs at
+  /// least 2 cells per axis; reductions go through comm (the owned block must be the whole domain until the
+  /// pressure backend is distributed).
+  GasSolver(const Grid<Dim>& grid, const GasConfig& config,
+            PressureSolverKind pressure_solver = PressureSolverKind::Direct, const Comm& comm = serial_comm());
   ~GasSolver();
   GasSolver(GasSolver&&) noexcept;
   GasSolver& operator=(GasSolver&&) noexcept;
 
-  /// One backward-Euler step from t_new - dt to t_new. All inputs are cell-centred (nx x ny): voidage at the start
-  /// and end of the step, beta [kg/m^3/s] and the solids velocity (us, vs). Jets are switched at mid-step.
-  /// Throws a simulation error when an input is out of range (eps outside (0, 1], beta < 0, NaN), when SIMPLE does
-  /// not converge within max_simple_iterations, or when a field turns NaN; an input error on wrong field sizes.
-  GasStepReport advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new, const Field2& beta,
-                        const Field2& us, const Field2& vs);
+  /// One backward-Euler step from t_new - dt to t_new. The inputs are cell fields on the grid's owned box (any
+  /// ghost width; ghosts are not read): voidage at the start and end of the step, beta [kg/m^3/s] and the solids
+  /// velocity, one field per axis. Jets are switched at mid-step. Throws a simulation error when an input is out
+  /// of range (eps outside (0, 1], beta < 0, NaN), when SIMPLE does not converge within max_simple_iterations, or
+  /// when a field turns NaN; an input error on fields of the wrong box.
+  GasStepReport advance(double t_new, double dt, const Field<Dim>& eps_old, const Field<Dim>& eps_new,
+                        const Field<Dim>& beta, const CellVector<Dim>& us);
 
-  const Grid2& grid() const;
+  const Grid<Dim>& grid() const;
   const GasConfig& config() const;
-  const StaggeredFields& fields() const;
-  /// Mutable access for initial conditions and restarts.
-  StaggeredFields& fields();
+  const GasFields<Dim>& fields() const;
+  /// Mutable access for initial conditions and restarts (the values on the boxes; ghosts are derived).
+  GasFields<Dim>& fields();
 
-  /// Gas (interstitial) velocity at a point, bilinear from the faces.
-  Vec2 velocity_at(Vec2 x) const;
-  /// Pressure gradient at a point (see interpolate_pressure_gradient).
-  Vec2 pressure_gradient_at(Vec2 x) const;
-  /// Cell-centred gas velocity.
-  void cell_velocity(Field2& ug, Field2& vg) const;
-  /// Cell-centred pressure gradient.
-  void cell_pressure_gradient(Field2& dpdx, Field2& dpdy) const;
-  /// Mean pressure of the bottom cell row minus that of the top cell row [Pa].
+  /// Gas (interstitial) velocity at a point, multilinear from the faces, clamped to the outermost face nodes.
+  Vec<Dim> velocity_at(const Vec<Dim>& x) const;
+  /// Pressure gradient at a point: the cell-centred gradient (central inside, one-sided in the outer layers),
+  /// multilinear between the 2^Dim surrounding cell centres.
+  Vec<Dim> pressure_gradient_at(const Vec<Dim>& x) const;
+  /// Cell-centred gas velocity (mean of the two faces of each cell), fields on the owned box without ghosts.
+  void cell_velocity(CellVector<Dim>& u) const;
+  /// Cell-centred pressure gradient (as in pressure_gradient_at), fields on the owned box without ghosts.
+  void cell_pressure_gradient(CellVector<Dim>& grad) const;
+  /// Mean pressure of the bottom cell layer minus that of the top cell layer [Pa].
   double pressure_drop() const;
+
+  // The 2D instance on the Grid2 / Field2 arrays of the modules not yet on the generic types (the coupling):
+  // same arithmetic, the fields copied in and out.
+  GasSolver(const Grid2& grid, const GasConfig& config, PressureSolverKind pressure_solver = PressureSolverKind::Direct)
+    requires(Dim == 2);
+  GasStepReport advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new, const Field2& beta,
+                        const Field2& us, const Field2& vs)
+    requires(Dim == 2);
+  const Grid2& grid2() const requires(Dim == 2);
+  void cell_velocity(Field2& ug, Field2& vg) const requires(Dim == 2);
+  void cell_pressure_gradient(Field2& dpdx, Field2& dpdy) const requires(Dim == 2);
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+extern template class GasSolver<2>;
+extern template class GasSolver<3>;
+
+/// A Field2 (nx x ny, i fastest) as a cell field on the box [0, nx) x [0, ny) with `ghost` layers, and back.
+Field<2> to_field(const Field2& f, int ghost = 0);
+void copy_interior(const Field<2>& f, Field2& out);
 
 }  // namespace fluidbed

@@ -34,34 +34,204 @@ class StaleLdltPreconditioner {
   const Ldlt* ldlt_ = nullptr;
 };
 
+template <int Dim>
+std::string cell_name(const Index<Dim>& c) {
+  std::string s = "(";
+  for (int a = 0; a < Dim; ++a) s += (a > 0 ? ", " : "") + std::to_string(c[a]);
+  return s + ")";
+}
+
+template <int Dim>
+class EigenStructuredSolver final : public StructuredSolver<Dim> {
+ public:
+  EigenStructuredSolver(const Grid<Dim>& grid, PressureSolverKind kind, double cg_tolerance)
+      : cells_(grid.owned), kind_(kind) {
+    if (!(grid.owned == grid.domain))
+      throw_input_error("pressure correction: the Eigen backend solves on one process (owned box = domain)");
+    const int n = static_cast<int>(cells_.count());
+    // Rows numbered axis 0 fastest; neighbours low and high along each axis in turn (W, E, S, N[, B, F]).
+    std::vector<std::array<int, 2 * Dim>> nb(static_cast<std::size_t>(n));
+    for_each(cells_, [&](const Index<Dim>& c) {
+      std::array<int, 2 * Dim> nbr{};
+      for (int a = 0; a < Dim; ++a) {
+        nbr[static_cast<std::size_t>(2 * a)] = c[a] > cells_.lo[a] ? row(shifted<Dim>(c, a, -1)) : -1;
+        nbr[static_cast<std::size_t>(2 * a + 1)] = c[a] < cells_.hi[a] - 1 ? row(shifted<Dim>(c, a, 1)) : -1;
+      }
+      nb[static_cast<std::size_t>(row(c))] = nbr;
+    });
+    a_.build(n, nb);
+    cg_.setTolerance(cg_tolerance);
+    pcg_.setTolerance(1e-12);
+    b_.resize(n);
+    x_.resize(n);
+  }
+
+  const char* name() const override { return "eigen"; }
+
+  void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override {
+    bool has_boundary = false;
+    for (int a = 0; a < Dim; ++a)
+      for (bool high : {false, true}) {
+        IndexBox<Dim> side = cells_.inside(a, high);
+        if (high) {
+          side.lo[a] += 1;
+          side.hi[a] += 1;
+        }
+        for_each(side, [&](const Index<Dim>& f) { has_boundary = has_boundary || coeff[a][f] > 0.0; });
+      }
+    // Pinning the first cell of an all-Neumann problem: drop its couplings from both its row and its neighbours'
+    // rows, which keeps the matrix symmetric (the pinned value is zero, so the dropped terms vanish).
+    const bool pin = !has_boundary;
+    const IndexBox<Dim>& b = cells_;
+    // Rows along axis 0, in parallel over the others.
+    IndexBox<Dim> lines = b;
+    lines.hi[0] = lines.lo[0] + 1;
+    std::vector<Index<Dim>> starts;
+    starts.reserve(lines.count());
+    for_each(lines, [&](const Index<Dim>& c) { starts.push_back(c); });
+    const int n_lines = static_cast<int>(starts.size());
+#pragma omp parallel for schedule(static) if (static_cast<int>(b.count()) >= kParallelCells)
+    for (int l = 0; l < n_lines; ++l) {
+      Index<Dim> c = starts[static_cast<std::size_t>(l)];
+      for (c[0] = b.lo[0]; c[0] < b.hi[0]; ++c[0]) {
+        const int r = row(c);
+        std::array<double, 2 * Dim> off{};
+        double diag = 0.0;
+        for (int a = 0; a < Dim; ++a) {
+          const double lo = coeff[a][c];
+          const double hi = coeff[a][shifted<Dim>(c, a, 1)];
+          off[static_cast<std::size_t>(2 * a)] = -lo;
+          off[static_cast<std::size_t>(2 * a + 1)] = -hi;
+          diag = a == 0 ? lo + hi : diag + lo + hi;
+        }
+        double rb = rhs[c];
+        if (pin) {
+          if (r == 0) {
+            off.fill(0.0);
+            diag = 1.0;
+            rb = 0.0;
+          } else {
+            for (int a = 0; a < Dim; ++a)
+              if (c == shifted<Dim>(b.lo, a, 1)) off[static_cast<std::size_t>(2 * a)] = 0.0;
+          }
+        }
+        if (!(diag > 0.0)) diag = 1.0;  // a cell with no open face: p' is free, keep it at zero
+        a_.set_row(r, diag, off);
+        b_[r] = rb;
+        x_[r] = x[c];
+      }
+    }
+    // A non-finite coefficient or imbalance makes any answer meaningless: name the cell instead of solving.
+    for_each(b, [&](const Index<Dim>& c) {
+      bool finite = std::isfinite(rhs[c]);
+      for (int a = 0; a < Dim; ++a)
+        finite = finite && std::isfinite(coeff[a][c]) && std::isfinite(coeff[a][shifted<Dim>(c, a, 1)]);
+      if (!finite) {
+        throw_simulation_error("gas pressure correction: the mass imbalance or a face coefficient of cell " +
+                               cell_name<Dim>(c) + " is not finite (imbalance " + std::to_string(rhs[c]) + ")");
+      }
+    });
+    bool solved = false;
+    if (kind_ == PressureSolverKind::Direct && reuse_factorisation && factorised_) {
+      pcg_.compute(a_.matrix());
+      pcg_.preconditioner().use(&ldlt_);
+      const Eigen::VectorXd guess = x_;
+      x_ = pcg_.solveWithGuess(b_, guess);
+      solved = pcg_.info() == Eigen::Success && x_.allFinite();
+      if (!solved) x_ = guess;  // the matrix moved too far from the factorised one: factorise it below
+    }
+    std::string cg_failure;
+    if (!solved && kind_ == PressureSolverKind::ConjugateGradient) {
+      cg_.compute(a_.matrix());
+      const Eigen::VectorXd guess = x_;
+      x_ = cg_.solveWithGuess(b_, guess);
+      solved = cg_.info() == Eigen::Success && x_.allFinite();
+      if (!solved) {
+        // Not accepted: the factorisation below answers instead (it does not depend on convergence).
+        cg_failure = "conjugate gradient stopped at relative residual " + std::to_string(cg_.error()) + " after " +
+                     std::to_string(cg_.iterations()) + " iterations; ";
+        x_ = guess;
+      }
+    }
+    if (!solved) {
+      if (!analysed_) {
+        ldlt_.analyzePattern(a_.matrix());
+        analysed_ = true;
+      }
+      ldlt_.factorize(a_.matrix());
+      if (ldlt_.info() != Eigen::Success) {
+        throw_simulation_error("gas pressure correction: " + cg_failure +
+                               "the LDLT factorisation failed (the matrix is not positive definite: a face "
+                               "coefficient is negative or not finite)");
+      }
+      factorised_ = true;
+      x_ = ldlt_.solve(b_);
+      // Finite and backward stable, or not accepted (a zero pivot that LDLT does not report shows up here).
+      const double err = backward_error(a_.matrix(), x_, b_);
+      if (!(err <= kDirectBackwardError)) {
+        throw_simulation_error("gas pressure correction: " + cg_failure + "the LDLT answer has backward error " +
+                               std::to_string(err) + " (the matrix is singular or not finite)");
+      }
+    }
+    for_each(b, [&](const Index<Dim>& c) { x[c] = x_[row(c)]; });
+  }
+
+ private:
+  int row(const Index<Dim>& c) const {
+    int r = 0;
+    int stride = 1;
+    for (int a = 0; a < Dim; ++a) {
+      r += (c[a] - cells_.lo[a]) * stride;
+      stride *= cells_.extent(a);
+    }
+    return r;
+  }
+
+  IndexBox<Dim> cells_;
+  PressureSolverKind kind_;
+  StencilMatrix a_;
+  Eigen::SimplicialLDLT<StencilMatrix::Matrix> ldlt_;
+  Eigen::ConjugateGradient<StencilMatrix::Matrix, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>> cg_;
+  Eigen::ConjugateGradient<StencilMatrix::Matrix, Eigen::Lower | Eigen::Upper, StaleLdltPreconditioner> pcg_;
+  bool analysed_ = false;
+  bool factorised_ = false;
+  Eigen::VectorXd b_;
+  Eigen::VectorXd x_;
+};
+
+Grid<2> grid_of(const Grid2& g) {
+  Grid<2> out = Grid<2>::uniform({g.width(), g.height()}, {g.nx, g.ny});
+  out.h = {g.dx, g.dy};
+  out.origin = {g.x0, g.y0};
+  return out;
+}
+
 }  // namespace
+
+template <int Dim>
+std::unique_ptr<StructuredSolver<Dim>> make_eigen_structured_solver(const Grid<Dim>& grid, PressureSolverKind kind,
+                                                                    double cg_tolerance) {
+  return std::make_unique<EigenStructuredSolver<Dim>>(grid, kind, cg_tolerance);
+}
+template std::unique_ptr<StructuredSolver<2>> make_eigen_structured_solver(const Grid<2>&, PressureSolverKind, double);
+template std::unique_ptr<StructuredSolver<3>> make_eigen_structured_solver(const Grid<3>&, PressureSolverKind, double);
 
 struct PressureCorrectionSolver::Impl {
   Grid2 grid;
-  PressureSolverKind kind;
-  StencilMatrix a;
-  Eigen::SimplicialLDLT<StencilMatrix::Matrix> ldlt;
-  Eigen::ConjugateGradient<StencilMatrix::Matrix, Eigen::Lower | Eigen::Upper,
-                           Eigen::IncompleteCholesky<double>>
-      cg;
-  Eigen::ConjugateGradient<StencilMatrix::Matrix, Eigen::Lower | Eigen::Upper, StaleLdltPreconditioner> pcg;
-  bool analysed = false;
-  bool factorised = false;
-  Eigen::VectorXd b;
-  Eigen::VectorXd x;
+  std::unique_ptr<StructuredSolver<2>> backend;
+  FaceFields<2> coeff;
+  Field<2> rhs;
+  Field<2> x;
 };
 
 PressureCorrectionSolver::PressureCorrectionSolver(const Grid2& grid, PressureSolverKind kind, double cg_tolerance)
     : impl_(std::make_unique<Impl>()) {
+  const Grid<2> g = grid_of(grid);
   impl_->grid = grid;
-  impl_->kind = kind;
-  const int nx = grid.nx;
-  const int ny = grid.ny;
-  impl_->a.build_cells(nx, ny);
-  impl_->cg.setTolerance(cg_tolerance);
-  impl_->pcg.setTolerance(1e-12);
-  impl_->b.resize(nx * ny);
-  impl_->x.resize(nx * ny);
+  impl_->backend = make_eigen_structured_solver<2>(g, kind, cg_tolerance);
+  impl_->coeff = FaceFields<2>(g.domain, 0);
+  impl_->rhs = Field<2>(g.domain, 0);
+  impl_->x = Field<2>(g.domain, 0);
 }
 
 PressureCorrectionSolver::~PressureCorrectionSolver() = default;
@@ -71,94 +241,13 @@ PressureCorrectionSolver& PressureCorrectionSolver::operator=(PressureCorrection
 void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x,
                                      bool reuse_factorisation) {
   Impl& s = *impl_;
-  const int nx = s.grid.nx;
-  const int ny = s.grid.ny;
-  bool has_boundary = false;
-  for (int j = 0; j < ny; ++j) has_boundary = has_boundary || ax(0, j) > 0.0 || ax(nx, j) > 0.0;
-  for (int i = 0; i < nx; ++i) has_boundary = has_boundary || ay(i, 0) > 0.0 || ay(i, ny) > 0.0;
-  // Pinning the first cell of an all-Neumann problem: drop its couplings from both its row and its neighbours'
-  // rows, which keeps the matrix symmetric (the pinned value is zero, so the dropped terms vanish).
-  const bool pin = !has_boundary;
-#pragma omp parallel for schedule(static) if (nx * ny >= kParallelCells)
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const int r = j * nx + i;
-      const double aw = ax(i, j);
-      const double ae = ax(i + 1, j);
-      const double as = ay(i, j);
-      const double an = ay(i, j + 1);
-      std::array<double, 4> off{-aw, -ae, -as, -an};
-      double diag = aw + ae + as + an;
-      double b = rhs(i, j);
-      if (pin) {
-        if (r == 0) {
-          off = {0.0, 0.0, 0.0, 0.0};
-          diag = 1.0;
-          b = 0.0;
-        } else {
-          if (r == 1) off[0] = 0.0;
-          if (r == nx) off[2] = 0.0;
-        }
-      }
-      if (!(diag > 0.0)) diag = 1.0;  // a cell with no open face: p' is free, keep it at zero
-      s.a.set_row(r, diag, off);
-      s.b[r] = b;
-      s.x[r] = x(i, j);
-    }
-  // A non-finite coefficient or imbalance makes any answer meaningless: name the cell instead of solving.
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      if (!std::isfinite(rhs(i, j)) || !std::isfinite(ax(i, j)) || !std::isfinite(ax(i + 1, j)) ||
-          !std::isfinite(ay(i, j)) || !std::isfinite(ay(i, j + 1))) {
-        throw_simulation_error("gas pressure correction: the mass imbalance or a face coefficient of cell (" +
-                               std::to_string(i) + ", " + std::to_string(j) + ") is not finite (imbalance " +
-                               std::to_string(rhs(i, j)) + ")");
-      }
-    }
-  bool solved = false;
-  if (s.kind == PressureSolverKind::Direct && reuse_factorisation && s.factorised) {
-    s.pcg.compute(s.a.matrix());
-    s.pcg.preconditioner().use(&s.ldlt);
-    const Eigen::VectorXd guess = s.x;
-    s.x = s.pcg.solveWithGuess(s.b, guess);
-    solved = s.pcg.info() == Eigen::Success && s.x.allFinite();
-    if (!solved) s.x = guess;  // the matrix moved too far from the factorised one: factorise it below
-  }
-  std::string cg_failure;
-  if (!solved && s.kind == PressureSolverKind::ConjugateGradient) {
-    s.cg.compute(s.a.matrix());
-    const Eigen::VectorXd guess = s.x;
-    s.x = s.cg.solveWithGuess(s.b, guess);
-    solved = s.cg.info() == Eigen::Success && s.x.allFinite();
-    if (!solved) {
-      // Not accepted: the factorisation below answers instead (it does not depend on convergence).
-      cg_failure = "conjugate gradient stopped at relative residual " + std::to_string(s.cg.error()) + " after " +
-                   std::to_string(s.cg.iterations()) + " iterations; ";
-      s.x = guess;
-    }
-  }
-  if (!solved) {
-    if (!s.analysed) {
-      s.ldlt.analyzePattern(s.a.matrix());
-      s.analysed = true;
-    }
-    s.ldlt.factorize(s.a.matrix());
-    if (s.ldlt.info() != Eigen::Success) {
-      throw_simulation_error("gas pressure correction: " + cg_failure +
-                             "the LDLT factorisation failed (the matrix is not positive definite: a face coefficient "
-                             "is negative or not finite)");
-    }
-    s.factorised = true;
-    s.x = s.ldlt.solve(s.b);
-    // Finite and backward stable, or not accepted (a zero pivot that LDLT does not report shows up here).
-    const double err = backward_error(s.a.matrix(), s.x, s.b);
-    if (!(err <= kDirectBackwardError)) {
-      throw_simulation_error("gas pressure correction: " + cg_failure + "the LDLT answer has backward error " +
-                             std::to_string(err) + " (the matrix is singular or not finite)");
-    }
-  }
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) x(i, j) = s.x[j * nx + i];
+  // Field2 and a ghost-free Field<2> share the layout (i fastest), so the arrays are copied whole.
+  s.coeff[0].data() = ax.v;
+  s.coeff[1].data() = ay.v;
+  s.rhs.data() = rhs.v;
+  s.x.data() = x.v;
+  s.backend->solve(s.coeff, s.rhs, s.x, reuse_factorisation);
+  x.v = s.x.data();
 }
 
 }  // namespace fluidbed

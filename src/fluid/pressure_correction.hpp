@@ -1,9 +1,13 @@
 #pragma once
 // Pressure-correction equation of SIMPLE on cell centres: aP p'_P - sum_nb a_nb p'_nb = b, aP = sum of the
-// four face coefficients. Reused by the gas solver and the two-fluid model.
+// 2 Dim face coefficients. A structured problem (one coefficient per cell face, cells of a box), so that a
+// structured multigrid library (hypre's PFMG/SMG take exactly this) can replace the first backend, Eigen's sparse
+// Cholesky, without touching the solvers. Reused by the gas solver and the two-fluid model.
 #include <memory>
 
+#include "core/field.hpp"
 #include "core/field2.hpp"
+#include "core/grid.hpp"
 #include "core/grid2.hpp"
 
 namespace fluidbed {
@@ -13,6 +17,32 @@ enum class PressureSolverKind {
   ConjugateGradient,  ///< Eigen ConjugateGradient + IncompleteCholesky, warm-started
 };
 
+/// A symmetric cell-centred problem on the cells of a grid's owned box: for every cell P,
+/// sum over its faces f of a_f (x_P - x_nb(f)) = rhs_P, with a_f = coeff[axis][face]. A coefficient on a face of
+/// the domain's boundary couples to x = 0 beyond it (a fixed-pressure boundary); zero there is an impermeable
+/// face. If no boundary face has a coefficient the system is singular and the domain's first cell is pinned to 0.
+template <int Dim>
+class StructuredSolver {
+ public:
+  virtual ~StructuredSolver() = default;
+  /// Solves for x over coeff's cells (box = the grid's owned box; ghosts are not read). x is the initial guess on
+  /// entry (for iterative backends). With `reuse_factorisation` a backend may precondition with the operator of
+  /// its last solve instead of setting up a new one (within one SIMPLE step the coefficients change little).
+  /// Throws a simulation error when the coefficients or the right-hand side are not finite or the solve fails.
+  virtual void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x,
+                     bool reuse_factorisation) = 0;
+  /// The backend's name, for reports.
+  virtual const char* name() const = 0;
+};
+
+/// Today's backend: Eigen's sparse Cholesky (Direct: factorised at the first solve of a step, CG preconditioned by
+/// that factorisation after) or incomplete-Cholesky CG. Serial: the grid's owned box must be its whole domain.
+template <int Dim>
+std::unique_ptr<StructuredSolver<Dim>> make_eigen_structured_solver(const Grid<Dim>& grid,
+                                                                    PressureSolverKind kind = PressureSolverKind::Direct,
+                                                                    double cg_tolerance = 1e-12);
+
+/// The 2D problem on Grid2 / Field2 arrays for the two-fluid model: the Eigen backend behind it.
 class PressureCorrectionSolver {
  public:
   explicit PressureCorrectionSolver(const Grid2& grid, PressureSolverKind kind = PressureSolverKind::Direct,
@@ -22,9 +52,8 @@ class PressureCorrectionSolver {
   PressureCorrectionSolver& operator=(PressureCorrectionSolver&&) noexcept;
 
   /// Solves for x (size nx x ny). ax ((nx+1) x ny) and ay (nx x (ny+1)) hold the coupling coefficient of every
-  /// face; a coefficient on a boundary face couples to p' = 0 outside (a fixed-pressure boundary); zero there means
-  /// an impermeable face. If no boundary face has a coefficient the system is singular and cell (0, 0) is pinned
-  /// to p' = 0. x is the initial guess on entry (used by ConjugateGradient). Throws a simulation error on failure.
+  /// face (see StructuredSolver). x is the initial guess on entry (used by ConjugateGradient). Throws a
+  /// simulation error on failure.
   ///
   /// With `reuse_factorisation` (Direct kind, after a first solve) the matrix is not factorised again: the system
   /// is solved by conjugate gradients preconditioned with the last factorisation, to a relative residual of

@@ -6,7 +6,10 @@
 
 namespace fluidbed {
 
-void StencilMatrix::build(int n, const std::vector<std::array<int, 4>>& neighbours) {
+template <std::size_t N>
+void StencilMatrix::build_impl(int n, const std::vector<std::array<int, N>>& neighbours) {
+  constexpr int kSlots = static_cast<int>(N) + 1;
+  slots_ = kSlots;
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(static_cast<std::size_t>(n) * kSlots);
   for (int r = 0; r < n; ++r) {
@@ -27,12 +30,15 @@ void StencilMatrix::build(int n, const std::vector<std::array<int, 4>>& neighbou
   };
   for (int r = 0; r < n; ++r) {
     offset_[static_cast<std::size_t>(r) * kSlots] = find(r, r);
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < static_cast<int>(N); ++k) {
       const int c = neighbours[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)];
       offset_[static_cast<std::size_t>(r) * kSlots + 1 + k] = c >= 0 ? find(r, c) : -1;
     }
   }
 }
+
+template void StencilMatrix::build_impl(int, const std::vector<std::array<int, 4>>&);
+template void StencilMatrix::build_impl(int, const std::vector<std::array<int, 6>>&);
 
 void StencilMatrix::build_cells(int nx, int ny) {
   std::vector<std::array<int, 4>> nb(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));

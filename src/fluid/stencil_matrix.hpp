@@ -1,6 +1,6 @@
 #pragma once
-// A sparse matrix whose pattern (at most five entries per row: self, W, E, S, N) is fixed once, so repeated
-// assemblies write values in place and factorisations can reuse their symbolic analysis.
+// A sparse matrix whose pattern (self and up to 2 Dim neighbours per row: five points in 2D, seven in 3D) is
+// fixed once, so repeated assemblies write values in place and factorisations can reuse their symbolic analysis.
 #include <array>
 #include <string>
 #include <vector>
@@ -16,28 +16,38 @@ inline constexpr int kParallelCells = 16384;
 class StencilMatrix {
  public:
   using Matrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
-  static constexpr int kSlots = 5;  ///< slot 0 is the diagonal, 1..4 the neighbours in the order given
 
-  /// neighbours[row] lists up to four column indices; -1 where there is none.
-  void build(int n, const std::vector<std::array<int, 4>>& neighbours);
+  /// neighbours[row] lists up to four (2D) or six (3D) column indices; -1 where there is none. The pattern of a
+  /// row is its diagonal and these columns, in the order given (the slot order of set_row).
+  void build(int n, const std::vector<std::array<int, 4>>& neighbours) { build_impl(n, neighbours); }
+  void build(int n, const std::vector<std::array<int, 6>>& neighbours) { build_impl(n, neighbours); }
   /// The cell-centred five-point pattern of an nx x ny grid, rows numbered i fastest (Grid2::index), neighbours
   /// in the order W, E, S, N.
   void build_cells(int nx, int ny);
 
-  int rows() const { return static_cast<int>(offset_.size() / kSlots); }
-  /// Writes one row: diagonal and the four neighbour coefficients (ignored where the neighbour is -1).
-  void set_row(int row, double diag, const std::array<double, 4>& off) {
-    double* val = matrix_.valuePtr();
-    const int* o = &offset_[static_cast<std::size_t>(row) * kSlots];
-    val[o[0]] = diag;
-    for (int k = 0; k < 4; ++k)
-      if (o[k + 1] >= 0) val[o[k + 1]] = off[static_cast<std::size_t>(k)];
-  }
+  int rows() const { return slots_ > 0 ? static_cast<int>(offset_.size()) / slots_ : 0; }
+  /// Writes one row: diagonal and the neighbour coefficients (ignored where the neighbour is -1); the row's
+  /// neighbour count must be the one the pattern was built with.
+  void set_row(int row, double diag, const std::array<double, 4>& off) { set_row_impl(row, diag, off); }
+  template <std::size_t N>
+  void set_row(int row, double diag, const std::array<double, N>& off) { set_row_impl(row, diag, off); }
   const Matrix& matrix() const { return matrix_; }
 
  private:
+  template <std::size_t N>
+  void build_impl(int n, const std::vector<std::array<int, N>>& neighbours);
+  template <std::size_t N>
+  void set_row_impl(int row, double diag, const std::array<double, N>& off) {
+    double* val = matrix_.valuePtr();
+    const int* o = &offset_[static_cast<std::size_t>(row) * static_cast<std::size_t>(slots_)];
+    val[o[0]] = diag;
+    for (std::size_t k = 0; k < N; ++k)
+      if (o[k + 1] >= 0) val[o[k + 1]] = off[k];
+  }
+
   Matrix matrix_;
   std::vector<int> offset_;
+  int slots_ = 0;  ///< 1 + neighbours per row
 };
 
 /// Normwise backward error of an answer, |A x - b|_inf / (|A|_inf |x|_inf + |b|_inf) (Rigal & Gaches 1967): a

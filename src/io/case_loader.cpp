@@ -397,7 +397,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
       }
     }
   }
-  g.gravity = c.domain.gravity_vector<2>();
+  g.gravity = c.domain.gravity;
   const std::string visc = r.string("gas.viscous_stress", "off", "gas viscous stress (off in the paper's Eq. 12): "
                                     "laplacian div(eps mu grad u), or full div(eps mu (grad u + grad u^T))",
                                     {"off", "laplacian", "full"});

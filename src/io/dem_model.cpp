@@ -3,10 +3,12 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <sstream>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "analysis/cell_view.hpp"
 #include "analysis/layer_tracers.hpp"
 #include "analysis/mixing_index.hpp"
 #include "coupling/cfd_dem.hpp"
@@ -107,25 +109,27 @@ namespace {
 
 // Writes from the solver's own arrays; the list is converted one array at a time, so a checkpoint needs at most
 // one list-sized temporary on top of the solver (docs/performance.md, memory).
-void save_dem(Hdf5File& f, const DemSolver<2>::StateView& s) {
-    const ParticleStore<2>& p = s.particles;
+template <int Dim>
+void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
+    static constexpr const char* kAxis[3] = {"x", "y", "z"};
+    const ParticleStore<Dim>& p = s.particles;
     f.create_group("dem");
     // Every state attribute of the store under its own name (ParticleStore::for_each_array), then the
     // positions of the last list build.
     p.for_each_array([&](const std::string& name, const auto& a, ArrayRole role) {
       if (role == ArrayRole::State) f.write("dem/" + name, a);
     });
-    static constexpr const char* kBuild[3] = {"x_build", "y_build", "z_build"};
-    for (std::size_t a = 0; a < s.build.size(); ++a) f.write(std::string("dem/") + kBuild[a], s.build[a]);
+    for (std::size_t a = 0; a < s.build.size(); ++a) f.write(std::string("dem/") + kAxis[a] + "_build", s.build[a]);
     f.write("dem/nbr_offset", std::vector<std::int64_t>(s.neighbors.offset.begin(), s.neighbors.offset.end()));
     f.write("dem/nbr_partner", std::vector<std::int64_t>(s.neighbors.partner.begin(), s.neighbors.partner.end()));
     {
       std::vector<double> h(s.neighbors.history.size());
-      for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k].x;
-      f.write("dem/nbr_xi_x", h);
-      for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k].y;
-      f.write("dem/nbr_xi_y", h);
+      for (int a = 0; a < Dim; ++a) {
+        for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k][a];
+        f.write(std::string("dem/nbr_xi_") + kAxis[a], h);
+      }
     }
+    f.set_attribute("dem", "dimension", static_cast<std::int64_t>(Dim));
     f.set_attribute("dem", "time", s.time);
     f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
     f.set_attribute("dem", "rebuilds", static_cast<std::int64_t>(s.rebuilds));
@@ -136,22 +140,29 @@ void save_dem(Hdf5File& f, const DemSolver<2>::StateView& s) {
     f.set_attribute("dem", "removed_mass", s.removed_mass);
 }
 
-DemSolver<2>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
-    DemSolver<2>::State s;
+template <int Dim>
+typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
+    static constexpr const char* kAxis[3] = {"x", "y", "z"};
+    typename DemSolver<Dim>::State s;
+    const std::int64_t dim = f.has_attribute("dem", "dimension") ? f.attribute_int64("dem", "dimension") : 2;
+    if (dim != Dim) {
+      throw_input_error(fmt::format("{}: a checkpoint of a {}D run cannot restart this {}D case", f.path().string(),
+                                    dim, Dim));
+    }
     const auto id = f.read_int64("dem/id");
     const auto species = f.read_int32("dem/species");
     const auto layer = f.read_int32("dem/layer");
     if (species.size() != id.size() || layer.size() != id.size()) {
       throw_input_error(fmt::format("{}: inconsistent particle arrays", f.path().string()));
     }
-    ParticleStore<2>& p = s.particles;
+    ParticleStore<Dim>& p = s.particles;
     p.reserve(id.size());
     for (std::size_t i = 0; i < id.size(); ++i) {
       if (species[i] < 0 || static_cast<std::size_t>(species[i]) >= config_.dem.n_species()) {
         throw_input_error(fmt::format("{}: particle {} has species {} which the case does not define",
                                       f.path().string(), id[i], species[i]));
       }
-      p.add(id[i], species[i], config_.dem.species[static_cast<std::size_t>(species[i])], {}, {}, 0.0, layer[i]);
+      p.add(id[i], species[i], config_.dem.species[static_cast<std::size_t>(species[i])], {}, {}, {}, layer[i]);
     }
     auto read = [&](const std::string& name, std::vector<double>& dst) {
       std::vector<double> v = f.read_double("dem/" + name);
@@ -160,24 +171,25 @@ DemSolver<2>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
       }
       dst = std::move(v);
     };
-    // Checkpoints written before the wall springs had a name per wall keep them in one array of 8 per particle.
-    const bool flat_walls = !f.has("dem/wall_xi_left_x");
+    // 2D checkpoints written before the wall springs had a name per wall keep them in one array of 8 per particle.
+    const bool flat_walls = Dim == 2 && !f.has("dem/wall_xi_left_x");
     p.for_each_array([&](const std::string& name, auto& a, ArrayRole role) {
       using T = typename std::decay_t<decltype(a)>::value_type;
       if constexpr (std::is_same_v<T, double>) {
         if (role == ArrayRole::State && !(flat_walls && name.starts_with("wall_xi_"))) read(name, a);
       }
     });
-    static constexpr const char* kBuild[2] = {"x_build", "y_build"};
-    for (std::size_t a = 0; a < s.build.size(); ++a) read(kBuild[a], s.build[a]);
+    for (std::size_t a = 0; a < s.build.size(); ++a) read(std::string(kAxis[a]) + "_build", s.build[a]);
     const auto offset = f.read_int64("dem/nbr_offset");
     const auto partner = f.read_int64("dem/nbr_partner");
-    const auto hx = f.read_double("dem/nbr_xi_x");
-    const auto hy = f.read_double("dem/nbr_xi_y");
+    std::array<std::vector<double>, Dim> hist;
+    for (int a = 0; a < Dim; ++a) hist[static_cast<std::size_t>(a)] = f.read_double(std::string("dem/nbr_xi_") + kAxis[a]);
     const auto wall = flat_walls ? f.read_double("dem/wall_xi") : std::vector<double>(8 * id.size());
     const std::size_t n = id.size();
-    if (offset.size() != n + 1 || offset.front() != 0 || static_cast<std::size_t>(offset.back()) != partner.size() ||
-        hx.size() != partner.size() || hy.size() != partner.size() || wall.size() != 8 * n) {
+    bool consistent = offset.size() == n + 1 && offset.front() == 0 &&
+                      static_cast<std::size_t>(offset.back()) == partner.size() && wall.size() == 8 * n;
+    for (const auto& h : hist) consistent = consistent && h.size() == partner.size();
+    if (!consistent) {
       throw_input_error(fmt::format("{}: the neighbour list or contact history is inconsistent", f.path().string()));
     }
     for (std::size_t i = 0; i < n; ++i) {
@@ -191,11 +203,13 @@ DemSolver<2>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
         throw_input_error(fmt::format("{}: neighbour index out of range", f.path().string()));
       }
       s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
-      s.neighbors.history[k] = {hx[k], hy[k]};
+      for (int a = 0; a < Dim; ++a) s.neighbors.history[k][a] = hist[static_cast<std::size_t>(a)][k];
     }
-    if (flat_walls) {
-      for (std::size_t i = 0; i < n; ++i) {
-        for (int w = 0; w < 4; ++w) p.set_wall_spring(i, w, {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]});
+    if constexpr (Dim == 2) {
+      if (flat_walls) {
+        for (std::size_t i = 0; i < n; ++i) {
+          for (int w = 0; w < 4; ++w) p.set_wall_spring(i, w, {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]});
+        }
       }
     }
     s.time = f.attribute_double("dem", "time");
@@ -214,12 +228,32 @@ DemSolver<2>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
     return s;
 }
 
+/// The particles of a CSV file in either dimension (the 2D reader keeps its own messages).
+template <int Dim>
+ParticleStore<Dim> particles_of_csv(const std::string& path, const CaseConfig& c) {
+  if constexpr (Dim == 2) {
+    return particles_from_csv(path, c.dem);
+  } else {
+    const std::vector<ParticleCsvRow> rows = read_particles_csv(path, 3);
+    check_particle_rows(rows, path, c.domain, c.dem.n_species());
+    ParticleStore<3> p;
+    p.reserve(rows.size());
+    for (const ParticleCsvRow& row : rows) {
+      p.add(row.id, row.species, c.dem.species[static_cast<std::size_t>(row.species)], {row.x, row.y, row.z},
+            {row.vx, row.vy, row.vz}, {row.omega_x, row.omega_y, row.omega}, 0);
+    }
+    return p;
+  }
+}
+
+template <int Dim>
 class DemModel final : public ModelRun {
  public:
   DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
       : config_(c),
-        sim_(DemSolver<2>(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore<2>{}),
-             c.gas_enabled ? std::optional<GasSolver>(GasSolver(c.grid.grid2(), c.gas)) : std::nullopt, c.coupling),
+        sim_(DemSolver<Dim>(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore<Dim>{}),
+             c.gas_enabled ? std::optional<GasSolver<Dim>>(GasSolver<Dim>(c.grid.grid_of<Dim>(), c.gas)) : std::nullopt,
+             c.coupling),
         log_(&log) {
     if (fresh) sim_.initialize();
   }
@@ -273,7 +307,7 @@ class DemModel final : public ModelRun {
             "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "linear_solver_fallbacks"};
   }
   std::vector<std::optional<double>> monitor_values() override {
-    const ParticleStore<2>& p = sim_.dem().particles();
+    const ParticleStore<Dim>& p = sim_.dem().particles();
     double mass = 0.0;
     for (double m : p.mass) mass += m;
     std::vector<std::optional<double>> v{sim_.dem().kinetic_energy(), std::nullopt, sim_.dem().max_overlap(),
@@ -282,8 +316,10 @@ class DemModel final : public ModelRun {
                                          std::nullopt,
                                          static_cast<double>(sim_.dem().removed_count()),
                                          sim_.dem().removed_mass()};
-    v.push_back(mass / config_.coupling.depth);
-    v.push_back(*v[0] / config_.coupling.depth);
+    // Per metre of depth: over the slab the 2D monolayer stands for (coupling.depth), or the 3D bed's depth.
+    const double depth = Dim == 2 ? config_.coupling.depth : config_.domain.depth;
+    v.push_back(mass / depth);
+    v.push_back(*v[0] / depth);
     v.push_back(std::nullopt);
     if (sim_.has_gas()) {
       const GasStepReport& r = sim_.last_gas_report();
@@ -295,7 +331,15 @@ class DemModel final : public ModelRun {
       v[7] = sim_.min_voidage();
       v[8] = sim_.total_fluid_force().y;
       v[9] = sim_.total_gas_reaction().y;
-      const LaceyResult l = lacey_index(p, config_.particles.layers / 2, config_.grid.grid2(), MixingConfig{});
+      LaceyResult l;
+      if constexpr (Dim == 2) {
+        l = lacey_index(p, config_.particles.layers / 2, config_.grid.grid2(), MixingConfig{});
+      } else {
+        std::vector<std::uint8_t> lower(p.size());
+        for (std::size_t k = 0; k < p.size(); ++k) lower[k] = p.layer[k] < config_.particles.layers / 2 ? 1 : 0;
+        const std::array<std::span<const double>, 3> pos{p.x, p.y, p.z};
+        l = lacey_index<3>(pos, lower, cell_geometry(sim_.gas().grid()), MixingConfig{});
+      }
       if (l.valid) v[11] = l.index;
     }
     return v;
@@ -303,48 +347,56 @@ class DemModel final : public ModelRun {
   FieldView fields() override {
     if (!sim_.has_gas()) return {};
     FieldView f;
-    f.set_grid(sim_.gas().grid());
-    f.eps = sim_.voidage().v.data();
-    f.p = sim_.gas().fields().p.v.data();
-    f.ug = {sim_.gas_u().v.data(), sim_.gas_v().v.data(), nullptr};
-    f.us = {sim_.solids_u().v.data(), sim_.solids_v().v.data(), nullptr};
+    const Grid<Dim>& g = sim_.gas().grid();
+    f.dimension = Dim;
+    for (int a = 0; a < Dim; ++a) {
+      f.n[static_cast<std::size_t>(a)] = g.n(a);
+      f.h[static_cast<std::size_t>(a)] = g.h[a];
+      f.origin[static_cast<std::size_t>(a)] = g.origin[a];
+    }
+    // The coupling's cell fields have no ghosts (contiguous interiors); the pressure's ghosts are dropped.
+    f.eps = sim_.voidage().data().data();
+    p_view_ = sim_.gas().fields().p.interior();
+    f.p = p_view_.data();
+    for (int a = 0; a < Dim; ++a) {
+      f.ug[static_cast<std::size_t>(a)] = sim_.gas_velocity()[static_cast<std::size_t>(a)].data().data();
+      f.us[static_cast<std::size_t>(a)] = sim_.solids_velocity()[static_cast<std::size_t>(a)].data().data();
+    }
     return f;
   }
   std::optional<ParticleArrays> particles() const override { return particle_arrays(sim_.dem().particles()); }
 
   void save(Hdf5File& f) const override {
-    save_dem(f, sim_.dem().view());
+    save_dem<Dim>(f, sim_.dem().view());
     f.set_attribute("dem", "gas_steps", static_cast<std::int64_t>(sim_.gas_steps()));
     if (sim_.has_gas()) {
-      const StaggeredFields& g = sim_.gas().fields();
+      const GasFields<Dim>& g = sim_.gas().fields();
       f.create_group("gas");
-      f.write("gas/p", g.p.v);
-      f.write("gas/u", g.u.v);
-      f.write("gas/v", g.v.v);
-      f.write("gas/eps", sim_.voidage().v);
+      f.write("gas/p", g.p.interior());
+      for (int a = 0; a < Dim; ++a) f.write(std::string("gas/") + kFaceName[a], g.u[a].interior());
+      f.write("gas/eps", sim_.voidage().data());
     }
   }
 
   void load(const Hdf5File& f) override {
-    sim_.dem().restore(load_dem(f, config_));
+    sim_.dem().restore(load_dem<Dim>(f, config_));
     loss_level_ = loss_level();  // what the interrupted run has reported already
     lost_seen_ = sim_.dem().removed_count();
-    Field2 eps;
+    Field<Dim> eps;
     if (sim_.has_gas()) {
-      StaggeredFields& g = sim_.gas().fields();
-      auto read = [&](const char* name, Field2& dst) {
-        std::vector<double> v = f.read_double(std::string("gas/") + name);
-        if (v.size() != dst.v.size()) {
+      GasFields<Dim>& g = sim_.gas().fields();
+      auto read = [&](const std::string& name, std::size_t size) {
+        std::vector<double> v = f.read_double("gas/" + name);
+        if (v.size() != size) {
           throw_input_error(fmt::format("{}: gas/{} has {} values, the case's grid needs {}", f.path().string(), name,
-                                        v.size(), dst.v.size()));
+                                        v.size(), size));
         }
-        dst.v = std::move(v);
+        return v;
       };
-      read("p", g.p);
-      read("u", g.u);
-      read("v", g.v);
-      eps = Field2(config_.grid.nx, config_.grid.ny);
-      read("eps", eps);
+      g.p.set_interior(read("p", g.p.box().count()));
+      for (int a = 0; a < Dim; ++a) g.u[a].set_interior(read(kFaceName[a], g.u[a].box().count()));
+      eps = Field<Dim>(sim_.gas().grid().owned, 0);
+      eps.data() = read("eps", eps.data().size());
     }
     sim_.restore(std::move(eps), static_cast<std::uint64_t>(f.attribute_int64("dem", "gas_steps")));
   }
@@ -356,24 +408,25 @@ class DemModel final : public ModelRun {
     if (!sim_.has_gas()) {
       return fmt::format("DEM, {} particles, dt = {:g} s, no gas", sim_.dem().particles().size(), sim_.dem().config().dt);
     }
-    return fmt::format("CFD-DEM, {} particles, dt = {:g} s, gas {} x {} cells every {} DEM step{}",
-                       sim_.dem().particles().size(), sim_.dem().config().dt, config_.grid.nx, config_.grid.ny,
+    return fmt::format("CFD-DEM{}, {} particles, dt = {:g} s, gas {} x {}{} cells every {} DEM step{}",
+                       Dim == 3 ? " in 3D" : "", sim_.dem().particles().size(), sim_.dem().config().dt,
+                       config_.grid.nx, config_.grid.ny, Dim == 3 ? fmt::format(" x {}", config_.grid.nz) : "",
                        config_.coupling.dem_substeps, config_.coupling.dem_substeps == 1 ? "" : "s");
   }
 
  private:
-  static ParticleStore<2> initial_particles(const CaseConfig& c, const std::string& out_dir, spdlog::logger& log) {
+  static ParticleStore<Dim> initial_particles(const CaseConfig& c, const std::string& out_dir, spdlog::logger& log) {
     namespace fs = std::filesystem;
     auto resolve = [&](const std::string& f) { return case_relative_path(c.source_path, f); };
-    ParticleStore<2> p;
+    ParticleStore<Dim> p;
     const fs::path cache = c.settle.cache.empty() ? fs::path() : resolve(c.settle.cache);
     const bool cached = !cache.empty() && c.settle.enabled && fs::exists(cache);
     const std::string stale = cached ? settle_cache_mismatch(c, cache) : std::string();
     if (c.particles.source == ParticleSource::File) {
-      p = particles_from_csv(resolve(c.particles.file).string(), c.dem);
+      p = particles_of_csv<Dim>(resolve(c.particles.file).string(), c);
       log.info("read {} particles from {}", p.size(), resolve(c.particles.file).string());
     } else if (cached && stale.empty()) {
-      p = particles_from_csv(cache.string(), c.dem);
+      p = particles_of_csv<Dim>(cache.string(), c);
       log.info("reusing the settled bed {} ({} particles)", cache.string(), p.size());
     } else {
       if (cached) {
@@ -382,7 +435,7 @@ class DemModel final : public ModelRun {
                                             settled_bed_record_path(cache).string() + ")"
                                       : "it was settled with other parameters: " + stale);
       }
-      p = place_random<2>(c.dem, c.particles.packing);
+      p = place_random<Dim>(c.dem, c.particles.packing);
       log.info("placed {} particles at random (seed {})", p.size(), c.particles.packing.seed);
       if (c.settle.enabled) {
         // The bed settles under a lid: light particles rebounding off the pile can rise above a top placed at the
@@ -391,7 +444,7 @@ class DemModel final : public ModelRun {
         DemConfig vacuum = c.dem;
         vacuum.walls.top = true;
         vacuum.walls.top_outflow = false;
-        DemSolver<2> settler(vacuum, std::move(p));
+        DemSolver<Dim> settler(vacuum, std::move(p));
         const auto t0 = std::chrono::steady_clock::now();
         SettleResult r;
         try {
@@ -405,17 +458,18 @@ class DemModel final : public ModelRun {
         log.info("settled in vacuum for {:.3f} s ({} steps, {:.1f} s wall): kinetic energy {:.3g} J per particle{}",
                  r.time, r.steps, wall, r.kinetic_energy_per_particle,
                  r.converged ? "" : " (max_time reached before the threshold)");
-        write_particles_csv(fs::path(out_dir) / "settled.csv", p);
+        write_particles_csv(fs::path(out_dir) / "settled.csv", particle_arrays(p));
         if (!c.settle.cache.empty()) {
           fs::create_directories(cache.parent_path());
-          write_particles_csv(cache, p);
+          write_particles_csv(cache, particle_arrays(p));
           write_file_atomic(settled_bed_record_path(cache), settled_bed_record(c));
           log.info("saved the settled bed to {}", cache.string());
         }
       }
     }
-    const double h = bed_height<2>(p, c.dem.domain.width, 30);
-    assign_layers(p, c.particles.layers, h);
+    const double h = bed_height<Dim>(p, c.dem.domain.width, 30);
+    p.layer.resize(p.size());
+    assign_layers(p.y, p.layer, c.particles.layers, h);
     log.info("bed height {:.4f} m, {} colour layers", h, c.particles.layers);
     return p;
   }
@@ -423,29 +477,37 @@ class DemModel final : public ModelRun {
   /// Where the deepest contact (relative to its own diameter) is, for the overlap diagnosis: the particle pair
   /// (from the neighbour list) or the particle and wall. Runs only on the failure path.
   std::string deepest_contact() const {
-    const ParticleStore<2>& p = sim_.dem().particles();
-    const NeighborList<2>& nbr = sim_.dem().neighbors();
+    const ParticleStore<Dim>& p = sim_.dem().particles();
+    const NeighborList<Dim>& nbr = sim_.dem().neighbors();
+    auto at = [&](std::size_t i) {
+      return Dim == 2 ? fmt::format("({:.6g}, {:.6g})", p.x[i], p.y[i])
+                      : fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x[i], p.y[i], p.coord(Dim - 1)[i]);
+    };
     double worst = -1.0;
     std::string where;
     for (std::size_t i = 0; i < p.size(); ++i) {
       for (std::size_t k = nbr.offset[i]; k < nbr.offset[i + 1]; ++k) {
         const std::size_t j = nbr.partner[k];
-        const double ov = (p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i])) /
-                          (2.0 * std::min(p.radius[i], p.radius[j]));
+        const double ov = (p.radius[i] + p.radius[j] - norm(p.pos(j) - p.pos(i))) / (2.0 * std::min(p.radius[i], p.radius[j]));
         if (ov > worst) {
           worst = ov;
           const std::size_t a = p.id[i] < p.id[j] ? i : j, b = a == i ? j : i;
-          where = fmt::format("particles {} (d = {:.3g} m) and {} (d = {:.3g} m) at ({:.6g}, {:.6g}) m and ({:.6g}, "
-                              "{:.6g}) m", p.id[a], 2.0 * p.radius[a], p.id[b], 2.0 * p.radius[b], p.x[a], p.y[a],
-                              p.x[b], p.y[b]);
+          where = fmt::format("particles {} (d = {:.3g} m) and {} (d = {:.3g} m) at {} m and {} m", p.id[a],
+                              2.0 * p.radius[a], p.id[b], 2.0 * p.radius[b], at(a), at(b));
         }
       }
-      const double W = config_.dem.domain.width, H = config_.dem.domain.height, r = p.radius[i];
-      for (const auto& [ov, wall] : {std::pair{(r - p.x[i]) / (2.0 * r), "left"}, std::pair{(p.x[i] + r - W) / (2.0 * r), "right"},
-                                     std::pair{(r - p.y[i]) / (2.0 * r), "bottom"}, std::pair{(p.y[i] + r - H) / (2.0 * r), "top"}}) {
-        if (ov > worst && (std::string(wall) != "top" || config_.dem.walls.top)) {
-          worst = ov;
-          where = fmt::format("particle {} at ({:.6g}, {:.6g}) m and the {} wall", p.id[i], p.x[i], p.y[i], wall);
+      static constexpr const char* kSide[6] = {"left", "right", "bottom", "top", "back", "front"};
+      const Vec<Dim> extent = config_.dem.domain.template extent<Dim>();
+      const double r = p.radius[i];
+      for (int axis = 0; axis < Dim; ++axis) {
+        const double x = p.coord(axis)[i];
+        for (int high = 0; high < 2; ++high) {
+          const double ov = (high ? x + r - extent[axis] : r - x) / (2.0 * r);
+          const int w = 2 * axis + high;
+          if (ov > worst && (w != 3 || config_.dem.walls.top)) {
+            worst = ov;
+            where = fmt::format("particle {} at {} m and the {} wall", p.id[i], at(i), kSide[w]);
+          }
         }
       }
     }
@@ -475,9 +537,11 @@ class DemModel final : public ModelRun {
                time(), n, n == 1 ? "" : "s", sim_.dem().removed_mass(), 100.0 * lost_fraction());
   }
 
+  static constexpr const char* kFaceName[3] = {"u", "v", "w"};  ///< checkpoint names of the face velocities
   CaseConfig config_;
-  CfdDemSimulation sim_;
+  CfdDemSimulation<Dim> sim_;
   spdlog::logger* log_;
+  std::vector<double> p_view_;  ///< the gas pressure without its ghosts, as the writers and observers take it
   int loss_level_ = 0;
   std::uint64_t lost_seen_ = 0;
 };
@@ -486,7 +550,8 @@ class DemModel final : public ModelRun {
 
 std::unique_ptr<ModelRun> make_dem_model(const CaseConfig& config, const std::string& out_dir, bool fresh,
                                          spdlog::logger& log) {
-  return std::make_unique<DemModel>(config, out_dir, fresh, log);
+  if (config.domain.dimension == 3) return std::make_unique<DemModel<3>>(config, out_dir, fresh, log);
+  return std::make_unique<DemModel<2>>(config, out_dir, fresh, log);
 }
 
 }  // namespace fluidbed

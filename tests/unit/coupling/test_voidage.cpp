@@ -35,7 +35,7 @@ TEST(CellWeights, SumToOneEverywhere) {
     for (int a = 0; a <= 40; ++a) {
       for (int b = 0; b <= 40; ++b) {
         const double x = g.x0 + g.width() * a / 40.0, y = g.y0 + g.height() * b / 40.0;
-        const CellWeights cw = cell_weights(g, m, x, y);
+        const CellWeights<2> cw = cell_weights(g, m, x, y);
         double sum = 0.0;
         for (int k = 0; k < cw.count; ++k) {
           const double w = cw.w[static_cast<std::size_t>(k)];
@@ -53,7 +53,7 @@ TEST(CellWeights, BilinearInteriorPointSharesWithFourNearestCentres) {
   const Grid2 g = test_grid();
   // A quarter of the way from the centre of cell (1, 1) towards (2, 1) and 0.1 of the way towards (1, 2).
   const double x = g.xc(1) + 0.25 * g.dx, y = g.yc(1) + 0.1 * g.dy;
-  const CellWeights cw = cell_weights(g, VoidageMethod::Bilinear, x, y);
+  const CellWeights<2> cw = cell_weights(g, VoidageMethod::Bilinear, x, y);
   double w11 = 0, w21 = 0, w12 = 0, w22 = 0;
   for (int k = 0; k < cw.count; ++k) {
     const std::size_t c = cw.cell[static_cast<std::size_t>(k)];
@@ -73,22 +73,22 @@ TEST(CellWeights, FoldAtWallsIntoBoundaryCells) {
   const Grid2 g = test_grid();
   // Left of the first cell centre, near the bottom-left corner: the ghost cells' share goes to cell (0, 0)
   // (all of it) and, in y above the first centre, to (0, 0) and (0, 1) only.
-  const auto weight_in = [&](const CellWeights& cw, int i, int j) {
+  const auto weight_in = [&](const CellWeights<2>& cw, int i, int j) {
     double w = 0.0;
     for (int k = 0; k < cw.count; ++k) {
       if (cw.cell[static_cast<std::size_t>(k)] == g.index(i, j)) w += cw.w[static_cast<std::size_t>(k)];
     }
     return w;
   };
-  const CellWeights corner = cell_weights(g, VoidageMethod::Bilinear, g.x0 + 0.1 * g.dx, g.y0 + 0.2 * g.dy);
+  const CellWeights<2> corner = cell_weights(g, VoidageMethod::Bilinear, g.x0 + 0.1 * g.dx, g.y0 + 0.2 * g.dy);
   EXPECT_NEAR(weight_in(corner, 0, 0), 1.0, 1e-15);
-  const CellWeights left = cell_weights(g, VoidageMethod::Bilinear, g.x0 + 0.3 * g.dx, g.yc(0) + 0.4 * g.dy);
+  const CellWeights<2> left = cell_weights(g, VoidageMethod::Bilinear, g.x0 + 0.3 * g.dx, g.yc(0) + 0.4 * g.dy);
   EXPECT_NEAR(weight_in(left, 0, 0), 0.6, 1e-14);
   EXPECT_NEAR(weight_in(left, 0, 1), 0.4, 1e-14);
-  const CellWeights top_right = cell_weights(g, VoidageMethod::Bilinear, g.x0 + g.width(), g.y0 + g.height());
+  const CellWeights<2> top_right = cell_weights(g, VoidageMethod::Bilinear, g.x0 + g.width(), g.y0 + g.height());
   EXPECT_NEAR(weight_in(top_right, g.nx - 1, g.ny - 1), 1.0, 1e-15);
   // Centre method: the cell holding the point, the last one for a point on the far wall.
-  const CellWeights c = cell_weights(g, VoidageMethod::Centre, g.x0 + g.width(), g.y0 + 1.5 * g.dy);
+  const CellWeights<2> c = cell_weights(g, VoidageMethod::Centre, g.x0 + g.width(), g.y0 + 1.5 * g.dy);
   ASSERT_EQ(c.count, 1);
   EXPECT_EQ(c.cell[0], g.index(g.nx - 1, 1));
 }
@@ -147,11 +147,11 @@ TEST(Gather, LinearFieldIsExactInTheInterior) {
   std::uniform_real_distribution<double> ux(g.xc(0), g.xc(g.nx - 1)), uy(g.yc(0), g.yc(g.ny - 1));
   for (int k = 0; k < 200; ++k) {
     const double x = ux(rng), y = uy(rng);
-    const CellWeights cw = cell_weights(g, VoidageMethod::Bilinear, x, y);
+    const CellWeights<2> cw = cell_weights(g, VoidageMethod::Bilinear, x, y);
     EXPECT_NEAR(gather(f, cw), linear(x, y), 1e-13) << x << " " << y;
   }
   // Outside the interior the kernel holds the boundary value (a folded weight sees the boundary cell).
-  const CellWeights wall = cell_weights(g, VoidageMethod::Bilinear, g.x0, g.yc(2));
+  const CellWeights<2> wall = cell_weights(g, VoidageMethod::Bilinear, g.x0, g.yc(2));
   EXPECT_NEAR(gather(f, wall), linear(g.xc(0), g.yc(2)), 1e-13);
 }
 

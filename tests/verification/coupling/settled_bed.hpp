@@ -104,12 +104,12 @@ inline GasConfig bed_gas() {
   return g;
 }
 
-inline CfdDemSimulation bed_simulation(const GasConfig& gas, double wall_friction = 0.3) {
+inline CfdDemSimulation<2> bed_simulation(const GasConfig& gas, double wall_friction = 0.3) {
   const SettledBed& bed = settled_bed();
   CouplingConfig cc;  // bilinear voidage, depth = one diameter, one DEM step per gas step
   DemConfig dem = bed.dem;
   dem.wall[0].friction = wall_friction;
-  return CfdDemSimulation(DemSolver<2>(dem, bed.particles), GasSolver(bed_grid(), gas), cc);
+  return CfdDemSimulation<2>(DemSolver<2>(dem, bed.particles), GasSolver<2>(bed_grid(), gas), cc);
 }
 
 /// A full-width inflow of superficial velocity u for t_start <= t < t_end, expressed as a jet so that a
@@ -120,11 +120,12 @@ inline InletJet full_width_inflow(double u, double t_start, double t_end) {
 
 /// Gas pressure on the distributor: the two bottom cell rows extrapolated linearly to y = 0 (the pressure
 /// falls linearly in a packed or uniformly fluidised bed, so this is exact there), averaged over the width.
-inline double distributor_pressure(const GasSolver& gas) {
-  const Field2& p = gas.fields().p;
+inline double distributor_pressure(const GasSolver<2>& gas) {
+  const Field<2>& p = gas.fields().p;
+  const int nx = p.box().extent(0);
   double s = 0.0;
-  for (int i = 0; i < p.nx; ++i) s += 1.5 * p(i, 0) - 0.5 * p(i, 1);
-  return s / p.nx;
+  for (int i = 0; i < nx; ++i) s += 1.5 * p(i, 0) - 0.5 * p(i, 1);
+  return s / nx;
 }
 
 inline double total_particle_weight(const ParticleStore<2>& p, double g) {

@@ -19,18 +19,18 @@ TEST(CoupledGasMassBalance, ClosedEveryStepWithJetSwitching) {
   const double jet_u = 15.0, jet_w = 0.02, jet_on = 0.01, jet_off = 0.03;
   gas.boundary.inlet_velocity = u_background;
   gas.boundary.jets.push_back(InletJet{0.5 * kWidth, jet_w, jet_u, jet_on, jet_off});
-  CfdDemSimulation sim = bed_simulation(gas);
+  CfdDemSimulation<2> sim = bed_simulation(gas);
   sim.initialize();
   double max_balance = 0.0, max_residual = 0.0, max_accumulation = 0.0, max_speed = 0.0;
   int steps = 0, steps_with_jet = 0;
   double max_deps = 0.0;  // largest change of a cell's voidage in one step: the bed moves through the cells
-  Field2 eps_before = sim.voidage();
+  std::vector<double> eps_before = sim.voidage().data();
   while (sim.time() < 0.05) {
     sim.advance();
     for (std::size_t c = 0; c < eps_before.size(); ++c) {
-      max_deps = std::max(max_deps, std::abs(sim.voidage().v[c] - eps_before.v[c]));
+      max_deps = std::max(max_deps, std::abs(sim.voidage().data()[c] - eps_before[c]));
     }
-    eps_before = sim.voidage();
+    eps_before = sim.voidage().data();
     ++steps;
     const GasStepReport& r = sim.last_gas_report();
     // Jets switch at mid-step: the inflow of this step, per metre of depth.

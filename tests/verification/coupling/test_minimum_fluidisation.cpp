@@ -53,7 +53,7 @@ TEST(MinimumFluidisation, PressureDropLevelsOffAtBedWeight) {
   }
   // Frictionless side walls, so that they cannot carry the bed's weight (a narrow monodisperse bed otherwise
   // arches between them).
-  CfdDemSimulation sim = bed_simulation(gas, 0.0);
+  CfdDemSimulation<2> sim = bed_simulation(gas, 0.0);
   sim.initialize();
   const double area = kWidth * sp.diameter;
   const ParticleStore<2>& p = sim.dem().particles();

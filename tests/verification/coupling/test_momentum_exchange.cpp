@@ -22,7 +22,7 @@ TEST(MomentumExchange, FluidForceMatchesPressureDropAndGasReaction) {
                                                           gas.mu_g, g);
   // Half of U_mf from before t = 0, so that initialize() already solves the flowing gas.
   gas.boundary.jets.push_back(full_width_inflow(0.5 * u_mf, -1.0, 1.0));
-  CfdDemSimulation sim = bed_simulation(gas);
+  CfdDemSimulation<2> sim = bed_simulation(gas);
   sim.initialize();
   // 0.05 s: the packed bed settles onto the gas force within a few steps (it moves by less than its overlaps).
   while (sim.time() < 0.05) sim.advance();

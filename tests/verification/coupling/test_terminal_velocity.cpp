@@ -97,14 +97,14 @@ TEST_F(TerminalVelocity, StillGasInClosedBoxConverges) {
   gas.boundary.inlet_velocity = 0.0;
   gas.boundary.jets.clear();
   const Grid2 grid = Grid2::uniform(kWidth, kHeight, 3, 80);
-  GasSolver solver(grid, gas);
+  GasSolver<2> solver(grid, gas);
   const Field2 eps(grid.nx, grid.ny, 1.0), zero(grid.nx, grid.ny, 0.0);
   for (int k = 1; k <= 3; ++k) {
     const GasStepReport r = solver.advance(k * 5e-4, 5e-4, eps, eps, zero, zero, zero);
     EXPECT_LT(r.mass_residual, gas.mass_tolerance);
   }
   double v_max = 0.0;
-  for (double v : solver.fields().v.v) v_max = std::max(v_max, std::abs(v));
+  for (double v : solver.fields().u[1].interior()) v_max = std::max(v_max, std::abs(v));
   EXPECT_LT(v_max, 1e-12);
 }
 
@@ -126,11 +126,11 @@ TEST_F(TerminalVelocity, TwoWayCoupledInStillGas) {
   cc.depth = grid.dx;
   cc.dem_substeps = 5;
   const double dt = 1e-4;
-  GasSolver solver(grid, gas);
+  GasSolver<2> solver(grid, gas);
   // Start from the hydrostatic pressure of gas at rest, so SIMPLE need not build it in the first step.
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) solver.fields().p(i, j) = gas.rho_g * gas.gravity.y * (grid.yc(j) - kHeight);
-  CfdDemSimulation sim(DemSolver<2>(single_particle_dem(dt), one_particle()), std::move(solver), cc);
+  CfdDemSimulation<2> sim(DemSolver<2>(single_particle_dem(dt), one_particle()), std::move(solver), cc);
   sim.initialize();
   const auto steps = static_cast<int>(std::lround(kFallTime / sim.macro_dt()));
   double max_mass = 0.0;

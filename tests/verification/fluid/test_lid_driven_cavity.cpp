@@ -36,7 +36,7 @@ constexpr int kMisprintV400 = 4;
 struct CavityResult {
   double max_error = 0.0;  // max |computed - Ghia| over both centrelines, in units of the lid speed
   int simple_iterations = 0;
-  StaggeredFields fields;
+  GasFields<2> fields;
 };
 
 CavityResult run_cavity(int n, double re, const std::array<double, 15>& u_ref, const std::array<double, 15>& v_ref,
@@ -54,7 +54,7 @@ CavityResult run_cavity(int n, double re, const std::array<double, 15>& u_ref, c
   cfg.max_simple_iterations = 1000;
   cfg.mass_tolerance = 1e-6;
   const Grid2 grid = Grid2::uniform(1.0, 1.0, n, n);
-  GasSolver gas(grid, cfg);
+  GasSolver<2> gas(grid, cfg);
   const Field2 eps(n, n, 1.0);
   const Field2 zero(n, n, 0.0);
   // March in pseudo-time (dt = 3 lid transit times) until the steady state: every velocity changes by less
@@ -63,11 +63,12 @@ CavityResult run_cavity(int n, double re, const std::array<double, 15>& u_ref, c
   CavityResult res;
   bool steady = false;
   for (int step = 1; step <= 400 && !steady; ++step) {
-    const StaggeredFields before = gas.fields();
+    const GasFields<2> before = gas.fields();
     res.simple_iterations += gas.advance(step * dt, dt, eps, eps, zero, zero, zero).simple_iterations;
     double change = 0.0;
-    for (std::size_t k = 0; k < before.u.size(); ++k) change = std::max(change, std::abs(before.u.v[k] - gas.fields().u.v[k]));
-    for (std::size_t k = 0; k < before.v.size(); ++k) change = std::max(change, std::abs(before.v.v[k] - gas.fields().v.v[k]));
+    for (int a = 0; a < 2; ++a)
+      for (std::size_t k = 0; k < before.u[a].data().size(); ++k)
+        change = std::max(change, std::abs(before.u[a].data()[k] - gas.fields().u[a].data()[k]));
     steady = change / dt < 1e-6;
   }
   EXPECT_TRUE(steady) << "cavity " << n << " at Re " << re << " did not reach a steady state";
@@ -113,8 +114,9 @@ TEST(LidDrivenCavity, FullStressEqualsLaplacianAtConstantVoidage) {
   const CavityResult lap = run_cavity(32, 100.0, kGhiaU100, kGhiaV100, -1, ViscousStress::Laplacian);
   const CavityResult full = run_cavity(32, 100.0, kGhiaU100, kGhiaV100, -1, ViscousStress::Full);
   double diff = 0.0;
-  for (std::size_t k = 0; k < lap.fields.u.size(); ++k) diff = std::max(diff, std::abs(lap.fields.u.v[k] - full.fields.u.v[k]));
-  for (std::size_t k = 0; k < lap.fields.v.size(); ++k) diff = std::max(diff, std::abs(lap.fields.v.v[k] - full.fields.v.v[k]));
+  for (int a = 0; a < 2; ++a)
+    for (std::size_t k = 0; k < lap.fields.u[a].data().size(); ++k)
+      diff = std::max(diff, std::abs(lap.fields.u[a].data()[k] - full.fields.u[a].data()[k]));
   std::printf("[ cavity   ] full stress vs Laplacian: max velocity difference %.2e of the lid speed\n", diff);
   EXPECT_LT(diff, 1e-5);
 }
