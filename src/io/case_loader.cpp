@@ -416,6 +416,13 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                               R::positive());
   const std::string side = r.string("gas.side_walls", "no_slip", "tangential gas condition on the side walls", {"slip", "no_slip"});
   g.boundary.side_walls = side == "slip" ? WallKind::Slip : WallKind::NoSlip;
+  if (c.domain.dimension == 3) {
+    const std::string fb = r.string("gas.front_back_walls", side, "tangential gas condition on the front and back "
+                                    "walls of a 3D bed (default: that of gas.side_walls)", {"slip", "no_slip"});
+    g.boundary.front_back_walls = fb == "slip" ? WallKind::Slip : WallKind::NoSlip;
+  } else if (r.has("gas.front_back_walls")) {
+    r.fail("gas.front_back_walls", "a 2D case has no front and back walls; set case.dimension = 3");
+  }
   const std::string top = r.string("gas.top", "outlet", "top boundary: pressure outlet or wall", {"outlet", "wall"});
   g.boundary.top = top == "outlet" ? TopBoundary::PressureOutlet : TopBoundary::Wall;
   g.boundary.top_pressure = r.number("gas.top_pressure", 0.0, "Pa", "gauge pressure at the outlet");
@@ -578,6 +585,22 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   b.min_area = r.number("bubble.min_area", b.min_area, "m^2", "smallest void counted as a bubble", R::positive());
   b.surface_eps = r.number("bubble.surface_voidage", b.surface_eps, "", "voidage that marks the bed surface",
                            R::Range{0.0, 1.0, true, true});
+  b.gravity = std::abs(c.domain.gravity.y);
+  if (c.domain.dimension == 3) {
+    // The tracked bubble grows on the first jet: its footprint on the bottom face, and the nose line through its
+    // centre.
+    b.nz = c.grid.nz;
+    b.min_volume = r.number("bubble.min_volume", b.min_volume, "m^3", "smallest void counted as a bubble (3D)",
+                            R::positive());
+    if (!g.boundary.jets.empty()) {
+      const InletJet& j = g.boundary.jets[0];
+      b.jet_shape = j.shape;
+      if (j.shape != InletShape::Slot) b.jet_z = j.z_centre;
+      b.jet_depth = j.depth;
+    }
+  } else if (r.has("bubble.min_volume")) {
+    r.fail("bubble.min_volume", "a 2D case measures bubbles by area (bubble.min_area); set case.dimension = 3");
+  }
   (void)needs_gas;
 }
 

@@ -395,7 +395,7 @@ class Run {
       checkpoints_.next = 1;  // none at t = 0
     }
     const FieldView fv = model_->fields();
-    // The tracers and the bubble tracker work on 2D fields (the 3D analysis attaches here once it exists).
+    // The cell tracers follow the 2D solids field only; the bubble tracker works in either dimension.
     const bool planar = fv.has_grid() && fv.dimension == 2;
     if (planar && restart_) {
       // The balls and their colours as saved: recolouring them from the bed at the restart time would move them
@@ -410,7 +410,7 @@ class Run {
       const double h = fv.eps ? bed_surface_height(fv.grid2(), fv.field2(fv.eps)).value_or(0.0) : 0.0;
       if (h > 0.0) tracers_.emplace(fv.grid2(), h, cfg_.particles.layers);
     }
-    if (planar && fv.eps && fv.has_gas_velocity()) {
+    if (fv.has_grid() && fv.eps && fv.has_gas_velocity()) {
       bubbles_.emplace(cfg_.bubble);
       if (restart_ && restart_file_->has("bubble/tracked")) bubbles_->restore(load_bubble_state(*restart_file_));
     }
@@ -429,7 +429,7 @@ class Run {
                               : CsvWriter(out_ / "monitor.csv", monitor_cols));
     if (bubbles_) {
       std::vector<std::string> cols;
-      const std::string header = bubble_csv_header();
+      const std::string header = bubble_csv_header(model_->fields().dimension);
       for (std::size_t a = 0, b; a <= header.size(); a = b + 1) {
         b = header.find(',', a);
         if (b == std::string::npos) b = header.size();
@@ -536,8 +536,14 @@ class Run {
       const double stamp = frames_.stamp(t);
       if (bubbles_) {
         const FieldView fv = model_->fields();
-        const BubbleSample b = bubbles_->observe(stamp, fv.grid2(), fv.field2(fv.eps), fv.field2(fv.ug[0]),
-                                                 fv.field2(fv.ug[1]));
+        BubbleSample b;
+        if (fv.dimension == 3) {
+          const CellGeometry<3> geo{{fv.n[0], fv.n[1], fv.n[2]}, {fv.h[0], fv.h[1], fv.h[2]},
+                                    {fv.origin[0], fv.origin[1], fv.origin[2]}};
+          b = bubbles_->observe<3>(stamp, CellView<3>{geo, fv.eps}, CellView<3>{geo, fv.ug[1]});
+        } else {
+          b = bubbles_->observe(stamp, fv.grid2(), fv.field2(fv.eps), fv.field2(fv.ug[0]), fv.field2(fv.ug[1]));
+        }
         const auto values = bubble_csv_values(b);
         bubble_csv_->row(std::span<const std::optional<double>>(values.data(), values.size()));
       }
