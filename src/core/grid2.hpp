@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/grid.hpp"
 #include "core/vec2.hpp"
 
 namespace fluidbed {
@@ -36,5 +37,15 @@ struct Grid2 {
   int cell_i(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0) / dx)), 0, nx - 1); }
   int cell_j(double y) const { return std::clamp(static_cast<int>(std::floor((y - y0) / dy)), 0, ny - 1); }
 };
+
+/// The generic grid of a Grid2 (owned block = domain, one ghost layer), and back: for the modules that are still 2D
+/// only (the two-fluid model) to share the generic solvers and kernels.
+inline Grid<2> to_grid(const Grid2& g) {
+  Grid<2> out = Grid<2>::uniform({g.width(), g.height()}, {g.nx, g.ny});
+  out.h = {g.dx, g.dy};
+  out.origin = {g.x0, g.y0};
+  return out;
+}
+inline Grid2 to_grid2(const Grid<2>& g) { return Grid2{g.n(0), g.n(1), g.h[0], g.h[1], g.origin[0], g.origin[1]}; }
 
 }  // namespace fluidbed

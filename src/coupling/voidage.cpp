@@ -96,12 +96,6 @@ void cell_solids_velocity(const ParticleStore<Dim>& p, const std::vector<CellWei
   }
 }
 
-Grid<2> to_grid(const Grid2& g) {
-  Grid<2> out = Grid<2>::uniform({g.width(), g.height()}, {g.nx, g.ny}, 0);
-  out.h = {g.dx, g.dy};
-  out.origin = {g.x0, g.y0};
-  return out;
-}
 
 CellWeights<2> cell_weights(const Grid2& grid, VoidageMethod method, double x, double y) {
   const Grid<2> g = to_grid(grid);

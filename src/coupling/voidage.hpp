@@ -61,9 +61,6 @@ double deposition_volume(const Grid<Dim>& grid, double depth) {
   return Dim == 3 ? grid.cell_measure() : grid.cell_measure() * depth;
 }
 
-/// The generic grid of a Grid2 (owned = domain, no ghosts needed by the deposition).
-Grid<2> to_grid(const Grid2& g);
-
 // The 2D forms on Grid2 / Field2 (cell index j nx + i) of the callers that have no generic grid.
 CellWeights<2> cell_weights(const Grid2& grid, VoidageMethod method, double x, double y);
 double gather(const Field2& f, const CellWeights<2>& cw);

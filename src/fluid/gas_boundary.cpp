@@ -73,7 +73,6 @@ void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, d
   }
 }
 
-Grid2 to_grid2(const Grid<2>& g) { return Grid2{g.n(0), g.n(1), g.h[0], g.h[1], g.origin[0], g.origin[1]}; }
 
 namespace {
 

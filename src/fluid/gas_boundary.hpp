@@ -33,8 +33,6 @@ double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_
 template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out);
 
-/// The Grid2 of a 2D grid's domain (same cell sizes and origin, bit for bit).
-Grid2 to_grid2(const Grid<2>& grid);
 
 /// Throws an input error naming the offending setting.
 void validate(const GasConfig& config);

@@ -186,12 +186,6 @@ void cells_to_faces(const Field<Dim>& cell, int a, Field<Dim>& face) {
   for_each(face.box(), [&](const Index<Dim>& c) { face[c] = 0.5 * (cell[shifted<Dim>(c, a, -1)] + cell[c]); });
 }
 
-Grid<2> grid_of(const Grid2& g) {
-  Grid<2> out = Grid<2>::uniform({g.width(), g.height()}, {g.nx, g.ny});
-  out.h = {g.dx, g.dy};
-  out.origin = {g.x0, g.y0};
-  return out;
-}
 
 }  // namespace
 
@@ -866,7 +860,7 @@ double GasSolver<Dim>::pressure_drop() const {
 template <int Dim>
 GasSolver<Dim>::GasSolver(const Grid2& grid, const GasConfig& config, PressureSolverKind pressure_solver)
   requires(Dim == 2)
-    : GasSolver(grid_of(grid), config, pressure_solver) {}
+    : GasSolver(to_grid(grid), config, pressure_solver) {}
 
 template <int Dim>
 GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new,

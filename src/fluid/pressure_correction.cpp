@@ -199,13 +199,6 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
   Eigen::VectorXd x_;
 };
 
-Grid<2> grid_of(const Grid2& g) {
-  Grid<2> out = Grid<2>::uniform({g.width(), g.height()}, {g.nx, g.ny});
-  out.h = {g.dx, g.dy};
-  out.origin = {g.x0, g.y0};
-  return out;
-}
-
 }  // namespace
 
 template <int Dim>
@@ -226,7 +219,7 @@ struct PressureCorrectionSolver::Impl {
 
 PressureCorrectionSolver::PressureCorrectionSolver(const Grid2& grid, PressureSolverKind kind, double cg_tolerance)
     : impl_(std::make_unique<Impl>()) {
-  const Grid<2> g = grid_of(grid);
+  const Grid<2> g = to_grid(grid);
   impl_->grid = grid;
   impl_->backend = make_eigen_structured_solver<2>(g, kind, cg_tolerance);
   impl_->coeff = FaceFields<2>(g.domain, 0);

@@ -58,6 +58,15 @@ TEST(SimulationDifferences, AKeyOnlyOneSideHasCounts) {
   EXPECT_EQ(d[0].checkpoint, "(not set)");
 }
 
+TEST(SimulationDifferences, ACheckpointFromBeforeTheDimensionKeyIsA2DRun) {
+  // Checkpoints written before case.dimension existed were 2D runs: the key resolved as 2 is no change, 3 is.
+  const std::string now2 = with("seed = 7", "seed = 7\ndimension = 2");
+  EXPECT_TRUE(simulation_differences(kCase, now2).empty());
+  const auto d = simulation_differences(kCase, with("seed = 7", "seed = 7\ndimension = 3"));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].key, "case.dimension");
+}
+
 TEST(AllowedChange, KeySectionOrTableButNotAPrefixOfAName) {
   EXPECT_TRUE(allowed_change("contact.stiffness", {"contact.stiffness"}));
   EXPECT_TRUE(allowed_change("inlet.jet[0].velocity", {"inlet"}));
