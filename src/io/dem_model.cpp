@@ -47,6 +47,15 @@ std::string settled_bed_record(const CaseConfig& c) {
   const PackingConfig& pk = c.particles.packing;
   std::string s;
   auto line = [&](const std::string& key, double v) { s += fmt::format("{} = {:.17g}\n", key, v); };
+  // What the code's contact law was when the bed settled: a bed settled by an earlier law is not this one.
+  // 2: the friction torque's lever arm to the contact point (r - delta/2), issue 12.
+  line("contact law revision", 2.0);
+  line("case.dimension", static_cast<double>(c.domain.dimension));
+  if (c.domain.dimension == 3) {
+    line("domain.depth", c.domain.depth);
+    line("placement.z_min", pk.z_min);
+    line("placement.z_max", pk.z_max);
+  }
   line("particles.count", static_cast<double>(pk.count));
   line("case.seed", static_cast<double>(pk.seed));
   line("particles.gap", pk.min_gap);
@@ -72,6 +81,7 @@ std::string settled_bed_record(const CaseConfig& c) {
   line("domain.width", d.domain.width);
   line("domain.gravity.x", d.domain.gravity.x);
   line("domain.gravity.y", d.domain.gravity.y);
+  if (c.domain.dimension == 3) line("domain.gravity.z", d.domain.gravity.z);
   if (d.walls.top) line("domain.height (top wall)", d.domain.height);
   line("dem.time_step", d.dt);
   line("dem.skin", d.skin);
