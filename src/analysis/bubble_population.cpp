@@ -11,6 +11,7 @@
 
 #include "analysis/bed_surface.hpp"
 #include "analysis/bubble_tracker.hpp"
+#include "analysis/rise_velocity.hpp"
 #include "core/error.hpp"
 
 namespace fluidbed {
@@ -34,24 +35,6 @@ const char* bubble_event_name(BubbleEvent e) {
 }
 
 namespace {
-
-// Least-squares slope of h(t); exact for a point moving at constant speed, the backward difference for two samples.
-double slope(const std::vector<double>& t, const std::vector<double>& h) {
-  const double n = static_cast<double>(t.size());
-  double tm = 0.0, hm = 0.0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    tm += t[k];
-    hm += h[k];
-  }
-  tm /= n;
-  hm /= n;
-  double num = 0.0, den = 0.0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    num += (t[k] - tm) * (h[k] - hm);
-    den += (t[k] - tm) * (t[k] - tm);
-  }
-  return den > 0.0 ? num / den : 0.0;
-}
 
 template <int Dim>
 struct Region {
@@ -245,8 +228,8 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
       h.nose.erase(h.nose.begin());
     }
     if (h.t.size() >= 2) {
-      b.u_centroid = slope(h.t, h.centroid);
-      b.u_nose = slope(h.t, h.nose);
+      b.u_centroid = rise_slope(h.t, h.centroid);
+      b.u_nose = rise_slope(h.t, h.nose);
     }
   }
 

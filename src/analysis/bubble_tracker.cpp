@@ -119,24 +119,6 @@ struct RegionStats {
   }();
 };
 
-// Least-squares slope of h(t); exact for a nose moving at constant speed.
-double lsq_slope(const std::vector<double>& t, const std::vector<double>& h) {
-  const double n = static_cast<double>(t.size());
-  double tm = 0.0, hm = 0.0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    tm += t[k];
-    hm += h[k];
-  }
-  tm /= n;
-  hm /= n;
-  double num = 0.0, den = 0.0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    num += (t[k] - tm) * (h[k] - hm);
-    den += (t[k] - tm) * (t[k] - tm);
-  }
-  return den > 0.0 ? num / den : 0.0;
-}
-
 // Length of the overlap of [a, b] and [lo, hi] exceeds a sliver of the cell size h.
 bool overlaps(double a, double b, double lo, double hi, double h) { return std::min(b, hi) - std::max(a, lo) > 1e-9 * h; }
 
@@ -401,14 +383,14 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
     nose_t_.erase(nose_t_.begin());
     nose_h_.erase(nose_h_.begin());
   }
-  if (nose_t_.size() >= 2) s.rise_velocity = lsq_slope(nose_t_, nose_h_);
+  if (nose_t_.size() >= 2) s.rise_velocity = rise_slope(nose_t_, nose_h_);
   // The centroid over the same samples (fewer after a restore from a checkpoint that did not hold them).
   centroid_h_.push_back(*s.centroid_y);
   if (centroid_h_.size() > nose_t_.size())
     centroid_h_.erase(centroid_h_.begin(), centroid_h_.end() - static_cast<std::ptrdiff_t>(nose_t_.size()));
   if (centroid_h_.size() >= 2) {
     const std::vector<double> tc(nose_t_.end() - static_cast<std::ptrdiff_t>(centroid_h_.size()), nose_t_.end());
-    s.centroid_rise_velocity = lsq_slope(tc, centroid_h_);
+    s.centroid_rise_velocity = rise_slope(tc, centroid_h_);
   }
 
   // Axial interstitial gas velocity in the emulsion just above the roof: half a cell above the nose.

@@ -33,4 +33,21 @@ double bubble_rise_velocity(int dimension, double D, double g) {
   throw_input_error(fmt::format("bubble rise velocity: dimension {} is neither 2 nor 3", dimension));
 }
 
+double rise_slope(const std::vector<double>& t, const std::vector<double>& h) {
+  const double n = static_cast<double>(t.size());
+  double tm = 0.0, hm = 0.0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    tm += t[k];
+    hm += h[k];
+  }
+  tm /= n;
+  hm /= n;
+  double num = 0.0, den = 0.0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    num += (t[k] - tm) * (h[k] - hm);
+    den += (t[k] - tm) * (t[k] - tm);
+  }
+  return den > 0.0 ? num / den : 0.0;
+}
+
 }  // namespace fluidbed

@@ -1,6 +1,7 @@
 #pragma once
 // Rise velocity of an isolated bubble in a fluidized bed, U_b = C sqrt(g D), the reference curve of the bubble
 // report: the constant differs between a two-dimensional (disc-like) bed and a three-dimensional one.
+#include <vector>
 
 namespace fluidbed {
 
@@ -23,5 +24,9 @@ double bubble_rise_velocity_2d(double D, double g = 9.81);
 double bubble_rise_velocity_3d(double D, double g = 9.81);
 /// The one of the two for a bed of dimension 2 or 3; throws Error(BadInput) for another dimension.
 double bubble_rise_velocity(int dimension, double D, double g = 9.81);
+
+/// Rise velocity from heights h[k] at times t[k]: the least-squares slope, exact for a point moving at constant
+/// speed and the backward difference for two samples; 0 when the times do not differ.
+double rise_slope(const std::vector<double>& t, const std::vector<double>& h);
 
 }  // namespace fluidbed
