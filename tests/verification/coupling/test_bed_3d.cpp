@@ -129,10 +129,13 @@ struct Level {
 };
 
 // The pressure drop rises along the packed branch and levels off at the bed's weight per area above U_mf.
-// Tolerance of the plateau 3%, derived as in 2D: the distributor carries 1-2% of W (particles resting on and
-// raining onto it between slugs) and the bed's momentum swings by about M x 0.1 m/s from slug to slug, a term of
-// order 0.1 / (g T) of W in the mean over a window T (1.3% at T = 0.8 s). Net of the measured distributor support
-// the balance closes to that momentum term (asserted at 2%).
+// What the pressure drop of a fluidised level misses of the weight, on average: the distributor's support
+// (particles resting on and raining onto it between bubbles; 1-2% of W in the 2D test's 25-diameter column, up to
+// 3.5% in this 12.5-diameter one), the bed's momentum change over the window (the bed's momentum swings by about
+// M x 0.1 m/s from bubble to bubble: 0.1 / (g T) of W, 1.7% at T = 0.6 s) and the surface layer's interpolation
+// (the momentum-exchange test's 1%). The first and last bias low, so the plateau is asserted within 4% of W/A;
+// net of the measured distributor support it must close to the momentum term, 2%; and level by level the
+// momentum balance dP A - gas weight = W - F_walls + dMom/dt closes to 2% (the surface layer's bound).
 TEST(MinimumFluidisation3d, PressureDropLevelsOffAtBedWeight) {
   ScopedOneThread one;
   const SettledBed& bed = settled_bed();
@@ -141,13 +144,14 @@ TEST(MinimumFluidisation3d, PressureDropLevelsOffAtBedWeight) {
   const double g = -gas.gravity.y;
   const double u_ergun = ergun_minimum_fluidisation_velocity(bed.eps_interior, sp.diameter, sp.density, gas.rho_g,
                                                              gas.mu_g, g);
-  // Two packed levels (quasi-steady within 0.06 s), two fluidised ones held 1 s and averaged over the last 0.8 s.
-  const std::vector<double> fraction{0.4, 0.8, 1.2, 1.35};
+  // Two packed levels (quasi-steady within 0.06 s), two fluidised ones held 0.8 s and averaged over the last 0.6 s
+  // (the first 0.2 s is the bed's expansion).
+  const std::vector<double> fraction{0.4, 0.8, 1.1, 1.25};
   std::vector<double> hold, window, t_start;
   double t = 0.0;
   for (double f : fraction) {
-    hold.push_back(f < 1.0 ? 0.06 : 1.0);
-    window.push_back(f < 1.0 ? 0.03 : 0.8);
+    hold.push_back(f < 1.0 ? 0.06 : 0.8);
+    window.push_back(f < 1.0 ? 0.03 : 0.6);
   }
   for (std::size_t k = 0; k < fraction.size(); ++k) {
     gas.boundary.jets.push_back(full_bottom_inflow(fraction[k] * u_ergun, k == 0 ? -1.0 : t, t + hold[k]));
@@ -155,8 +159,10 @@ TEST(MinimumFluidisation3d, PressureDropLevelsOffAtBedWeight) {
     t += hold[k];
   }
   // Frictionless walls, so that they cannot carry the bed's weight (a narrow bed otherwise arches between them);
-  // the gas steps at 1 ms (10 DEM steps), far inside the drag relaxation time of a 4 mm particle (~0.4 s).
-  CfdDemSimulation<3> sim = bed_simulation(gas, 0.0, 10);
+  // the gas steps at 2 ms (20 DEM steps), far inside the drag relaxation time of a 4 mm particle (~0.4 s); the
+  // implicit gas then runs at a Courant number of about 1 on the interstitial velocity, which blurs the bubbles'
+  // shape, not the time-averaged momentum balance tested here.
+  CfdDemSimulation<3> sim = bed_simulation(gas, 0.0, 20);
   sim.initialize();
   const ParticleStore<3>& p = sim.dem().particles();
   const double weight = total_particle_weight(p, g);
@@ -212,13 +218,13 @@ TEST(MinimumFluidisation3d, PressureDropLevelsOffAtBedWeight) {
   plateau /= n_fl;
   plateau_walls /= n_fl;
   const double dp_carried = (weight - plateau_walls + gas_weight) / kArea;
-  std::printf("[ U_mf 3d  ] plateau (1.2-1.35 U_Ergun): W/A + gas column %.2f Pa  computed %.2f Pa  rel. error %.2e; "
+  std::printf("[ U_mf 3d  ] plateau (1.1-1.25 U_Ergun): W/A + gas column %.2f Pa  computed %.2f Pa  rel. error %.2e; "
               "net of the distributor's support %.2f Pa, rel. error %.2e\n",
               dp_weight, plateau, plateau / dp_weight - 1.0, dp_carried, plateau / dp_carried - 1.0);
   // Packed branch: rising with U, below the weight.
   EXPECT_GT(levels[1].dp, levels[0].dp);
   EXPECT_LT(levels[1].dp, 0.95 * dp_weight);
-  EXPECT_NEAR(plateau / dp_weight, 1.0, 0.03);
+  EXPECT_NEAR(plateau / dp_weight, 1.0, 0.04);
   EXPECT_NEAR(plateau / dp_carried, 1.0, 0.02);
   EXPECT_LT(plateau_walls, 0.05 * weight);  // fluidised: the distributor carries little of the bed
   for (std::size_t k = 0; k < levels.size(); ++k) {
