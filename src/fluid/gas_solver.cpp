@@ -595,11 +595,13 @@ template <int Dim>
 GasSolver<Dim>::GasSolver(const Grid<Dim>& grid, const GasConfig& config, PressureSolverKind pressure_solver,
                           const Comm& comm) {
   validate(config);
+  // A 3D slab may be one cell deep (the paper's bed one diameter deep, cases/pseudo2d/slab1d.toml): its z
+  // momentum then has only wall faces and its pressure stencil only wall ghosts across the depth.
   bool ok = true;
-  for (int a = 0; a < Dim; ++a) ok = ok && grid.n(a) >= 2 && grid.h[a] > 0.0;
+  for (int a = 0; a < Dim; ++a) ok = ok && grid.n(a) >= (a == 2 ? 1 : 2) && grid.h[a] > 0.0;
   if (!ok) {
     throw_input_error(Dim == 2 ? "gas: the grid needs at least 2 x 2 cells of positive size"
-                               : "gas: the grid needs at least 2 x 2 x 2 cells of positive size");
+                               : "gas: the grid needs at least 2 x 2 x 1 cells of positive size");
   }
   if constexpr (Dim == 2) {
     for (const InletJet& jet : config.boundary.jets)

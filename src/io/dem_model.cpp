@@ -83,6 +83,14 @@ std::string settled_bed_record(const CaseConfig& c) {
   line("domain.gravity.y", d.domain.gravity.y);
   if (c.domain.dimension == 3) line("domain.gravity.z", d.domain.gravity.z);
   if (d.walls.top) line("domain.height (top wall)", d.domain.height);
+  // A 3D bed also depends on its depth and its placement across it (2D records stay as they were, so their caches
+  // stay valid).
+  if (d.domain.dimension == 3) {
+    line("domain.depth", d.domain.depth);
+    line("domain.gravity.z", d.domain.gravity.z);
+    line("placement.z_min", pk.z_min);
+    line("placement.z_max", pk.z_max);
+  }
   line("dem.time_step", d.dt);
   line("dem.skin", d.skin);
   line("settle.kinetic_energy_per_particle", c.settle.kinetic_energy_per_particle);

@@ -42,6 +42,32 @@ expect 0 "" "back to 4 mm" run --out "$WORK/e"
 expect 0 "not reusing the settled bed .*settled with other parameters" "4 mm is not served the 3 mm bed" cat "$WORK/e/log.txt"
 expect 0 "" "and equals the first run" diff "$WORK/a/particles/000002.csv" "$WORK/e/particles/000002.csv"
 
+# A 3D bed depends on its depth (before: the record had no depth, and a deeper box was served the shallower bed).
+cat > "$WORK/c3.toml" <<TOML
+case.name = "cache3d"
+case.dimension = 3
+case.end_time = 0.002
+domain.width = 0.04
+domain.height = 0.1
+domain.depth = 0.012
+particles.count = 120
+particles.fill_height = 0.1
+species = [{diameter = 0.004, density = 2700.0}]
+dem.time_step = 1e-4
+gas.enabled = false
+settle.max_time = 0.2
+settle.cache = "$WORK/cache/bed3.csv"
+output.interval = 0.002
+output.checkpoint_interval = 0.0
+TOML
+run3() { "$FLUIDBED" run "$WORK/c3.toml" --quiet --threads 1 --overwrite "$@"; }
+expect 0 "" "a 3D bed settles and writes the cache" run3 --out "$WORK/f"
+expect 0 "" "same 3D bed: rerun" run3 --out "$WORK/g"
+expect 0 "reusing the settled bed" "the same 3D bed reuses the cache" cat "$WORK/g/log.txt"
+expect 0 "" "a deeper 3D box runs" run3 --out "$WORK/h" --set domain.depth=0.016
+expect 0 "not reusing the settled bed .*domain.depth = 0.016" "a deeper box is not served the shallower bed" \
+  cat "$WORK/h/log.txt"
+
 # A binary bed placed up to the top: 2 mm particles rebound off the pile above the fill height. Settling happens
 # under a lid (before: exit 3, "particle 1171 left through the open top" at t = 0.47 s of settling).
 cat > "$WORK/lid.toml" <<TOML
