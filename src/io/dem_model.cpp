@@ -51,11 +51,6 @@ std::string settled_bed_record(const CaseConfig& c) {
   // 2: the friction torque's lever arm to the contact point (r - delta/2), issue 12.
   line("contact law revision", 2.0);
   line("case.dimension", static_cast<double>(c.domain.dimension));
-  if (c.domain.dimension == 3) {
-    line("domain.depth", c.domain.depth);
-    line("placement.z_min", pk.z_min);
-    line("placement.z_max", pk.z_max);
-  }
   line("particles.count", static_cast<double>(pk.count));
   line("case.seed", static_cast<double>(pk.seed));
   line("particles.gap", pk.min_gap);
@@ -81,10 +76,8 @@ std::string settled_bed_record(const CaseConfig& c) {
   line("domain.width", d.domain.width);
   line("domain.gravity.x", d.domain.gravity.x);
   line("domain.gravity.y", d.domain.gravity.y);
-  if (c.domain.dimension == 3) line("domain.gravity.z", d.domain.gravity.z);
   if (d.walls.top) line("domain.height (top wall)", d.domain.height);
-  // A 3D bed also depends on its depth and its placement across it (2D records stay as they were, so their caches
-  // stay valid).
+  // A 3D bed also depends on its depth and its placement across it.
   if (d.domain.dimension == 3) {
     line("domain.depth", d.domain.depth);
     line("domain.gravity.z", d.domain.gravity.z);
