@@ -163,6 +163,97 @@ void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& gri
 template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<2>&, double, std::vector<double>&);
 template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<3>&, double, std::vector<double>&);
 
+template <int Dim>
+void fill_wall_tangential(Field<Dim>& u, int e, bool high, WallKind kind, double u_wall) {
+  const IndexBox<Dim>& b = u.box();
+  const double sign = kind == WallKind::NoSlip ? -1.0 : 1.0;
+  const double known = kind == WallKind::NoSlip ? 2.0 * u_wall : 0.0;
+  // Ghost layer at distance k + 1 beyond the side mirrors the layer at distance k inside it.
+  const int mirror_sum = high ? 2 * b.hi[e] - 1 : 2 * b.lo[e] - 1;
+  for_each(b.outside(e, high, u.ghost()), [&](const Index<Dim>& c) {
+    Index<Dim> m = c;
+    m[e] = mirror_sum - c[e];
+    u[c] = known + sign * u[m];
+  });
+}
+
+template <int Dim>
+void fill_zero_gradient(Field<Dim>& f, int e, bool high) {
+  const IndexBox<Dim>& b = f.box();
+  const int edge = high ? b.hi[e] - 1 : b.lo[e];
+  for_each(b.outside(e, high, f.ghost()), [&](const Index<Dim>& c) {
+    Index<Dim> m = c;
+    m[e] = edge;
+    f[c] = f[m];
+  });
+}
+
+template <int Dim>
+void fill_pressure_outlet(Field<Dim>& p, int e, bool high, double p_out) {
+  const IndexBox<Dim>& b = p.box();
+  const int mirror_sum = high ? 2 * b.hi[e] - 1 : 2 * b.lo[e] - 1;
+  for_each(b.outside(e, high, p.ghost()), [&](const Index<Dim>& c) {
+    Index<Dim> m = c;
+    m[e] = mirror_sum - c[e];
+    p[c] = 2.0 * p_out - p[m];
+  });
+}
+
+template <int Dim>
+void fix_wall_normal(Field<Dim>& u_a, int a, bool high) {
+  u_a.fill(u_a.box().inside(a, high), 0.0);
+}
+
+template <int Dim>
+void fill_velocity_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, const Comm& comm, FaceFields<Dim>& u) {
+  const bool outlet = bc.top == TopBoundary::PressureOutlet;
+  for (int a = 0; a < Dim; ++a) {
+    Field<Dim>& ua = u[a];
+    for (int e = 0; e < Dim; ++e)
+      for (bool high : {false, true}) {
+        if (!grid.at_domain_side(e, high)) continue;
+        if (e == a) {
+          fill_zero_gradient(ua, e, high);
+        } else if (e == 1 && high && outlet) {
+          fill_zero_gradient(ua, e, high);
+        } else {
+          const WallKind kind = e == 0   ? bc.side_walls
+                                : e == 2 ? bc.front_back_walls
+                                : high   ? bc.top_wall
+                                         : bc.bottom_wall;
+          const double speed = e == 1 && high && a == 0 ? bc.lid_velocity : 0.0;
+          fill_wall_tangential(ua, e, high, kind, speed);
+        }
+      }
+    comm.exchange_halo(ua);
+  }
+}
+
+template <int Dim>
+void fill_pressure_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, const Comm& comm, Field<Dim>& p) {
+  for (int e = 0; e < Dim; ++e)
+    for (bool high : {false, true}) {
+      if (!grid.at_domain_side(e, high)) continue;
+      if (e == 1 && high && bc.top == TopBoundary::PressureOutlet) {
+        fill_pressure_outlet(p, e, high, bc.top_pressure);
+      } else {
+        fill_zero_gradient(p, e, high);
+      }
+    }
+  comm.exchange_halo(p);
+}
+
+#define FLUIDBED_GHOST_INSTANCES(D)                                                                              \
+  template void fill_wall_tangential(Field<D>&, int, bool, WallKind, double);                                    \
+  template void fill_zero_gradient(Field<D>&, int, bool);                                                        \
+  template void fill_pressure_outlet(Field<D>&, int, bool, double);                                              \
+  template void fix_wall_normal(Field<D>&, int, bool);                                                           \
+  template void fill_velocity_ghosts(const Grid<D>&, const GasBoundaryConfig&, const Comm&, FaceFields<D>&);     \
+  template void fill_pressure_ghosts(const Grid<D>&, const GasBoundaryConfig&, const Comm&, Field<D>&);
+FLUIDBED_GHOST_INSTANCES(2)
+FLUIDBED_GHOST_INSTANCES(3)
+#undef FLUIDBED_GHOST_INSTANCES
+
 void validate(const GasConfig& c) {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw_input_error("gas: " + what);

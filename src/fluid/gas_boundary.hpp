@@ -1,5 +1,7 @@
 #pragma once
 // Boundary-condition helpers of the gas phase, shared by the CFD-DEM gas solver and the two-fluid model.
+#include "core/comm.hpp"
+#include "core/field.hpp"
 #include "core/field2.hpp"
 #include "core/grid.hpp"
 #include "core/grid2.hpp"
@@ -33,6 +35,40 @@ double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_
 template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out);
 
+// ---- Ghost layers of the gas unknowns. Each function fills the ghosts of one side (axis e, `high`) of a field;
+// the caller applies it only where Grid::at_domain_side says the side is physical, so a sub-domain's internal
+// sides are left to Comm::exchange_halo.
+
+/// Tangential velocity beyond a wall, layer k mirrored about the side onto the k-th layer inside: u_g = 2 u_wall - u
+/// (no-slip: the mean of the pair is the wall's speed) or u_g = u (slip: no shear across the wall).
+template <int Dim>
+void fill_wall_tangential(Field<Dim>& u, int e, bool high, WallKind kind, double u_wall);
+
+/// Zero gradient beyond the side: every ghost layer repeats the field's boundary layer (the tangential velocity at
+/// the outlet; the normal velocity beyond a wall, inflow or outlet face, so that a TVD limiter reaching across
+/// the side sees no slope and falls back to upwind; P at walls and the distributor).
+template <int Dim>
+void fill_zero_gradient(Field<Dim>& f, int e, bool high);
+
+/// Cell pressure beyond a pressure outlet, mirrored: P_g = 2 P_out - P (the pair averages to P_out on the face).
+template <int Dim>
+void fill_pressure_outlet(Field<Dim>& p, int e, bool high, double p_out);
+
+/// The wall faces' normal velocity fixed at zero: component a on its faces at side `high` of axis a.
+template <int Dim>
+void fix_wall_normal(Field<Dim>& u_a, int a, bool high);
+
+/// The ghosts of every velocity component on the physical sides of grid's owned block, then the halo exchange:
+/// side walls (axis 0) and front/back walls (axis 2, 3D) of kind side_walls / front_back_walls, the distributor
+/// (axis 1 low) of kind bottom_wall, the top a pressure outlet (zero gradient) or a wall of kind top_wall moving at
+/// lid_velocity along axis 0. Normal components: zero gradient beyond every side.
+template <int Dim>
+void fill_velocity_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, const Comm& comm, FaceFields<Dim>& u);
+
+/// The pressure ghosts on the physical sides: mirrored about top_pressure at a pressure outlet, zero gradient at
+/// walls, the distributor and a lid; then the halo exchange.
+template <int Dim>
+void fill_pressure_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, const Comm& comm, Field<Dim>& p);
 
 /// Throws an input error naming the offending setting.
 void validate(const GasConfig& config);

@@ -267,7 +267,8 @@ void GasSolver<Dim>::Impl::setup() {
     m.where.push_back(c);
   });
   const int n = static_cast<int>(m.where.size());
-  const auto get = [&](const Index<Dim>& c) { return faces.contains(c) ? m.id[m.d.index(c)] : -1; };
+  // Faces beyond the sides are ghosts: fixed values, numbered -1 like the boundary faces.
+  const auto get = [&](const Index<Dim>& c) { return m.id[m.d.index(c)]; };
   std::vector<std::array<int, 2 * Dim>> nb(static_cast<std::size_t>(n));
   for (int r = 0; r < n; ++r) {
     const Index<Dim>& c = m.where[static_cast<std::size_t>(r)];
@@ -359,7 +360,6 @@ template <int d>
 void GasSolver<Dim>::Impl::solve_momentum(double dt) {
   Momentum<Dim>& m = mom[d];
   const IndexBox<Dim>& cells = grid.domain;
-  const IndexBox<Dim> faces = cells.faces(d);
   const double h_al = grid.h[d];
   const double area_d = face_area(grid, d);
   double vol_full = h_al;
@@ -457,15 +457,13 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
       const double fm = 0.5 * (MA[kf - sfd] + MA[kf]);
       const double dm = mu * E[kc - scd] * area_d / h_al;
       add(0, kf - sfd, dm + std::max(fm, 0.0));
+      // Beyond the boundary face the ghost repeats it (zero gradient), so there the limiter sees no slope.
       if (scheme != ConvectionScheme::Upwind && !half) {
         const bool fwd = fm > 0.0;
-        const int far = fwd ? a - 2 : a + 1;
-        if (far >= faces.lo[d] && far < faces.hi[d]) {
-          const double phi_far = P[kf + (far - a) * sfd];
-          const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfd], P[kf])
-                                : high_order_correction(scheme, phi_far, P[kf], P[kf - sfd]);
-          b_src += fm * cc;
-        }
+        const double phi_far = P[kf + (fwd ? -2 : 1) * sfd];
+        const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfd], P[kf])
+                              : high_order_correction(scheme, phi_far, P[kf], P[kf - sfd]);
+        b_src += fm * cc;
       }
     }
     if (!half) {
@@ -474,13 +472,10 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
       add(1, kf + sfd, dp + std::max(-fp, 0.0));
       if (scheme != ConvectionScheme::Upwind) {
         const bool fwd = fp > 0.0;
-        const int far = fwd ? a - 1 : a + 2;
-        if (far >= faces.lo[d] && far < faces.hi[d]) {
-          const double phi_far = P[kf + (far - a) * sfd];
-          const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfd])
-                                : high_order_correction(scheme, phi_far, P[kf + sfd], P[kf]);
-          b_src -= fp * cc;
-        }
+        const double phi_far = P[kf + (fwd ? -1 : 2) * sfd];
+        const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfd])
+                              : high_order_correction(scheme, phi_far, P[kf + sfd], P[kf]);
+        b_src -= fp * cc;
       }
       // Across the component, per axis e: faces at the corners b -/+ 1/2.
       for (int k = 0; k < Dim - 1; ++k) {
@@ -607,6 +602,8 @@ GasSolver<Dim>::GasSolver(const Grid<Dim>& grid, const GasConfig& config, Pressu
     for (const InletJet& jet : config.boundary.jets)
       if (jet.shape != InletShape::Slot) throw_input_error("gas: a 2D bed's jets are slots (rectangles and discs are 3D)");
   }
+  // The stencils read one layer of ghosts beyond every side.
+  if (grid.ghost < 1) throw_input_error("gas: the grid needs at least one ghost layer");
   impl_ = std::make_unique<Impl>(grid, config, pressure_solver, comm);
   Impl& s = *impl_;
   s.outlet = config.boundary.top == TopBoundary::PressureOutlet;
@@ -669,18 +666,16 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
   for (int a = 0; a < Dim; ++a) cells_to_faces(s.eps_cell, a, s.eps_f[a]);
   s.u_old = s.f.u;
   // Boundary values: walls, and the inlet's superficial velocity turned into the interstitial face velocity.
-  for (int a = 0; a < Dim; ++a) {
-    if (a == 1) continue;
-    const IndexBox<Dim> faces = cells.faces(a);
-    s.f.u[a].fill(faces.inside(a, false), 0.0);
-    s.f.u[a].fill(faces.inside(a, true), 0.0);
-  }
+  for (int a = 0; a < Dim; ++a)
+    for (bool high : {false, true})
+      if (g.at_domain_side(a, high) && (a != 1 || (high && !s.outlet))) fix_wall_normal(s.f.u[a], a, high);
   inlet_superficial_profile(cfg.boundary, g, t_new - 0.5 * dt, s.inlet);
-  {
+  if (g.at_domain_side(1, false)) {
     std::size_t k = 0;
     for_each(s.bottom(), [&](const Index<Dim>& c) { s.f.u[1][c] = s.inlet[k++] / eps_new[c]; });
-    if (!s.outlet) s.f.u[1].fill(s.top(), 0.0);
   }
+  fill_velocity_ghosts(g, cfg.boundary, comm, s.f.u);
+  fill_pressure_ghosts(g, cfg.boundary, comm, s.f.p);
 
   GasStepReport rep;
   s.linear_fallbacks = 0;
@@ -693,6 +688,7 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
       [&]<int... d>(std::integer_sequence<int, d...>) {
         (s.template solve_momentum<d>(dt), ...);
       }(std::make_integer_sequence<int, Dim>{});
+      fill_velocity_ghosts(g, cfg.boundary, comm, s.f.u);
     } catch (const Error& e) {
       throw_simulation_error(fmt::format(
           "gas at t = {:.6g} s (dt = {:.3g} s), SIMPLE iteration {}: {}. Likely cause: an inflow or a drag too strong "
@@ -736,6 +732,8 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
     }
     if (s.outlet)
       for_each(s.top(), [&](const Index<Dim>& c) { s.f.u[1][c] += s.mom[1].d[c] * pc[shifted<Dim>(c, 1, -1)]; });
+    fill_velocity_ghosts(g, cfg.boundary, comm, s.f.u);
+    fill_pressure_ghosts(g, cfg.boundary, comm, s.f.p);
     bool finite = true;
     for_each(cells, [&](const Index<Dim>& c) { finite = finite && std::isfinite(s.f.p[c]); });
     if (!finite) throw_simulation_error(fmt::format("gas: pressure is not finite at t = {:.6g} s", t_new));
