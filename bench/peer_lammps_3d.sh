@@ -62,22 +62,28 @@ if [ "$lammps_only" != 1 ]; then
 fi
 
 median() { python3 -c "import statistics, sys; print(statistics.median(float(v) for v in sys.argv[1:]))" "$@"; }
-fb_wall=() fb_cpu=() lm_wall=() lm_cpu=() fb_rebuilds="" lm_rebuilds=""
+fb_wall=() fb_cpu=() lm_wall=() lm_cpu=() fb_rebuilds="" lm_rebuilds="" fb_at=() lm_at=() fb_ke="" lm_ke=""
 for r in $(seq 1 "$repeats"); do
   if [ "$lammps_only" != 1 ]; then
-    /usr/bin/time -f "%e %U" -o "$work/fluidbed.$r.time" \
+    fb_at+=("$(date -u +%H:%M:%S)")
+    /usr/bin/time -f "%e %U %S" -o "$work/fluidbed.$r.time" \
       "$fluidbed" run "$case_file" --out "$work/fluidbed.$r" --end-time "$end_time" --threads 1 --quiet "${sets[@]}"
     fb_wall+=("$(python3 -c "import json; print(json.load(open('$work/fluidbed.$r/cost.json'))['wall_s'])")")
-    fb_cpu+=("$(awk '{print $2}' "$work/fluidbed.$r.time")")
+    fb_cpu+=("$(awk '{print $2 + $3}' "$work/fluidbed.$r.time")")
     fb_rebuilds="$(python3 -c "
 import csv; r = list(csv.DictReader(open('$work/fluidbed.$r/monitor.csv'))); print(r[-1].get('neighbor_rebuilds', 'n/a'))")"
+    fb_ke="$(python3 -c "
+import csv; r = list(csv.DictReader(open('$work/fluidbed.$r/monitor.csv'))); print(r[-1]['time_s'], r[-1]['kinetic_energy_J'])")"
   fi
-  (cd "$work" && /usr/bin/time -f "%e %U" -o "$work/lammps.$r.time" lmp -in "$here/lammps/settle-100k-3d.in" \
+  lm_at+=("$(date -u +%H:%M:%S)")
+  (cd "$work" && /usr/bin/time -f "%e %U %S" -o "$work/lammps.$r.time" lmp -in "$here/lammps/settle-100k-3d.in" \
     -var data "$bed.data" -var steps "$steps" -var skin "$skin" -log "$work/lammps.$r.log" -screen none)
   lm_wall+=("$(awk '/^Loop time of/ {print $4}' "$work/lammps.$r.log")")
-  lm_cpu+=("$(awk '{print $2}' "$work/lammps.$r.time")")
+  lm_cpu+=("$(awk '{print $2 + $3}' "$work/lammps.$r.time")")
+  # Translational plus rotational kinetic energy of the last thermo line (step ke c_rke).
+  lm_ke="$(awk '/^ *Step/ {on = 1; next} /^Loop time/ {on = 0} on && NF == 4 {last = $1 " " ($3 + $4)} END {print last}' "$work/lammps.$r.log")"
   lm_rebuilds="$(awk '/^Neighbor list builds/ {print $5}' "$work/lammps.$r.log")"
-  echo "repeat $r: fluidbed ${fb_wall[*]: -1} s, LAMMPS ${lm_wall[*]: -1} s" >&2
+  echo "repeat $r: fluidbed ${fb_wall[*]: -1} s loop, ${fb_cpu[*]: -1} s CPU; LAMMPS ${lm_wall[*]: -1} s loop, ${lm_cpu[*]: -1} s CPU; load $(uptime | sed 's/.*load average: //')" >&2
 done
 
 # Bytes per particle: peak RSS of 10 steps with N and with 2N spheres, (RSS_2N - RSS_N) / N.
@@ -104,11 +110,11 @@ for r in $(seq 1 "$repeats"); do cp "$work/lammps.$r.log" "$stem.lammps.$r"; don
   echo "# $steps steps of $dt s, $n spheres in $width x $height x $depth m, skin $skin m, 1 thread / 1 MPI rank each, $repeats repeats (medians)"
   echo "# LAMMPS: $(head -1 "$work/lammps.1.log")$([ "$lammps_only" = 1 ] && echo ", LAMMPS only (LAMMPS_ONLY=1)")"
   if [ "$lammps_only" != 1 ]; then
-    printf "fluidbed_loop_wall_s %s  (runs: %s)\nfluidbed_cpu_s %s  (runs: %s)\nfluidbed_neighbor_rebuilds %s\n" \
-      "$(median "${fb_wall[@]}")" "${fb_wall[*]}" "$(median "${fb_cpu[@]}")" "${fb_cpu[*]}" "$fb_rebuilds"
+    printf "fluidbed_loop_wall_s %s  (runs: %s; started %s UTC)\nfluidbed_cpu_s %s  (runs: %s; user + sys)\nfluidbed_neighbor_rebuilds %s\nfluidbed_final_time_s_kinetic_energy_J %s  (translation + rotation)\n" \
+      "$(median "${fb_wall[@]}")" "${fb_wall[*]}" "${fb_at[*]}" "$(median "${fb_cpu[@]}")" "${fb_cpu[*]}" "$fb_rebuilds" "$fb_ke"
   fi
-  printf "lammps_loop_wall_s %s  (runs: %s)\nlammps_cpu_s %s  (runs: %s)\nlammps_neighbor_rebuilds %s\n" \
-    "$(median "${lm_wall[@]}")" "${lm_wall[*]}" "$(median "${lm_cpu[@]}")" "${lm_cpu[*]}" "$lm_rebuilds"
+  printf "lammps_loop_wall_s %s  (runs: %s; started %s UTC)\nlammps_cpu_s %s  (runs: %s; user + sys)\nlammps_neighbor_rebuilds %s\nlammps_final_step_kinetic_energy_J %s  (ke + erotate/sphere)\n" \
+    "$(median "${lm_wall[@]}")" "${lm_wall[*]}" "${lm_at[*]}" "$(median "${lm_cpu[@]}")" "${lm_cpu[*]}" "$lm_rebuilds" "$lm_ke"
   python3 - "$n" "$steps" "$(median "${lm_wall[@]}")" "$(median "${lm_cpu[@]}")" "$lm_rss1" "$lm_rss2" \
     "$([ "$lammps_only" != 1 ] && median "${fb_wall[@]}")" "$([ "$lammps_only" != 1 ] && median "${fb_cpu[@]}")" \
     "$fb_rss1" "$fb_rss2" <<'PY'
