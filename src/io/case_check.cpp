@@ -306,7 +306,7 @@ std::string describe_case(const CaseConfig& c) {
   }
   if (c.model == Model::Tfm || c.gas_enabled) {
     if (three_d) {
-      line("gas grid", fmt::format("{} x {} x {} cells of {} x {} x {} m", c.grid.nx, c.grid.ny, c.grid.nz, c.grid.dx,
+      line("gas grid", fmt::format("{} x {} x {} cells of {:.6g} x {:.6g} x {:.6g} m", c.grid.nx, c.grid.ny, c.grid.nz, c.grid.dx,
                                    c.grid.dy, c.grid.dz));
     } else {
       line("gas grid", fmt::format("{} x {} cells of {} x {} m", c.grid.nx, c.grid.ny, c.grid.dx, c.grid.dy));
