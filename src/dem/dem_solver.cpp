@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -268,6 +270,10 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, R[j])));
     }
   }
+  std::array<bool, 2 * Dim> wall_on{};
+  for (int w = 0; w < 2 * Dim; ++w) wall_on[static_cast<std::size_t>(w)] = walls.enabled(w / 2, w % 2);
+  const AxisPtrs<2 * Dim * Dim> WX =
+      axis_ptrs<2 * Dim * Dim>([&](int q) -> auto& { return p_.wall_xi[static_cast<std::size_t>(q)]; }, 2 * Dim * Dim);
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
 #pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
@@ -284,29 +290,40 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       torque += entry_torque_[k];
     }
     // Plane walls: the same law against a fixed body of infinite mass. A disabled wall never holds a spring.
-    const ContactParams& wp = wall_params_[si];
-    for (int a = 0; a < Dim; ++a) {
-      for (int side = 0; side < 2; ++side) {
-        if (!walls.enabled(a, side)) continue;
-        const int w = 2 * a + side;
-        const double overlap = side == 0 ? ri - xi[a] : ri - (L[a] - xi[a]);
-        if (overlap <= 0.0) {
-          if (!is_zero<Dim>(p_.wall_spring(i, w))) p_.set_wall_spring(i, w, Vec<Dim>{});
-          continue;
+    // A particle clear of every wall (most of the bed) only needs its springs checked for zero: the test on
+    // the position comes first, and the springs are read through raw pointers, not per-wall accessors.
+    // Unrolled at compile time (wall w = 2 a + side, in that order): axis, side and normal are constants.
+    auto wall = [&]<int w>(std::integral_constant<int, w>) {
+      constexpr int a = w / 2;
+      constexpr bool high = w % 2 == 1;
+      if (!wall_on[static_cast<std::size_t>(w)]) return;
+      const double overlap = high ? ri - (L[a] - xi[a]) : ri - xi[a];
+      double* const* spring = &WX.a[static_cast<std::size_t>(w * Dim)];
+      if (overlap <= 0.0) {
+        bool held = false;
+        for (int c = 0; c < Dim; ++c) held = held || spring[c][i] != 0.0;
+        if (held) {
+          for (int c = 0; c < Dim; ++c) spring[c][i] = 0.0;
         }
-        Vec<Dim> nrm{};
-        nrm[a] = side == 0 ? -1.0 : 1.0;
-        Vec<Dim> xi_w = p_.wall_spring(i, w);
-        const double lever = ri - overlap;  // to the contact point on the wall plane
-        const Vec<Dim> v_rel = vi + cross(wi * lever, nrm);
-        const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
-        p_.set_wall_spring(i, w, xi_w);
-        f += cf.f;
-        torque += lever * cross(nrm, cf.f_t);
-        max_ov = std::max(max_ov, overlap);
-        if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
+        return;
       }
-    }
+      Vec<Dim> nrm{};
+      nrm[a] = high ? 1.0 : -1.0;
+      Vec<Dim> xi_w;
+      for (int c = 0; c < Dim; ++c) xi_w[c] = spring[c][i];
+      const double lever = ri - overlap;  // to the contact point on the wall plane
+      const Vec<Dim> v_rel = vi + cross(wi * lever, nrm);
+      const ContactForce<Dim> cf =
+          linear_spring_dashpot(wall_params_[si], ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
+      for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
+      f += cf.f;
+      torque += lever * cross(nrm, cf.f_t);
+      max_ov = std::max(max_ov, overlap);
+      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
+    };
+    [&]<int... w>(std::integer_sequence<int, w...>) {
+      (wall(std::integral_constant<int, w>{}), ...);
+    }(std::make_integer_sequence<int, 2 * Dim>{});
     for (int a = 0; a < Dim; ++a) F[a][i] = f[a];
     if constexpr (Dim == 2) {
       T[0][i] = torque;
@@ -374,20 +391,29 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double k = drag_k[i];
-    const double relax = 1.0 / (1.0 + dt * k * inv_mass[i]);
-    for (int a = 0; a < Dim; ++a) {
-      V[a][i] = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * inv_mass[i] + g[a]) * dt) * relax;
-    }
-    for (int a = 0; a < Dim; ++a) X[a][i] += V[a][i] * dt;
-    // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
-    for (int c = 0; c < NS; ++c) W[c][i] += T[c][i] * inv_inertia[i] * dt;
+    const double im = inv_mass[i];
+    const double relax = 1.0 / (1.0 + dt * k * im);
+    // The new state is kept in locals for the tests below: the domain test through the store's accessors would
+    // reload every array it reads.
     double moved2 = 0.0;
+    bool ok = true;
     for (int a = 0; a < Dim; ++a) {
-      const double dd = X[a][i] - B[a][i];
+      const double v = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * im + g[a]) * dt) * relax;
+      const double x = X[a][i] + v * dt;
+      V[a][i] = v;
+      X[a][i] = x;
+      const double dd = x - B[a][i];
       moved2 += dd * dd;
+      ok = ok && in_domain.inside(a, x) && std::isfinite(v);
+    }
+    // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
+    for (int c = 0; c < NS; ++c) {
+      const double w = W[c][i] + T[c][i] * inv_inertia[i] * dt;
+      W[c][i] = w;
+      ok = ok && std::isfinite(w);
     }
     if (moved2 >= half_skin2) moved_far = 1;
-    if (!in_domain(p_, i)) bad = 1;
+    if (!ok) bad = 1;
     if (in_domain.outflow && X[1][i] > H) escaped = 1;
   }
   need_rebuild_ = moved_far != 0;

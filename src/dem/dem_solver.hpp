@@ -135,12 +135,11 @@ class DemSolver {
   struct DomainTest {
     Vec<Dim> extent;
     bool outflow;
+    /// Coordinate x on axis a within the domain's bounds.
+    bool inside(int a, double x) const { return x >= 0.0 && (x <= extent[a] || (a == 1 && outflow)); }
     bool operator()(const Store& p, std::size_t i) const {
       bool ok = true;
-      for (int a = 0; a < Dim; ++a) {
-        const double x = p.coord(a)[i];
-        ok = ok && x >= 0.0 && (x <= extent[a] || (a == 1 && outflow));
-      }
+      for (int a = 0; a < Dim; ++a) ok = ok && inside(a, p.coord(a)[i]);
       for (int a = 0; a < Dim; ++a) ok = ok && std::isfinite(p.velocity(a)[i]);
       for (int c = 0; c < kSpinComponents<Dim>; ++c) ok = ok && std::isfinite(p.spin_component(c)[i]);
       return ok;
