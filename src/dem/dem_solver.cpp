@@ -109,7 +109,7 @@ void DemSolver<Dim>::rebuild() {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
   }
-  build_neighbor_list(p_, cell_size_, config_.skin, nbr_);
+  build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_);
 
   if (have_old) {
     // Carry each stretched spring over to the new entry of the same pair, found by the partner's id (so that
@@ -166,8 +166,13 @@ void DemSolver<Dim>::link_mirrors() {
   }
   if (missing != 0) throw_simulation_error("neighbour list is not symmetric (internal error)");
   // A new list: no entry has a force yet (compute_forces relies on zeros in the entries not in contact).
-  entry_force_.assign(nbr_.entries(), Vec<Dim>{});
-  entry_torque_.assign(nbr_.entries(), Spin<Dim>{});
+  // With room for growth: assign() beyond the capacity allocates the exact size, which a list growing as the bed
+  // compacts would pay (in page faults) at every rebuild.
+  const std::size_t m = nbr_.entries();
+  if (entry_force_.capacity() < m) entry_force_.reserve(m + m / 2);
+  if (entry_torque_.capacity() < m) entry_torque_.reserve(m + m / 2);
+  entry_force_.assign(m, Vec<Dim>{});
+  entry_torque_.assign(m, Spin<Dim>{});
 }
 
 template <int Dim>

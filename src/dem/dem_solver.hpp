@@ -159,6 +159,7 @@ class DemSolver {
   std::vector<std::size_t> old_offset_;
   std::vector<std::int64_t> old_partner_id_;
   std::vector<Vec<Dim>> old_history_;
+  NeighborScratch scratch_;  ///< the list build's per-thread buffers, kept so a rebuild does not fault pages in
   // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
   // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.
   std::vector<std::uint32_t> mirror_;
