@@ -285,9 +285,6 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     const auto i = static_cast<std::size_t>(ii);
     const Vec<Dim> xi = pos(i);
     const double ri = R[i];
-    const Spin<Dim> wi = spin(i);
-    const Vec<Dim> vi = vel(i);
-    const std::size_t si = static_cast<std::size_t>(p_.species[i]);
     Vec<Dim> f{};
     Spin<Dim> torque{};
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
@@ -317,9 +314,10 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       Vec<Dim> xi_w;
       for (int c = 0; c < Dim; ++c) xi_w[c] = spring[c][i];
       const double lever = ri - overlap;  // to the contact point on the wall plane
-      const Vec<Dim> v_rel = vi + cross(wi * lever, nrm);
-      const ContactForce<Dim> cf =
-          linear_spring_dashpot(wall_params_[si], ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
+      // Velocity, spin and species are read only here, by the few particles touching a wall.
+      const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
+      const ContactForce<Dim> cf = linear_spring_dashpot(wall_params_[static_cast<std::size_t>(p_.species[i])],
+                                                         ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
       for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
       f += cf.f;
       torque += lever * cross(nrm, cf.f_t);
