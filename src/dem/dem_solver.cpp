@@ -227,7 +227,8 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     const double ri = R[i];
     const Spin<Dim> wi = spin(i);
     const Vec<Dim> vi = vel(i);
-    const std::size_t si = static_cast<std::size_t>(p_.species[i]);
+    // One species (not Mixed): every contact takes the first table entry, without the species lookups.
+    const std::size_t si = Mixed ? static_cast<std::size_t>(p_.species[i]) : 0;
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       const std::size_t j = nbr_.partner[k];
       if (j < i) continue;  // evaluated by j
@@ -258,9 +259,10 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
       // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
       const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
+      const ContactParams& pp =
+          Mixed ? pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])] : pair_params_[0];
       const ContactForce<Dim> cf =
-          linear_spring_dashpot(pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])],
-                                ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
+          linear_spring_dashpot(pp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
       nbr_.history[km] = -nbr_.history[k];
       entry_force_[k] = cf.f;
       entry_force_[km] = -cf.f;
@@ -316,8 +318,8 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double lever = ri - overlap;  // to the contact point on the wall plane
       // Velocity, spin and species are read only here, by the few particles touching a wall.
       const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
-      const ContactForce<Dim> cf = linear_spring_dashpot(wall_params_[static_cast<std::size_t>(p_.species[i])],
-                                                         ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
+      const ContactParams& wp = wall_params_[Mixed ? static_cast<std::size_t>(p_.species[i]) : 0];
+      const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
       for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
       f += cf.f;
       torque += lever * cross(nrm, cf.f_t);
