@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -107,7 +109,7 @@ void DemSolver<Dim>::rebuild() {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
   }
-  build_neighbor_list(p_, cell_size_, config_.skin, nbr_);
+  build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_);
 
   if (have_old) {
     // Carry each stretched spring over to the new entry of the same pair, found by the partner's id (so that
@@ -164,8 +166,13 @@ void DemSolver<Dim>::link_mirrors() {
   }
   if (missing != 0) throw_simulation_error("neighbour list is not symmetric (internal error)");
   // A new list: no entry has a force yet (compute_forces relies on zeros in the entries not in contact).
-  entry_force_.assign(nbr_.entries(), Vec<Dim>{});
-  entry_torque_.assign(nbr_.entries(), Spin<Dim>{});
+  // With room for growth: assign() beyond the capacity allocates the exact size, which a list growing as the bed
+  // compacts would pay (in page faults) at every rebuild.
+  const std::size_t m = nbr_.entries();
+  if (entry_force_.capacity() < m) entry_force_.reserve(m + m / 2);
+  if (entry_torque_.capacity() < m) entry_torque_.reserve(m + m / 2);
+  entry_force_.assign(m, Vec<Dim>{});
+  entry_torque_.assign(m, Spin<Dim>{});
 }
 
 template <int Dim>
@@ -220,7 +227,8 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     const double ri = R[i];
     const Spin<Dim> wi = spin(i);
     const Vec<Dim> vi = vel(i);
-    const std::size_t si = static_cast<std::size_t>(p_.species[i]);
+    // One species (not Mixed): every contact takes the first table entry, without the species lookups.
+    const std::size_t si = Mixed ? static_cast<std::size_t>(p_.species[i]) : 0;
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       const std::size_t j = nbr_.partner[k];
       if (j < i) continue;  // evaluated by j
@@ -251,9 +259,10 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
       // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
       const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
+      const ContactParams& pp =
+          Mixed ? pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])] : pair_params_[0];
       const ContactForce<Dim> cf =
-          linear_spring_dashpot(pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])],
-                                ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
+          linear_spring_dashpot(pp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
       nbr_.history[km] = -nbr_.history[k];
       entry_force_[k] = cf.f;
       entry_force_[km] = -cf.f;
@@ -268,15 +277,16 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, R[j])));
     }
   }
+  std::array<bool, 2 * Dim> wall_on{};
+  for (int w = 0; w < 2 * Dim; ++w) wall_on[static_cast<std::size_t>(w)] = walls.enabled(w / 2, w % 2);
+  const AxisPtrs<2 * Dim * Dim> WX =
+      axis_ptrs<2 * Dim * Dim>([&](int q) -> auto& { return p_.wall_xi[static_cast<std::size_t>(q)]; }, 2 * Dim * Dim);
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
 #pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const Vec<Dim> xi = pos(i);
     const double ri = R[i];
-    const Spin<Dim> wi = spin(i);
-    const Vec<Dim> vi = vel(i);
-    const std::size_t si = static_cast<std::size_t>(p_.species[i]);
     Vec<Dim> f{};
     Spin<Dim> torque{};
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
@@ -284,29 +294,41 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       torque += entry_torque_[k];
     }
     // Plane walls: the same law against a fixed body of infinite mass. A disabled wall never holds a spring.
-    const ContactParams& wp = wall_params_[si];
-    for (int a = 0; a < Dim; ++a) {
-      for (int side = 0; side < 2; ++side) {
-        if (!walls.enabled(a, side)) continue;
-        const int w = 2 * a + side;
-        const double overlap = side == 0 ? ri - xi[a] : ri - (L[a] - xi[a]);
-        if (overlap <= 0.0) {
-          if (!is_zero<Dim>(p_.wall_spring(i, w))) p_.set_wall_spring(i, w, Vec<Dim>{});
-          continue;
+    // A particle clear of every wall (most of the bed) only needs its springs checked for zero: the test on
+    // the position comes first, and the springs are read through raw pointers, not per-wall accessors.
+    // Unrolled at compile time (wall w = 2 a + side, in that order): axis, side and normal are constants.
+    auto wall = [&]<int w>(std::integral_constant<int, w>) {
+      constexpr int a = w / 2;
+      constexpr bool high = w % 2 == 1;
+      if (!wall_on[static_cast<std::size_t>(w)]) return;
+      const double overlap = high ? ri - (L[a] - xi[a]) : ri - xi[a];
+      double* const* spring = &WX.a[static_cast<std::size_t>(w * Dim)];
+      if (overlap <= 0.0) {
+        bool held = false;
+        for (int c = 0; c < Dim; ++c) held = held || spring[c][i] != 0.0;
+        if (held) {
+          for (int c = 0; c < Dim; ++c) spring[c][i] = 0.0;
         }
-        Vec<Dim> nrm{};
-        nrm[a] = side == 0 ? -1.0 : 1.0;
-        Vec<Dim> xi_w = p_.wall_spring(i, w);
-        const double lever = ri - overlap;  // to the contact point on the wall plane
-        const Vec<Dim> v_rel = vi + cross(wi * lever, nrm);
-        const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
-        p_.set_wall_spring(i, w, xi_w);
-        f += cf.f;
-        torque += lever * cross(nrm, cf.f_t);
-        max_ov = std::max(max_ov, overlap);
-        if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
+        return;
       }
-    }
+      Vec<Dim> nrm{};
+      nrm[a] = high ? 1.0 : -1.0;
+      Vec<Dim> xi_w;
+      for (int c = 0; c < Dim; ++c) xi_w[c] = spring[c][i];
+      const double lever = ri - overlap;  // to the contact point on the wall plane
+      // Velocity, spin and species are read only here, by the few particles touching a wall.
+      const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
+      const ContactParams& wp = wall_params_[Mixed ? static_cast<std::size_t>(p_.species[i]) : 0];
+      const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
+      for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
+      f += cf.f;
+      torque += lever * cross(nrm, cf.f_t);
+      max_ov = std::max(max_ov, overlap);
+      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
+    };
+    [&]<int... w>(std::integer_sequence<int, w...>) {
+      (wall(std::integral_constant<int, w>{}), ...);
+    }(std::make_integer_sequence<int, 2 * Dim>{});
     for (int a = 0; a < Dim; ++a) F[a][i] = f[a];
     if constexpr (Dim == 2) {
       T[0][i] = torque;
@@ -374,20 +396,29 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double k = drag_k[i];
-    const double relax = 1.0 / (1.0 + dt * k * inv_mass[i]);
-    for (int a = 0; a < Dim; ++a) {
-      V[a][i] = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * inv_mass[i] + g[a]) * dt) * relax;
-    }
-    for (int a = 0; a < Dim; ++a) X[a][i] += V[a][i] * dt;
-    // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
-    for (int c = 0; c < NS; ++c) W[c][i] += T[c][i] * inv_inertia[i] * dt;
+    const double im = inv_mass[i];
+    const double relax = 1.0 / (1.0 + dt * k * im);
+    // The new state is kept in locals for the tests below: the domain test through the store's accessors would
+    // reload every array it reads.
     double moved2 = 0.0;
+    bool ok = true;
     for (int a = 0; a < Dim; ++a) {
-      const double dd = X[a][i] - B[a][i];
+      const double v = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * im + g[a]) * dt) * relax;
+      const double x = X[a][i] + v * dt;
+      V[a][i] = v;
+      X[a][i] = x;
+      const double dd = x - B[a][i];
       moved2 += dd * dd;
+      ok = ok && in_domain.inside(a, x) && std::isfinite(v);
+    }
+    // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
+    for (int c = 0; c < NS; ++c) {
+      const double w = W[c][i] + T[c][i] * inv_inertia[i] * dt;
+      W[c][i] = w;
+      ok = ok && std::isfinite(w);
     }
     if (moved2 >= half_skin2) moved_far = 1;
-    if (!in_domain(p_, i)) bad = 1;
+    if (!ok) bad = 1;
     if (in_domain.outflow && X[1][i] > H) escaped = 1;
   }
   need_rebuild_ = moved_far != 0;

@@ -135,12 +135,11 @@ class DemSolver {
   struct DomainTest {
     Vec<Dim> extent;
     bool outflow;
+    /// Coordinate x on axis a within the domain's bounds.
+    bool inside(int a, double x) const { return x >= 0.0 && (x <= extent[a] || (a == 1 && outflow)); }
     bool operator()(const Store& p, std::size_t i) const {
       bool ok = true;
-      for (int a = 0; a < Dim; ++a) {
-        const double x = p.coord(a)[i];
-        ok = ok && x >= 0.0 && (x <= extent[a] || (a == 1 && outflow));
-      }
+      for (int a = 0; a < Dim; ++a) ok = ok && inside(a, p.coord(a)[i]);
       for (int a = 0; a < Dim; ++a) ok = ok && std::isfinite(p.velocity(a)[i]);
       for (int c = 0; c < kSpinComponents<Dim>; ++c) ok = ok && std::isfinite(p.spin_component(c)[i]);
       return ok;
@@ -160,6 +159,7 @@ class DemSolver {
   std::vector<std::size_t> old_offset_;
   std::vector<std::int64_t> old_partner_id_;
   std::vector<Vec<Dim>> old_history_;
+  NeighborScratch scratch_;  ///< the list build's per-thread buffers, kept so a rebuild does not fault pages in
   // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
   // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.
   std::vector<std::uint32_t> mirror_;

@@ -153,6 +153,13 @@ std::vector<std::size_t> sort_by_cell(const ParticleStore<Dim>& p, double cell_s
 
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out) {
+  NeighborScratch scratch;
+  build_neighbor_list(p, cell_size, skin, out, scratch);
+}
+
+template <int Dim>
+void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
+                         NeighborScratch& scratch) {
   const std::size_t n = p.size();
   CellBins<Dim> b = bin_particles(p, cell_size);
   add_cell_ordered_copies(p, b);
@@ -164,7 +171,8 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 #else
   const int max_threads = 1;
 #endif
-  std::vector<std::vector<std::uint32_t>> found(static_cast<std::size_t>(max_threads));
+  std::vector<std::vector<std::uint32_t>>& found = scratch.found;
+  if (found.size() < static_cast<std::size_t>(max_threads)) found.resize(static_cast<std::size_t>(max_threads));
   std::vector<std::size_t> block(static_cast<std::size_t>(max_threads) + 1, n);
   block[0] = 0;
 #pragma omp parallel num_threads(max_threads)
@@ -189,8 +197,11 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
   }
   for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.partner.resize(out.offset[n]);
+  // assign() beyond the capacity allocates the exact size, so a list that grows as the bed compacts would be
+  // reallocated (and its pages faulted in) at every rebuild: leave room for growth instead.
+  if (out.history.capacity() < out.offset[n]) out.history.reserve(out.offset[n] + out.offset[n] / 2);
   out.history.assign(out.offset[n], Vec<Dim>{});
-  for (std::size_t t = 0; t < found.size(); ++t) {
+  for (std::size_t t = 0; t < static_cast<std::size_t>(max_threads); ++t) {
     if (block[t] < block[t + 1]) std::copy(found[t].begin(), found[t].end(), out.partner.begin() + static_cast<std::ptrdiff_t>(out.offset[block[t]]));
   }
   out.partner_id.resize(out.offset[n]);
@@ -217,6 +228,8 @@ template std::vector<std::size_t> sort_by_cell<2>(const ParticleStore<2>&, doubl
 template std::vector<std::size_t> sort_by_cell<3>(const ParticleStore<3>&, double);
 template void build_neighbor_list<2>(const ParticleStore<2>&, double, double, NeighborList<2>&);
 template void build_neighbor_list<3>(const ParticleStore<3>&, double, double, NeighborList<3>&);
+template void build_neighbor_list<2>(const ParticleStore<2>&, double, double, NeighborList<2>&, NeighborScratch&);
+template void build_neighbor_list<3>(const ParticleStore<3>&, double, double, NeighborList<3>&, NeighborScratch&);
 template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<2>(const ParticleStore<2>&, double);
 template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<3>(const ParticleStore<3>&, double);
 

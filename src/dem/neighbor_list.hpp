@@ -22,6 +22,12 @@ struct NeighborList {
   std::size_t entries() const { return partner.size(); }
 };
 
+/// Per-thread partner buffers of build_neighbor_list, kept between rebuilds by their owner: for 100,000 spheres
+/// they are ~6 MB, over malloc's mmap threshold, so a fresh allocation per rebuild costs page faults each time.
+struct NeighborScratch {
+  std::vector<std::vector<std::uint32_t>> found;
+};
+
 /// Bin particles into cubic cells of side >= `cell_size` covering their bounding box; returns the storage
 /// order that sorts them by cell (x fastest, then y, then z; stable), so neighbours sit together in memory.
 template <int Dim>
@@ -31,6 +37,10 @@ std::vector<std::size_t> sort_by_cell(const ParticleStore<Dim>& p, double cell_s
 /// `sort_by_cell` with the same cell size (>= max diameter + skin). Deterministic order; springs zero.
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out);
+/// The same, reusing the buffers of `scratch` (the result does not depend on what they held).
+template <int Dim>
+void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
+                         NeighborScratch& scratch);
 
 /// Brute-force O(N^2) set of touching pairs (i < j by id), for tests.
 template <int Dim>
