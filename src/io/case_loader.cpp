@@ -212,14 +212,10 @@ void read_case(CaseReader& r, CaseConfig& c) {
   } else {
     // Read the file now, so that `check` reports a bad row before any run.
     const auto path = case_relative_path(r.file_name(), c.particles.file);
+    const std::vector<ParticleCsvRow> rows = read_particles_csv(path, three_d ? 3 : 2);
+    check_particle_rows(rows, path.string(), c.domain, c.dem.n_species());
     std::vector<std::int32_t> file_species;
-    if (three_d) {
-      const std::vector<ParticleCsvRow> rows = read_particles_csv(path, 3);
-      check_particle_rows(rows, path.string(), c.domain, c.dem.n_species());
-      for (const ParticleCsvRow& row : rows) file_species.push_back(row.species);
-    } else {
-      file_species = particles_from_csv(path.string(), c.dem).species;
-    }
+    for (const ParticleCsvRow& row : rows) file_species.push_back(row.species);
     c.particles.packing.count = static_cast<std::int64_t>(file_species.size());
     // The bed is the file's: its species make up the mixture `check` and the U_mf default describe.
     std::vector<double> share(c.dem.n_species(), 0.0);

@@ -22,25 +22,24 @@
 
 namespace fluidbed {
 
-ParticleStore<2> particles_from_csv(const std::string& path, const DemConfig& dem) {
-  const std::vector<ParticleCsvRow> rows = read_particles_csv(path);
-  ParticleStore<2> p;
+template <int Dim>
+ParticleStore<Dim> particles_from_csv(const std::string& path, const DemConfig& dem) {
+  const std::vector<ParticleCsvRow> rows = read_particles_csv(path, Dim);
+  check_particle_rows(rows, path, dem.domain, dem.n_species());
+  ParticleStore<Dim> p;
   p.reserve(rows.size());
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const ParticleCsvRow& row = rows[r];
-    if (row.species < 0 || static_cast<std::size_t>(row.species) >= dem.n_species()) {
-      throw_input_error(fmt::format("{}: row {}, column species: species {} is not defined in the case (it has {})",
-                                    path, r + 2, row.species, dem.n_species()));
-    }
+  for (const ParticleCsvRow& row : rows) {
     const Species& s = dem.species[static_cast<std::size_t>(row.species)];
-    if (!(row.x >= 0.0 && row.x <= dem.domain.width && row.y >= 0.0 && row.y <= dem.domain.height)) {
-      throw_input_error(fmt::format("{}: row {}, columns x,y: particle {} at ({}, {}) m is not inside the "
-                                    "{} x {} m domain", path, r + 2, row.id, row.x, row.y, dem.domain.width, dem.domain.height));
+    if constexpr (Dim == 2) {
+      p.add(row.id, row.species, s, {row.x, row.y}, {row.vx, row.vy}, row.omega);
+    } else {
+      p.add(row.id, row.species, s, {row.x, row.y, row.z}, {row.vx, row.vy, row.vz}, {row.omega_x, row.omega_y, row.omega});
     }
-    p.add(row.id, row.species, s, {row.x, row.y}, {row.vx, row.vy}, row.omega);
   }
   return p;
 }
+template ParticleStore<2> particles_from_csv<2>(const std::string&, const DemConfig&);
+template ParticleStore<3> particles_from_csv<3>(const std::string&, const DemConfig&);
 
 std::string settled_bed_record(const CaseConfig& c) {
   const DemConfig& d = c.dem;
@@ -239,24 +238,6 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
     return s;
 }
 
-/// The particles of a CSV file in either dimension (the 2D reader keeps its own messages).
-template <int Dim>
-ParticleStore<Dim> particles_of_csv(const std::string& path, const CaseConfig& c) {
-  if constexpr (Dim == 2) {
-    return particles_from_csv(path, c.dem);
-  } else {
-    const std::vector<ParticleCsvRow> rows = read_particles_csv(path, 3);
-    check_particle_rows(rows, path, c.domain, c.dem.n_species());
-    ParticleStore<3> p;
-    p.reserve(rows.size());
-    for (const ParticleCsvRow& row : rows) {
-      p.add(row.id, row.species, c.dem.species[static_cast<std::size_t>(row.species)], {row.x, row.y, row.z},
-            {row.vx, row.vy, row.vz}, {row.omega_x, row.omega_y, row.omega}, 0);
-    }
-    return p;
-  }
-}
-
 template <int Dim>
 class DemModel final : public ModelRun {
  public:
@@ -434,10 +415,10 @@ class DemModel final : public ModelRun {
     const bool cached = !cache.empty() && c.settle.enabled && fs::exists(cache);
     const std::string stale = cached ? settle_cache_mismatch(c, cache) : std::string();
     if (c.particles.source == ParticleSource::File) {
-      p = particles_of_csv<Dim>(resolve(c.particles.file).string(), c);
+      p = particles_from_csv<Dim>(resolve(c.particles.file).string(), c.dem);
       log.info("read {} particles from {}", p.size(), resolve(c.particles.file).string());
     } else if (cached && stale.empty()) {
-      p = particles_of_csv<Dim>(cache.string(), c);
+      p = particles_from_csv<Dim>(cache.string(), c.dem);
       log.info("reusing the settled bed {} ({} particles)", cache.string(), p.size());
     } else {
       if (cached) {

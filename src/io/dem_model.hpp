@@ -31,7 +31,9 @@ std::string settle_cache_mismatch(const CaseConfig& config, const std::filesyste
 /// A path of the case file (particles.file, settle.cache): absolute as given, else relative to the case's folder.
 std::filesystem::path case_relative_path(const std::string& case_file, const std::string& path);
 
-/// Particles of a CSV file (`id,x,y,vx,vy,omega,species`), checked against the case (species, domain).
-ParticleStore<2> particles_from_csv(const std::string& path, const DemConfig& dem);
+/// Particles of a CSV file (2D `id,x,y,vx,vy,omega,species`; 3D adds z, vz and omega_x, omega_y, omega_z), checked against
+/// the case (species, the domain of dem.domain) by check_particle_rows.
+template <int Dim>
+ParticleStore<Dim> particles_from_csv(const std::string& path, const DemConfig& dem);
 
 }  // namespace fluidbed
