@@ -28,4 +28,10 @@ std::string case_keys_markdown();
 /// strongest damping): omega dt < 2 (sqrt(1 + zeta^2) - zeta).
 double dem_stable_time_step(const DemConfig& dem);
 
+/// Largest stable step for the collective spin mode of a packed bed with sticking contacts, which is stiffer than
+/// any single contact: neighbours spinning the same way counter-slide at every contact, so omega^2 = 2 Z k_t r^2 / I
+/// with the coordination Z of the densest packing (6 in 2D, 12 in 3D). Sliding caps the mode, so a larger step is
+/// noted rather than refused (docs/performance.md, the time-step analysis).
+double dem_packed_bed_time_step(const DemConfig& dem);
+
 }  // namespace fluidbed

@@ -2,6 +2,7 @@
 // model, the same rules in `check` and `run`, and plausibility of units (issue 11, items 11-14).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -246,4 +247,28 @@ TEST(CasePlausibility, GasPropertiesOutsideAnyFluidAndOfALiquid) {
 }
 
 }  // namespace
+TEST(CaseDefaults, AStepAboveThePackedBedSpinModeIsNoted) {
+  // The paper's spheres (4 mm, 2700 kg/m^3, k_n = k_t = 800 N/m): the spin mode of a hexagonal monolayer with all
+  // contacts sticking has omega^2 = 2 Z k_t r^2 / I = 30 k_t / m (Z = 6, I = 0.4 m r^2), about 16,300 1/s, so the
+  // undamped limit 2 / omega is 1.23e-4 s; the single dashpot (e = 0.9 on the pair's reduced mass m / 2, Eq. 8)
+  // lowers it by sqrt(1 + zeta^2) - zeta, zeta = eta (30 / m) / (2 omega) = 0.13, to 1.08e-4 s. The paper case's
+  // 1e-4 s is below it; bench/dem_timestep_modes.py finds 16,236 1/s for the settled random bed (lattice: 16,290).
+  const double m = 2700.0 * std::numbers::pi / 6.0 * 0.004 * 0.004 * 0.004;
+  const double w0 = std::sqrt(30.0 * 800.0 / m);
+  const double l = std::log(1.0 / 0.9);
+  const double eta = 2.0 * std::sqrt(0.5 * m * 800.0) * l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+  const double zeta = 0.5 * eta * (30.0 / m) / w0;
+  const double expected = 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta);
+  const CaseConfig at_2e4 = load_case_text(dem_case("dem.time_step = 2e-4\n"), "t.toml").config;
+  const double dt_bed = dem_packed_bed_time_step(at_2e4.dem);
+  EXPECT_NEAR(dt_bed, expected, 1e-12 * expected);  // the same closed form: round-off only
+  EXPECT_NEAR(expected, 1.08e-4, 0.005e-4);
+  EXPECT_LT(dt_bed, dem_stable_time_step(at_2e4.dem));
+  ASSERT_TRUE(std::any_of(at_2e4.notes.begin(), at_2e4.notes.end(),
+                          [](const std::string& n) { return contains(n, "spin mode of a packed bed"); }));
+  const CaseConfig at_1e4 = load_case_text(dem_case("dem.time_step = 1e-4\n"), "t.toml").config;
+  EXPECT_TRUE(std::none_of(at_1e4.notes.begin(), at_1e4.notes.end(),
+                           [](const std::string& n) { return contains(n, "spin mode of a packed bed"); }));
+}
+
 }  // namespace fluidbed
