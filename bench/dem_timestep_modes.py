@@ -11,9 +11,11 @@ Eq. 10's update (velocity first, then position with the new velocity; the tangen
 velocity of the step's start) is a symplectic Euler step: stable for omega_max dt < 2 without damping. The script
 prints omega_max, dt_max = 2 / omega_max, and the spectral radius of the damped update's amplification matrix
 for the top mode at the given steps. It also tries a per-sphere implicit spin update (each sphere's own
-tangential stiffness k_t r^2 Z taken implicitly), to show what it buys and what it costs.
+tangential stiffness k_t r^2 Z taken implicitly), to show what it buys and what it costs, and over a window of
+the bed (--patch, the other spheres held) forms the undamped update matrices densely for Eq. 10, for spins
+sub-cycled with the centres frozen, and for r-RESPA force splitting (tangential springs in two inner steps).
 
-Usage: /usr/bin/python3 bench/dem_timestep_modes.py BED.csv [--width 0.6] [--kn 800] [--kt 800]
+Usage: /usr/bin/python3 bench/dem_timestep_modes.py BED.csv [--width 0.6] [--kn 800] [--kt 800] [--patch X0 X1 Y0 Y1] [--window-only]
 """
 import argparse
 import math
