@@ -51,6 +51,10 @@ TOML
 # bubble.csv without a wall_s column (none today; the same rule as monitor.csv should one be added).
 same_bubbles() {  # same_bubbles LABEL DIR_A DIR_B
   check "$1: bubble.csv rows identical" cmp <(monitor_without_wall "$2/bubble.csv") <(monitor_without_wall "$3/bubble.csv")
+  local f
+  for f in bubbles.csv bubble_events.csv bubble_frames.csv; do
+    check "$1: $f identical" cmp "$2/$f" "$3/$f"
+  done
 }
 
 # (d) check: the 3D domain, grid and jet.
