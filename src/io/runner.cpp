@@ -25,6 +25,7 @@
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/bubble_series.hpp"
+#include "io/probe_series.hpp"
 #include "io/checkpoint_set.hpp"
 #include "io/csv.hpp"
 #include "io/dem_model.hpp"
@@ -181,9 +182,9 @@ std::string shell_word(const std::string& s) {
 }
 
 /// The results a run writes into its folder: the series files and the folders of frames and checkpoints.
-constexpr std::array<const char*, 8> kResultFiles{"monitor.csv",     "fields.pvd",        "particles.pvd",
+constexpr std::array<const char*, 9> kResultFiles{"monitor.csv",     "fields.pvd",        "particles.pvd",
                                                   "bubble.csv",      "cost.json",         "bubbles.csv",
-                                                  "bubble_events.csv", "bubble_frames.csv"};
+                                                  "bubble_events.csv", "bubble_frames.csv", "probes.csv"};
 constexpr std::array<const char*, 4> kResultFolders{"checkpoints", "fields", "particles", "tracers"};
 
 /// What in `out` is the result of an earlier run, for the refusal to overwrite it.
@@ -390,12 +391,18 @@ class Run {
     frames_.interval = cfg_.output.interval;
     monitors_.interval = cfg_.output.monitor_interval;
     checkpoints_.interval = cfg_.output.checkpoint_interval;
+    probe_rows_.interval = cfg_.probes.interval;
     if (restart_) {
       const Hdf5File& f = *restart_file_;
       model_->load(f);
       frames_.next = f.attribute_int64("/", "next_frame");
       monitors_.next = f.attribute_int64("/", "next_monitor");
       checkpoints_.next = f.attribute_int64("/", "next_checkpoint");
+      if (f.has_attribute("/", "next_probe")) {
+        probe_rows_.next = f.attribute_int64("/", "next_probe");
+      } else if (probe_rows_.interval > 0.0) {  // a checkpoint of a run without probes: the next row after now
+        probe_rows_.advance(model_->time(), model_->macro_dt());
+      }
       wall_before_ = f.attribute_double("/", "wall_s");
       last_checkpoint_ = restart_path_;
     } else {
@@ -451,6 +458,16 @@ class Run {
       population_.emplace(out_, fv.dimension, pc, restart_, t_cut, restart_ ? &*restart_file_ : nullptr);
       if (restart_ && !restart_file_->has("bubbles/owner")) {
         log().warn("the checkpoint holds no bubble population: bubbles.csv continues with new ids");
+      }
+    }
+    const FieldView fv = model_->fields();
+    if (!cfg_.probes.probes.empty()) {
+      if (fv.has_grid() && fv.p && fv.eps && fv.has_gas_velocity()) {
+        const double t_probe = t_start_ + kStampTolerance * std::max(cfg_.probes.interval, 0.0);
+        probes_.emplace(out_ / "probes.csv", cfg_.probes.probes, fv.dimension, fv.has_solids_velocity(), restart_,
+                        t_probe);
+      } else {
+        log().warn("[[probe]] given, but the model has no gas fields: no probes.csv");
       }
     }
     fields_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "fields.pvd", t_cut) : PvdCollection(out_ / "fields.pvd"));
@@ -541,6 +558,11 @@ class Run {
   // ---- observers ---------------------------------------------------------------------------------------------
 
   void observe(double t) {
+    // Probes may sample every step (probes.interval = 0), so before the coarser outputs.
+    if (probes_ && (probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_))) {
+      probes_->sample(probe_rows_.interval == 0.0 ? t : probe_rows_.stamp(t), model_->fields());
+      probe_rows_.advance(t, dt_);
+    }
     if (monitors_.due(t, dt_)) {
       std::vector<std::optional<double>> row{monitors_.stamp(t)};
       for (auto& v : model_->monitor_values()) row.push_back(v);
@@ -632,6 +654,7 @@ class Run {
     f.set_attribute("/", "next_frame", frames_.next);
     f.set_attribute("/", "next_monitor", monitors_.next);
     f.set_attribute("/", "next_checkpoint", checkpoints_.next);
+    f.set_attribute("/", "next_probe", probe_rows_.next);
     f.set_attribute("/", "wall_s", wall_total);
     model_->save(f);
     if (bubbles_) save_bubble_state(f, bubbles_->state());
@@ -723,10 +746,11 @@ class Run {
   int threads_ = 1;
 
   std::unique_ptr<ModelRun> model_;
-  Schedule frames_, monitors_, checkpoints_;
+  Schedule frames_, monitors_, checkpoints_, probe_rows_;
   std::optional<CellTracers> tracers_;
   std::optional<BubbleTracker> bubbles_;
   std::optional<BubbleSeries> population_;
+  std::optional<ProbeSeries> probes_;
   std::optional<CsvWriter> monitor_, bubble_csv_;
   std::optional<PvdCollection> fields_pvd_, particles_pvd_;
   fs::path last_checkpoint_;
