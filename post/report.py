@@ -23,6 +23,9 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from psd import welch_psd  # noqa: E402
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -231,6 +234,8 @@ class Run:
         if self.monitor is None:
             self.notes.append("no monitor.csv")
         self.bubble = read_csv(os.path.join(folder, "bubble.csv"))
+        # probes.csv only where the case has [[probe]]s: its absence is no gap.
+        self.probes = read_csv(os.path.join(folder, "probes.csv"))
         if self.bubble is None:
             self.notes.append("no bubble.csv")
         self.fields = read_pvd(os.path.join(folder, "fields.pvd"))
@@ -626,6 +631,103 @@ def figure_curves(runs, source, column, ylabel, title, path, notes):
     return None
 
 
+def pressure_columns(cols):
+    return [c for c in cols if c.endswith("_p_Pa") or c.endswith("_dp_Pa")]
+
+
+def uniform_signal(t, v):
+    """The signal on a uniform time grid at its median sampling interval (linear interpolation): Welch's method
+    needs uniform samples, and probes.interval = 0 samples every adaptive TFM step. Returns (x, fs)."""
+    ok = np.isfinite(t) & np.isfinite(v)
+    t, v = t[ok], v[ok]
+    if t.size < 16:
+        return None, None
+    dt = float(np.median(np.diff(t)))
+    if not dt > 0:
+        return None, None
+    grid = np.arange(t[0], t[-1] + 0.5 * dt, dt)
+    return np.interp(grid, t, v), 1.0 / dt
+
+
+def figure_probes(runs, path, notes):
+    """Probe time series: every pressure and pressure-drop column of every probes.csv (top), voidage (bottom)."""
+    fig, (ax_p, ax_e) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    drawn = 0
+    for run in runs:
+        if run.probes is None:
+            continue
+        t = numeric(run.probes, "time_s")
+        for name in run.probes:
+            if name == "time_s" or not (name.endswith("_p_Pa") or name.endswith("_dp_Pa") or name.endswith("_eps")):
+                continue
+            v = numeric(run.probes, name)
+            ok = np.isfinite(t) & np.isfinite(v)
+            if ok.any():
+                (ax_e if name.endswith("_eps") else ax_p).plot(t[ok], v[ok], lw=0.8, label=f"{run.label} {name}")
+                drawn += 1
+    if drawn == 0:
+        plt.close(fig)
+        return "no run has a probes.csv (the case has no [[probe]])"
+    ax_p.set_ylabel("pressure (Pa)")
+    ax_e.set_ylabel("voidage")
+    ax_e.set_xlabel("time (s)")
+    for ax in (ax_p, ax_e):
+        ax.grid(alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=7)
+    ax_p.set_title("Probe time series (probes.csv)")
+    fig.tight_layout()
+    save(fig, path)
+    return None
+
+
+def pressure_spectra(runs):
+    """(run, column, mean, std, dominant frequency, f, psd, fs, n) per pressure column of every probes.csv."""
+    out = []
+    for run in runs:
+        if run.probes is None:
+            continue
+        t = numeric(run.probes, "time_s")
+        for name in pressure_columns(run.probes):
+            x, fs = uniform_signal(t, numeric(run.probes, name))
+            if x is None:
+                continue
+            f, p, f_dom, std = welch_psd(x, fs)
+            out.append((run, name, float(np.mean(x)), std, f_dom, f, p, fs, x.size))
+    return out
+
+
+def figure_pressure_psd(runs, path, notes):
+    spectra = pressure_spectra(runs)
+    if not spectra:
+        return "no pressure probe with 16 samples or more in any probes.csv"
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for run, name, _, std, f_dom, f, p, _, _ in spectra:
+        ax.semilogy(f[1:], p[1:], lw=0.9, label=f"{run.label} {name} (f_dom {f_dom:.2f} Hz, std {std:.0f} Pa)")
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("PSD (Pa²/Hz)")
+    ax.set_title("Pressure fluctuations (Welch, Hann, 50% overlap)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    save(fig, path)
+    return None
+
+
+def pressure_table(runs):
+    spectra = pressure_spectra(runs)
+    if not spectra:
+        return ["No probes.csv with a pressure probe (a case's [[probe]] tables add them, docs/analysis.md)."]
+    lines = ["Welch PSD of each pressure probe (post/psd.py) after resampling to its median sampling interval; "
+             "std is the standard deviation about the mean over the whole run, the frequency resolution fs / "
+             "nperseg.", "",
+             "| run | probe column | mean (Pa) | std (Pa) | dominant frequency (Hz) | samples | fs (Hz) |",
+             "|---|---|---|---|---|---|---|"]
+    for run, name, mean, std, f_dom, _, _, fs, n in spectra:
+        lines.append(f"| {run.label} | {name} | {mean:.1f} | {std:.1f} | {f_dom:.2f} | {n} | {fs:.0f} |")
+    return lines
+
+
 def figure_rise_vs_correlation(runs, path, notes):
     fig, ax = plt.subplots(figsize=(6, 4))
     d_max = 0.0
@@ -835,7 +937,11 @@ def write_report(folders, out, labels=None):
                                     p, n)),
         ("mixing_index.png", "Lacey mixing index",
          lambda p, n: figure_curves(runs, "monitor", "lacey*", "Lacey index M", "Mixing index", p, n)),
-    ]
+    ] + ([
+        ("probes.png", "Probe time series (probes.csv)", lambda p, n: figure_probes(runs, p, n)),
+        ("pressure_psd.png", "Pressure-fluctuation spectra of the pressure probes",
+         lambda p, n: figure_pressure_psd(runs, p, n)),
+    ] if any(r.probes is not None for r in runs) else [])
     md = ["# fluidbed report", ""]
     md.append("## Runs")
     md.append("")
@@ -862,6 +968,9 @@ def write_report(folders, out, labels=None):
             md.append(f"  - {n}")
     md += ["", "## Table 2: axial gas velocity at the nose, bubble (centroid) and nose rise velocity, U_th/U_mf", ""]
     md += table2(runs)
+    if any(r.probes is not None for r in runs):
+        md += ["", "## Pressure fluctuations (probes.csv)", ""]
+        md += pressure_table(runs)
     md += ["", "## Bubble events", ""]
     md += bubble_events(runs)
     md += ["", "## Cost", ""]
