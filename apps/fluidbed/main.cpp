@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "io/case_check.hpp"
 #include "io/case_loader.hpp"
+#include "io/ensemble.hpp"
 #include "io/runner.hpp"
 
 #ifndef FLUIDBED_POST_DIR
@@ -103,6 +104,19 @@ int main(int argc, char** argv) {
   check->add_option("case", check_file, "case file (TOML)")->required();
   check->add_option("--set", check_sets, "override a case key: SECTION.KEY=VALUE (repeatable)");
 
+  fluidbed::EnsembleOptions eo;
+  double ens_end = -1.0;
+  auto* ens = app.add_subcommand("ensemble", "run N packings of a case (case.seed, seed+1, ...) in parallel");
+  ens->add_option("case", eo.case_file, "case file (TOML)")->required();
+  ens->add_option("-n", eo.members, "number of members (default 8)")->check(CLI::Range(1, 10000));
+  ens->add_option("--jobs", eo.jobs, "members running at once (default 2)")->check(CLI::Range(1, 1024));
+  ens->add_option("--threads", eo.threads, "OpenMP threads per member (default 1)")->check(CLI::Range(1, 1024));
+  ens->add_option("--out", eo.out_dir, "ensemble folder (default out/<case name>-ensemble)");
+  ens->add_option("--end-time", ens_end, "simulated end time, s")->check(CLI::PositiveNumber);
+  ens->add_option("--set", eo.sets, "override a case key for every member (repeatable)");
+  ens->add_flag("--overwrite", eo.overwrite, "members may replace earlier results in their folders");
+  ens->add_flag("--quiet", eo.quiet, "no progress on the terminal");
+
   auto* keys = app.add_subcommand("keys", "print every case key (type, unit, default, range) as Markdown");
 
   std::vector<std::string> report_dirs;
@@ -139,6 +153,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*rep) return report(report_dirs, report_labels, report_out);
+    if (*ens) {
+      if (ens_end > 0) eo.end_time = ens_end;
+      return fluidbed::run_ensemble(eo);
+    }
     if (*keys) {
       fmt::print("{}", fluidbed::case_keys_markdown());
       return 0;
