@@ -19,6 +19,7 @@ import math
 import os
 import sys
 import tomllib
+import warnings
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -900,11 +901,136 @@ def cost_table(runs):
 
 # -------------------------------------------------------------------------------------------------------- main
 
+def expand_ensembles(folders, labels):
+    """Folders with an ensemble.json (written by `fluidbed ensemble`) stand for their members that ended with 0.
+    Returns (member folders, their labels, [(ensemble label, [member indices], failed member names)])."""
+    labels = labels or unique_labels(folders)
+    out_folders, out_labels, groups = [], [], []
+    for folder, label in zip(folders, labels):
+        path = os.path.join(folder, "ensemble.json")
+        if not os.path.isfile(path):
+            out_folders.append(folder)
+            out_labels.append(label)
+            continue
+        with open(path) as f:
+            members = json.load(f).get("members", [])
+        index, failed = [], []
+        for m in members:
+            sub = os.path.join(folder, str(m.get("folder")))
+            if m.get("exit") != 0 or not os.path.isdir(sub):
+                failed.append(str(m.get("folder")))
+                continue
+            index.append(len(out_folders))
+            out_folders.append(sub)
+            out_labels.append(f"{label}/{m.get('folder')}")
+        groups.append((label, index, failed))
+    return out_folders, out_labels, groups
+
+
+def member_values(runs, column, t):
+    """The bubble.csv value of `column` nearest in time to t of each run (NaN where empty or absent)."""
+    vals = []
+    for r in runs:
+        k = nearest_row(r.bubble, t) if r.bubble is not None else None
+        v = r.bubble.get(column, [""] * (k + 1))[k] if k is not None else ""
+        vals.append(float(v) if v not in ("", None) else float("nan"))
+    return np.array(vals)
+
+
+def mean_std(v, fmt=".2f"):
+    ok = np.isfinite(v)
+    if not ok.any():
+        return "–"
+    n = int(ok.sum())
+    sd = float(np.std(v[ok], ddof=1)) if n > 1 else 0.0
+    return f"{np.mean(v[ok]):{fmt}} ± {sd:{fmt}} (n={n})"
+
+
+def ensemble_table2(runs, groups):
+    lines = ["Mean ± sample standard deviation over the members (n: members with a bubble at that row), each "
+             "member's bubble.csv row nearest to the instant; U_b is the centroid rise velocity, U_th/U_mf = (gas "
+             "velocity at the nose - U_b) / U_mf per member, then averaged.", ""]
+    for label, index, failed in groups:
+        members = [runs[k] for k in index]
+        lines += [f"**{label}**: {len(members)} members" + (f"; failed, left out: {', '.join(failed)}" if failed
+                                                             else ""), ""]
+        if not members:
+            continue
+        lines += ["| t (s) | axial gas velocity at the nose (m/s) | bubble rise velocity U_b, centroid (m/s) | "
+                  "U_th/U_mf (from U_b) | nose rise velocity (m/s) |", "|---|---|---|---|---|"]
+        u_mf = np.array([u_mf_of(r.case) for r in members])
+        for t in TABLE2_TIMES:
+            gas = member_values(members, "nose_gas_velocity_m_s", t)
+            uc = member_values(members, "centroid_rise_velocity_m_s", t)
+            nose = member_values(members, "rise_velocity_m_s", t)
+            lines.append(f"| {t} | {mean_std(gas)} | {mean_std(uc)} | {mean_std((gas - uc) / u_mf)} | "
+                         f"{mean_std(nose)} |")
+        lines.append("")
+    return lines
+
+
+def figure_ensemble_bands(runs, groups, path, notes):
+    """Mean and mean ± std bands over the members of nose and centroid height and of the bed pressure drop."""
+    series = [("bubble", "nose_height_m", "nose height (m)"), ("bubble", "centroid_y_m", "centroid height (m)"),
+              ("monitor", "pressure_drop_Pa", "pressure drop (Pa)")]
+    fig, axes = plt.subplots(len(series), 1, figsize=(7, 8), sharex=True)
+    drawn = 0
+    for label, index, _ in groups:
+        members = [runs[k] for k in index]
+        for ax, (source, column, ylabel) in zip(axes, series):
+            curves = []
+            grid = None
+            for r in members:
+                cols = r.bubble if source == "bubble" else r.monitor
+                if cols is None or column not in cols:
+                    continue
+                t, v = numeric(cols, "time_s"), numeric(cols, column)
+                if grid is None:
+                    grid = t
+                # Members share their output instants; interpolation only bridges a member's missing rows.
+                ok = np.isfinite(t) & np.isfinite(v)
+                if ok.sum() < 2:
+                    curves.append(np.full(grid.size, np.nan))
+                    continue
+                c = np.interp(grid, t[ok], v[ok], left=np.nan, right=np.nan)
+                # No value where the member has none (no bubble): the gap stays a gap.
+                have = np.isfinite(np.interp(grid, t, np.where(ok, 1.0, np.nan)))
+                c[~have] = np.nan
+                curves.append(c)
+            if grid is None or not curves:
+                notes.append(f"{label}: no {column} in the members' {source}.csv")
+                continue
+            a = np.array(curves)
+            n = np.sum(np.isfinite(a), axis=0)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)  # instants where no member has a value
+                m = np.nanmean(a, axis=0)
+                sd = np.where(n > 1, np.nanstd(a, axis=0, ddof=1), 0.0)
+            line, = ax.plot(grid, m, lw=1.2, label=f"{label} mean (n={len(members)})")
+            ax.fill_between(grid, m - sd, m + sd, color=line.get_color(), alpha=0.25, lw=0,
+                            label=f"{label} ± 1 std")
+            ax.set_ylabel(ylabel)
+            drawn += 1
+    if drawn == 0:
+        plt.close(fig)
+        return "no member has bubble.csv or monitor.csv values"
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=7)
+    axes[-1].set_xlabel("time (s)")
+    axes[0].set_title("Ensemble mean and spread")
+    fig.tight_layout()
+    save(fig, path)
+    return None
+
+
 def write_report(folders, out, labels=None):
     figdir = os.path.join(out, "figures")
     os.makedirs(figdir, exist_ok=True)
+    folders, labels, groups = expand_ensembles(folders, labels)
     runs = [Run(f) for f in folders]
-    for r, lab in zip(runs, labels or unique_labels(folders)):
+    for r, lab in zip(runs, labels):
         r.label = lab
     figures = [
         ("voidage.png", "Voidage maps at the paper's instants (Fig. 3 layout)",
@@ -941,7 +1067,10 @@ def write_report(folders, out, labels=None):
         ("probes.png", "Probe time series (probes.csv)", lambda p, n: figure_probes(runs, p, n)),
         ("pressure_psd.png", "Pressure-fluctuation spectra of the pressure probes",
          lambda p, n: figure_pressure_psd(runs, p, n)),
-    ] if any(r.probes is not None for r in runs) else [])
+    ] if any(r.probes is not None for r in runs) else []) + ([
+        ("ensemble_bands.png", "Ensemble mean and spread (bands: ± 1 standard deviation over the members)",
+         lambda p, n: figure_ensemble_bands(runs, groups, p, n)),
+    ] if groups else [])
     md = ["# fluidbed report", ""]
     md.append("## Runs")
     md.append("")
@@ -968,6 +1097,9 @@ def write_report(folders, out, labels=None):
             md.append(f"  - {n}")
     md += ["", "## Table 2: axial gas velocity at the nose, bubble (centroid) and nose rise velocity, U_th/U_mf", ""]
     md += table2(runs)
+    if groups:
+        md += ["", "## Ensembles: Table 2 as mean ± standard deviation", ""]
+        md += ensemble_table2(runs, groups)
     if any(r.probes is not None for r in runs):
         md += ["", "## Pressure fluctuations (probes.csv)", ""]
         md += pressure_table(runs)
