@@ -901,6 +901,48 @@ def cost_table(runs):
 
 # -------------------------------------------------------------------------------------------------------- main
 
+def write_animation(run, path, max_frames=120, fps=10):
+    """GIF (Pillow, through matplotlib's PillowWriter) of the run's voidage frames (3D: the mid-depth slice) with
+    the particles of the particle frame of the same instant over it (DEM), at most max_frames frames evenly
+    picked. Returns None, or why it was skipped."""
+    from matplotlib.animation import PillowWriter
+    if not run.fields:
+        return "no field frames"
+    step = max(1, math.ceil(len(run.fields) / max_frames))
+    frames = run.fields[::step]
+    first = read_vti(frames[0][1])
+    if first is None:
+        return "the first field frame has no voidage"
+    particles = {round(t, 9): f for t, f in run.particles}
+    ext = [first["x0"], first["x0"] + first["nx"] * first["dx"], first["y0"], first["y0"] + first["ny"] * first["dy"]]
+    aspect = (ext[3] - ext[2]) / max(ext[1] - ext[0], 1e-12)
+    fig, ax = plt.subplots(figsize=(3.2, min(3.2 * aspect, 6.0) + 0.4))
+    im = ax.imshow(first["eps"], origin="lower", extent=ext, cmap=VOIDAGE_CMAP, vmin=0.35, vmax=1.0)
+    fig.colorbar(im, ax=ax, label="voidage", shrink=0.8)
+    dots = ax.scatter([], [], s=0.8, c="white", alpha=0.6, lw=0)
+    title = ax.set_title("")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    writer = PillowWriter(fps=fps)
+    with writer.saving(fig, path, dpi=90):
+        for t, f in frames:
+            v = read_vti(f)
+            if v is None:
+                continue
+            im.set_data(v["eps"])
+            pf = particles.get(round(t, 9))
+            p = read_vtu(pf) if pf else None
+            if p is not None and run.dimension == 3 and run.depth:
+                keep = np.abs(p["z"] - 0.5 * run.depth) < 0.5 * p["diameter"]
+                dots.set_offsets(np.column_stack([p["x"][keep], p["y"][keep]]))
+            elif p is not None:
+                dots.set_offsets(np.column_stack([p["x"], p["y"]]))
+            title.set_text(f"{run.label}  t = {t:.3f} s")
+            writer.grab_frame()
+    plt.close(fig)
+    return None
+
+
 def expand_ensembles(folders, labels):
     """Folders with an ensemble.json (written by `fluidbed ensemble`) stand for their members that ended with 0.
     Returns (member folders, their labels, [(ensemble label, [member indices], failed member names)])."""
@@ -1025,7 +1067,7 @@ def figure_ensemble_bands(runs, groups, path, notes):
     return None
 
 
-def write_report(folders, out, labels=None):
+def write_report(folders, out, labels=None, animate=False):
     figdir = os.path.join(out, "figures")
     os.makedirs(figdir, exist_ok=True)
     folders, labels, groups = expand_ensembles(folders, labels)
@@ -1097,6 +1139,12 @@ def write_report(folders, out, labels=None):
             md.append(f"  - {n}")
     md += ["", "## Table 2: axial gas velocity at the nose, bubble (centroid) and nose rise velocity, U_th/U_mf", ""]
     md += table2(runs)
+    if animate:
+        md += ["", "## Animations", ""]
+        for r in runs:
+            name = f"animation-{''.join(c if c.isalnum() or c in '-_.' else '_' for c in r.label)}.gif"
+            why = write_animation(r, os.path.join(figdir, name))
+            md.append(f"- {r.label}: ![{r.label}](figures/{name})" if why is None else f"- {r.label}: skipped ({why})")
     if groups:
         md += ["", "## Ensembles: Table 2 as mean ± standard deviation", ""]
         md += ensemble_table2(runs, groups)
@@ -1120,6 +1168,8 @@ def main(argv=None):
     ap.add_argument("--label", action="append", default=None,
                     help="label of a run in legends and tables, once per folder in the order of the folders "
                          "(default: the folder name)")
+    ap.add_argument("--animate", action="store_true",
+                    help="also write figures/animation-<run>.gif: voidage and particles of every frame (Pillow)")
     args = ap.parse_args(argv)
     missing = [d for d in args.runs if not os.path.isdir(d)]
     if missing:
@@ -1135,7 +1185,7 @@ def main(argv=None):
             print(f"report: --label values must be non-empty and differ (repeated: {', '.join(dup) or 'an empty one'})",
                   file=sys.stderr)
             return 2
-    write_report(args.runs, args.out, args.label)
+    write_report(args.runs, args.out, args.label, animate=args.animate)
     print(f"report written to {os.path.join(args.out, 'summary.md')}")
     return 0
 

@@ -28,7 +28,8 @@ std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-int report(const std::vector<std::string>& dirs, const std::vector<std::string>& labels, const std::string& out) {
+int report(const std::vector<std::string>& dirs, const std::vector<std::string>& labels, const std::string& out,
+           bool animate) {
   const char* env = std::getenv("FLUIDBED_POST_DIR");
   const std::filesystem::path post = env ? env : FLUIDBED_POST_DIR;
   const std::filesystem::path script = post / "report.py";
@@ -50,6 +51,7 @@ int report(const std::vector<std::string>& dirs, const std::vector<std::string>&
   for (const auto& d : dirs) cmd += " " + shell_quote(d);
   for (const auto& l : labels) cmd += " --label " + shell_quote(l);
   cmd += " --out " + shell_quote(out);
+  if (animate) cmd += " --animate";
   const int rc = std::system(cmd.c_str());
   if (rc != -1 && WIFEXITED(rc) && WEXITSTATUS(rc) == 2) return 2;  // the script named the bad input
   if (rc != 0) {
@@ -128,6 +130,8 @@ int main(int argc, char** argv) {
   rep->add_option("--label", report_labels,
                   "label of a run in legends and tables, once per folder in their order (default: the folder name)")
       ->allow_extra_args(false);  // one value per --label, so the folders may follow it
+  bool report_animate = false;
+  rep->add_flag("--animate", report_animate, "also write an animated GIF of voidage and particles per run");
 
   try {
     app.parse(argc, argv);
@@ -152,7 +156,7 @@ int main(int argc, char** argv) {
       fmt::print("{}: OK\n{}", check_file, fluidbed::describe_case(lc.config));
       return 0;
     }
-    if (*rep) return report(report_dirs, report_labels, report_out);
+    if (*rep) return report(report_dirs, report_labels, report_out, report_animate);
     if (*ens) {
       if (ens_end > 0) eo.end_time = ens_end;
       return fluidbed::run_ensemble(eo);
