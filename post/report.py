@@ -19,9 +19,13 @@ import math
 import os
 import sys
 import tomllib
+import warnings
 import xml.etree.ElementTree as ET
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from psd import welch_psd  # noqa: E402
 
 import matplotlib
 
@@ -231,6 +235,8 @@ class Run:
         if self.monitor is None:
             self.notes.append("no monitor.csv")
         self.bubble = read_csv(os.path.join(folder, "bubble.csv"))
+        # probes.csv only where the case has [[probe]]s: its absence is no gap.
+        self.probes = read_csv(os.path.join(folder, "probes.csv"))
         if self.bubble is None:
             self.notes.append("no bubble.csv")
         self.fields = read_pvd(os.path.join(folder, "fields.pvd"))
@@ -626,6 +632,103 @@ def figure_curves(runs, source, column, ylabel, title, path, notes):
     return None
 
 
+def pressure_columns(cols):
+    return [c for c in cols if c.endswith("_p_Pa") or c.endswith("_dp_Pa")]
+
+
+def uniform_signal(t, v):
+    """The signal on a uniform time grid at its median sampling interval (linear interpolation): Welch's method
+    needs uniform samples, and probes.interval = 0 samples every adaptive TFM step. Returns (x, fs)."""
+    ok = np.isfinite(t) & np.isfinite(v)
+    t, v = t[ok], v[ok]
+    if t.size < 16:
+        return None, None
+    dt = float(np.median(np.diff(t)))
+    if not dt > 0:
+        return None, None
+    grid = np.arange(t[0], t[-1] + 0.5 * dt, dt)
+    return np.interp(grid, t, v), 1.0 / dt
+
+
+def figure_probes(runs, path, notes):
+    """Probe time series: every pressure and pressure-drop column of every probes.csv (top), voidage (bottom)."""
+    fig, (ax_p, ax_e) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    drawn = 0
+    for run in runs:
+        if run.probes is None:
+            continue
+        t = numeric(run.probes, "time_s")
+        for name in run.probes:
+            if name == "time_s" or not (name.endswith("_p_Pa") or name.endswith("_dp_Pa") or name.endswith("_eps")):
+                continue
+            v = numeric(run.probes, name)
+            ok = np.isfinite(t) & np.isfinite(v)
+            if ok.any():
+                (ax_e if name.endswith("_eps") else ax_p).plot(t[ok], v[ok], lw=0.8, label=f"{run.label} {name}")
+                drawn += 1
+    if drawn == 0:
+        plt.close(fig)
+        return "no run has a probes.csv (the case has no [[probe]])"
+    ax_p.set_ylabel("pressure (Pa)")
+    ax_e.set_ylabel("voidage")
+    ax_e.set_xlabel("time (s)")
+    for ax in (ax_p, ax_e):
+        ax.grid(alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=7)
+    ax_p.set_title("Probe time series (probes.csv)")
+    fig.tight_layout()
+    save(fig, path)
+    return None
+
+
+def pressure_spectra(runs):
+    """(run, column, mean, std, dominant frequency, f, psd, fs, n) per pressure column of every probes.csv."""
+    out = []
+    for run in runs:
+        if run.probes is None:
+            continue
+        t = numeric(run.probes, "time_s")
+        for name in pressure_columns(run.probes):
+            x, fs = uniform_signal(t, numeric(run.probes, name))
+            if x is None:
+                continue
+            f, p, f_dom, std = welch_psd(x, fs)
+            out.append((run, name, float(np.mean(x)), std, f_dom, f, p, fs, x.size))
+    return out
+
+
+def figure_pressure_psd(runs, path, notes):
+    spectra = pressure_spectra(runs)
+    if not spectra:
+        return "no pressure probe with 16 samples or more in any probes.csv"
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for run, name, _, std, f_dom, f, p, _, _ in spectra:
+        ax.semilogy(f[1:], p[1:], lw=0.9, label=f"{run.label} {name} (f_dom {f_dom:.2f} Hz, std {std:.0f} Pa)")
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("PSD (Pa²/Hz)")
+    ax.set_title("Pressure fluctuations (Welch, Hann, 50% overlap)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    save(fig, path)
+    return None
+
+
+def pressure_table(runs):
+    spectra = pressure_spectra(runs)
+    if not spectra:
+        return ["No probes.csv with a pressure probe (a case's [[probe]] tables add them, docs/analysis.md)."]
+    lines = ["Welch PSD of each pressure probe (post/psd.py) after resampling to its median sampling interval; "
+             "std is the standard deviation about the mean over the whole run, the frequency resolution fs / "
+             "nperseg.", "",
+             "| run | probe column | mean (Pa) | std (Pa) | dominant frequency (Hz) | samples | fs (Hz) |",
+             "|---|---|---|---|---|---|---|"]
+    for run, name, mean, std, f_dom, _, _, fs, n in spectra:
+        lines.append(f"| {run.label} | {name} | {mean:.1f} | {std:.1f} | {f_dom:.2f} | {n} | {fs:.0f} |")
+    return lines
+
+
 def figure_rise_vs_correlation(runs, path, notes):
     fig, ax = plt.subplots(figsize=(6, 4))
     d_max = 0.0
@@ -707,6 +810,20 @@ def jet_runs(runs):
     return with_jet, note
 
 
+def u_mf_of(case):
+    """bubble.u_mf of a resolved case.toml (the U_mf that scales the throughflow), else the paper's 1.8 m/s."""
+    b = case.get("bubble", {}) if isinstance(case.get("bubble"), dict) else {}
+    u = b.get("u_mf")
+    return float(u) if isinstance(u, (int, float)) and u > 0 else 1.8
+
+
+def centroid_throughflow(gas, u_centroid, u_mf):
+    """U_th / U_mf with the bubble's own (centroid) rise velocity: (gas velocity at the nose - U_b) / U_mf."""
+    if gas in (None, "") or u_centroid in (None, ""):
+        return ""
+    return repr((float(gas) - float(u_centroid)) / u_mf)
+
+
 def table2(runs):
     lines = []
     with_jet, note = jet_runs(runs)
@@ -717,25 +834,33 @@ def table2(runs):
     if not with_bubble:
         return ["No run with a jet has a bubble.csv: Table 2 skipped."] + [""] + note
     lines.append("Values are the bubble.csv rows nearest in time to each instant (the row's own time in brackets); "
-                 "'–' where the row has no bubble.")
+                 "'–' where the row has no bubble. The bubble rise velocity U_b is that of the bubble's centroid "
+                 "(centroid_rise_velocity_m_s, the usual definition in bubble-tracking studies), and U_th/U_mf = "
+                 "(gas velocity at the nose - U_b) / U_mf uses it; the nose rise velocity (rise_velocity_m_s, the "
+                 "nose on the jet's vertical line) is beside it: while the bubble grows on the jet the nose rises "
+                 "about twice as fast as the centroid.")
     lines.append("")
     head = "| t (s) |"
     sep = "|---|"
     for r in with_bubble:
-        head += f" {r.label}: axial gas velocity (m/s) | rise velocity (m/s) | U_th/U_mf |"
-        sep += "---|---|---|"
+        head += (f" {r.label}: axial gas velocity at the nose (m/s) | bubble rise velocity U_b, centroid (m/s) |"
+                 f" U_th/U_mf (from U_b) | nose rise velocity (m/s) |")
+        sep += "---|---|---|---|"
     lines += [head, sep]
     for t in TABLE2_TIMES:
         line = f"| {t} |"
         for r in with_bubble:
             k = nearest_row(r.bubble, t)
             if k is None:
-                line += " – | – | – |"
+                line += " – | – | – | – |"
                 continue
             get = lambda c: r.bubble.get(c, [""] * (k + 1))[k]  # noqa: E731
+            u_th = centroid_throughflow(get('nose_gas_velocity_m_s'), get('centroid_rise_velocity_m_s'),
+                                        u_mf_of(r.case))
             line += (f" {cell(get('nose_gas_velocity_m_s'))} [{cell(get('time_s'), '.3f')}] |"
-                     f" {cell(get('rise_velocity_m_s'))} |"
-                     f" {cell(get('throughflow_ratio'))} |")
+                     f" {cell(get('centroid_rise_velocity_m_s'))} |"
+                     f" {cell(u_th)} |"
+                     f" {cell(get('rise_velocity_m_s'))} |")
         lines.append(line)
     if no_bubble:
         lines += ["", f"Left out, no bubble.csv: {', '.join(no_bubble)}."]
@@ -776,11 +901,178 @@ def cost_table(runs):
 
 # -------------------------------------------------------------------------------------------------------- main
 
-def write_report(folders, out, labels=None):
+def write_animation(run, path, max_frames=120, fps=10):
+    """GIF (Pillow, through matplotlib's PillowWriter) of the run's voidage frames (3D: the mid-depth slice) with
+    the particles of the particle frame of the same instant over it (DEM), at most max_frames frames evenly
+    picked. Returns None, or why it was skipped."""
+    from matplotlib.animation import PillowWriter
+    if not run.fields:
+        return "no field frames"
+    step = max(1, math.ceil(len(run.fields) / max_frames))
+    frames = run.fields[::step]
+    first = read_vti(frames[0][1])
+    if first is None:
+        return "the first field frame has no voidage"
+    particles = {round(t, 9): f for t, f in run.particles}
+    ext = [first["x0"], first["x0"] + first["nx"] * first["dx"], first["y0"], first["y0"] + first["ny"] * first["dy"]]
+    aspect = (ext[3] - ext[2]) / max(ext[1] - ext[0], 1e-12)
+    fig, ax = plt.subplots(figsize=(3.2, min(3.2 * aspect, 6.0) + 0.4))
+    im = ax.imshow(first["eps"], origin="lower", extent=ext, cmap=VOIDAGE_CMAP, vmin=0.35, vmax=1.0)
+    fig.colorbar(im, ax=ax, label="voidage", shrink=0.8)
+    dots = ax.scatter([], [], s=0.8, c="white", alpha=0.6, lw=0)
+    title = ax.set_title("")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    writer = PillowWriter(fps=fps)
+    with writer.saving(fig, path, dpi=90):
+        for t, f in frames:
+            v = read_vti(f)
+            if v is None:
+                continue
+            im.set_data(v["eps"])
+            pf = particles.get(round(t, 9))
+            p = read_vtu(pf) if pf else None
+            if p is not None and run.dimension == 3 and run.depth:
+                keep = np.abs(p["z"] - 0.5 * run.depth) < 0.5 * p["diameter"]
+                dots.set_offsets(np.column_stack([p["x"][keep], p["y"][keep]]))
+            elif p is not None:
+                dots.set_offsets(np.column_stack([p["x"], p["y"]]))
+            title.set_text(f"{run.label}  t = {t:.3f} s")
+            writer.grab_frame()
+    plt.close(fig)
+    return None
+
+
+def expand_ensembles(folders, labels):
+    """Folders with an ensemble.json (written by `fluidbed ensemble`) stand for their members that ended with 0.
+    Returns (member folders, their labels, [(ensemble label, [member indices], failed member names)])."""
+    labels = labels or unique_labels(folders)
+    out_folders, out_labels, groups = [], [], []
+    for folder, label in zip(folders, labels):
+        path = os.path.join(folder, "ensemble.json")
+        if not os.path.isfile(path):
+            out_folders.append(folder)
+            out_labels.append(label)
+            continue
+        with open(path) as f:
+            members = json.load(f).get("members", [])
+        index, failed = [], []
+        for m in members:
+            sub = os.path.join(folder, str(m.get("folder")))
+            if m.get("exit") != 0 or not os.path.isdir(sub):
+                failed.append(str(m.get("folder")))
+                continue
+            index.append(len(out_folders))
+            out_folders.append(sub)
+            out_labels.append(f"{label}/{m.get('folder')}")
+        groups.append((label, index, failed))
+    return out_folders, out_labels, groups
+
+
+def member_values(runs, column, t):
+    """The bubble.csv value of `column` nearest in time to t of each run (NaN where empty or absent)."""
+    vals = []
+    for r in runs:
+        k = nearest_row(r.bubble, t) if r.bubble is not None else None
+        v = r.bubble.get(column, [""] * (k + 1))[k] if k is not None else ""
+        vals.append(float(v) if v not in ("", None) else float("nan"))
+    return np.array(vals)
+
+
+def mean_std(v, fmt=".2f"):
+    ok = np.isfinite(v)
+    if not ok.any():
+        return "–"
+    n = int(ok.sum())
+    sd = float(np.std(v[ok], ddof=1)) if n > 1 else 0.0
+    return f"{np.mean(v[ok]):{fmt}} ± {sd:{fmt}} (n={n})"
+
+
+def ensemble_table2(runs, groups):
+    lines = ["Mean ± sample standard deviation over the members (n: members with a bubble at that row), each "
+             "member's bubble.csv row nearest to the instant; U_b is the centroid rise velocity, U_th/U_mf = (gas "
+             "velocity at the nose - U_b) / U_mf per member, then averaged.", ""]
+    for label, index, failed in groups:
+        members = [runs[k] for k in index]
+        lines += [f"**{label}**: {len(members)} members" + (f"; failed, left out: {', '.join(failed)}" if failed
+                                                             else ""), ""]
+        if not members:
+            continue
+        lines += ["| t (s) | axial gas velocity at the nose (m/s) | bubble rise velocity U_b, centroid (m/s) | "
+                  "U_th/U_mf (from U_b) | nose rise velocity (m/s) |", "|---|---|---|---|---|"]
+        u_mf = np.array([u_mf_of(r.case) for r in members])
+        for t in TABLE2_TIMES:
+            gas = member_values(members, "nose_gas_velocity_m_s", t)
+            uc = member_values(members, "centroid_rise_velocity_m_s", t)
+            nose = member_values(members, "rise_velocity_m_s", t)
+            lines.append(f"| {t} | {mean_std(gas)} | {mean_std(uc)} | {mean_std((gas - uc) / u_mf)} | "
+                         f"{mean_std(nose)} |")
+        lines.append("")
+    return lines
+
+
+def figure_ensemble_bands(runs, groups, path, notes):
+    """Mean and mean ± std bands over the members of nose and centroid height and of the bed pressure drop."""
+    series = [("bubble", "nose_height_m", "nose height (m)"), ("bubble", "centroid_y_m", "centroid height (m)"),
+              ("monitor", "pressure_drop_Pa", "pressure drop (Pa)")]
+    fig, axes = plt.subplots(len(series), 1, figsize=(7, 8), sharex=True)
+    drawn = 0
+    for label, index, _ in groups:
+        members = [runs[k] for k in index]
+        for ax, (source, column, ylabel) in zip(axes, series):
+            curves = []
+            grid = None
+            for r in members:
+                cols = r.bubble if source == "bubble" else r.monitor
+                if cols is None or column not in cols:
+                    continue
+                t, v = numeric(cols, "time_s"), numeric(cols, column)
+                if grid is None:
+                    grid = t
+                # Members share their output instants; interpolation only bridges a member's missing rows.
+                ok = np.isfinite(t) & np.isfinite(v)
+                if ok.sum() < 2:
+                    curves.append(np.full(grid.size, np.nan))
+                    continue
+                c = np.interp(grid, t[ok], v[ok], left=np.nan, right=np.nan)
+                # No value where the member has none (no bubble): the gap stays a gap.
+                have = np.isfinite(np.interp(grid, t, np.where(ok, 1.0, np.nan)))
+                c[~have] = np.nan
+                curves.append(c)
+            if grid is None or not curves:
+                notes.append(f"{label}: no {column} in the members' {source}.csv")
+                continue
+            a = np.array(curves)
+            n = np.sum(np.isfinite(a), axis=0)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)  # instants where no member has a value
+                m = np.nanmean(a, axis=0)
+                sd = np.where(n > 1, np.nanstd(a, axis=0, ddof=1), 0.0)
+            line, = ax.plot(grid, m, lw=1.2, label=f"{label} mean (n={len(members)})")
+            ax.fill_between(grid, m - sd, m + sd, color=line.get_color(), alpha=0.25, lw=0,
+                            label=f"{label} ± 1 std")
+            ax.set_ylabel(ylabel)
+            drawn += 1
+    if drawn == 0:
+        plt.close(fig)
+        return "no member has bubble.csv or monitor.csv values"
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=7)
+    axes[-1].set_xlabel("time (s)")
+    axes[0].set_title("Ensemble mean and spread")
+    fig.tight_layout()
+    save(fig, path)
+    return None
+
+
+def write_report(folders, out, labels=None, animate=False):
     figdir = os.path.join(out, "figures")
     os.makedirs(figdir, exist_ok=True)
+    folders, labels, groups = expand_ensembles(folders, labels)
     runs = [Run(f) for f in folders]
-    for r, lab in zip(runs, labels or unique_labels(folders)):
+    for r, lab in zip(runs, labels):
         r.label = lab
     figures = [
         ("voidage.png", "Voidage maps at the paper's instants (Fig. 3 layout)",
@@ -813,7 +1105,14 @@ def write_report(folders, out, labels=None):
                                     p, n)),
         ("mixing_index.png", "Lacey mixing index",
          lambda p, n: figure_curves(runs, "monitor", "lacey*", "Lacey index M", "Mixing index", p, n)),
-    ]
+    ] + ([
+        ("probes.png", "Probe time series (probes.csv)", lambda p, n: figure_probes(runs, p, n)),
+        ("pressure_psd.png", "Pressure-fluctuation spectra of the pressure probes",
+         lambda p, n: figure_pressure_psd(runs, p, n)),
+    ] if any(r.probes is not None for r in runs) else []) + ([
+        ("ensemble_bands.png", "Ensemble mean and spread (bands: ± 1 standard deviation over the members)",
+         lambda p, n: figure_ensemble_bands(runs, groups, p, n)),
+    ] if groups else [])
     md = ["# fluidbed report", ""]
     md.append("## Runs")
     md.append("")
@@ -838,8 +1137,20 @@ def write_report(folders, out, labels=None):
             md.append(f"- {caption}: skipped ({why}).")
         for n in notes:
             md.append(f"  - {n}")
-    md += ["", "## Table 2: axial gas velocity at the nose, rise velocity and U_th/U_mf", ""]
+    md += ["", "## Table 2: axial gas velocity at the nose, bubble (centroid) and nose rise velocity, U_th/U_mf", ""]
     md += table2(runs)
+    if animate:
+        md += ["", "## Animations", ""]
+        for r in runs:
+            name = f"animation-{''.join(c if c.isalnum() or c in '-_.' else '_' for c in r.label)}.gif"
+            why = write_animation(r, os.path.join(figdir, name))
+            md.append(f"- {r.label}: ![{r.label}](figures/{name})" if why is None else f"- {r.label}: skipped ({why})")
+    if groups:
+        md += ["", "## Ensembles: Table 2 as mean ± standard deviation", ""]
+        md += ensemble_table2(runs, groups)
+    if any(r.probes is not None for r in runs):
+        md += ["", "## Pressure fluctuations (probes.csv)", ""]
+        md += pressure_table(runs)
     md += ["", "## Bubble events", ""]
     md += bubble_events(runs)
     md += ["", "## Cost", ""]
@@ -857,6 +1168,8 @@ def main(argv=None):
     ap.add_argument("--label", action="append", default=None,
                     help="label of a run in legends and tables, once per folder in the order of the folders "
                          "(default: the folder name)")
+    ap.add_argument("--animate", action="store_true",
+                    help="also write figures/animation-<run>.gif: voidage and particles of every frame (Pillow)")
     args = ap.parse_args(argv)
     missing = [d for d in args.runs if not os.path.isdir(d)]
     if missing:
@@ -872,7 +1185,7 @@ def main(argv=None):
             print(f"report: --label values must be non-empty and differ (repeated: {', '.join(dup) or 'an empty one'})",
                   file=sys.stderr)
             return 2
-    write_report(args.runs, args.out, args.label)
+    write_report(args.runs, args.out, args.label, animate=args.animate)
     print(f"report written to {os.path.join(args.out, 'summary.md')}")
     return 0
 

@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "io/case_check.hpp"
 #include "io/case_loader.hpp"
+#include "io/ensemble.hpp"
 #include "io/runner.hpp"
 
 #ifndef FLUIDBED_POST_DIR
@@ -27,7 +28,8 @@ std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-int report(const std::vector<std::string>& dirs, const std::vector<std::string>& labels, const std::string& out) {
+int report(const std::vector<std::string>& dirs, const std::vector<std::string>& labels, const std::string& out,
+           bool animate) {
   const char* env = std::getenv("FLUIDBED_POST_DIR");
   const std::filesystem::path post = env ? env : FLUIDBED_POST_DIR;
   const std::filesystem::path script = post / "report.py";
@@ -49,6 +51,7 @@ int report(const std::vector<std::string>& dirs, const std::vector<std::string>&
   for (const auto& d : dirs) cmd += " " + shell_quote(d);
   for (const auto& l : labels) cmd += " --label " + shell_quote(l);
   cmd += " --out " + shell_quote(out);
+  if (animate) cmd += " --animate";
   const int rc = std::system(cmd.c_str());
   if (rc != -1 && WIFEXITED(rc) && WEXITSTATUS(rc) == 2) return 2;  // the script named the bad input
   if (rc != 0) {
@@ -103,6 +106,19 @@ int main(int argc, char** argv) {
   check->add_option("case", check_file, "case file (TOML)")->required();
   check->add_option("--set", check_sets, "override a case key: SECTION.KEY=VALUE (repeatable)");
 
+  fluidbed::EnsembleOptions eo;
+  double ens_end = -1.0;
+  auto* ens = app.add_subcommand("ensemble", "run N packings of a case (case.seed, seed+1, ...) in parallel");
+  ens->add_option("case", eo.case_file, "case file (TOML)")->required();
+  ens->add_option("-n", eo.members, "number of members (default 8)")->check(CLI::Range(1, 10000));
+  ens->add_option("--jobs", eo.jobs, "members running at once (default 2)")->check(CLI::Range(1, 1024));
+  ens->add_option("--threads", eo.threads, "OpenMP threads per member (default 1)")->check(CLI::Range(1, 1024));
+  ens->add_option("--out", eo.out_dir, "ensemble folder (default out/<case name>-ensemble)");
+  ens->add_option("--end-time", ens_end, "simulated end time, s")->check(CLI::PositiveNumber);
+  ens->add_option("--set", eo.sets, "override a case key for every member (repeatable)");
+  ens->add_flag("--overwrite", eo.overwrite, "members may replace earlier results in their folders");
+  ens->add_flag("--quiet", eo.quiet, "no progress on the terminal");
+
   auto* keys = app.add_subcommand("keys", "print every case key (type, unit, default, range) as Markdown");
 
   std::vector<std::string> report_dirs;
@@ -114,6 +130,8 @@ int main(int argc, char** argv) {
   rep->add_option("--label", report_labels,
                   "label of a run in legends and tables, once per folder in their order (default: the folder name)")
       ->allow_extra_args(false);  // one value per --label, so the folders may follow it
+  bool report_animate = false;
+  rep->add_flag("--animate", report_animate, "also write an animated GIF of voidage and particles per run");
 
   try {
     app.parse(argc, argv);
@@ -138,7 +156,11 @@ int main(int argc, char** argv) {
       fmt::print("{}: OK\n{}", check_file, fluidbed::describe_case(lc.config));
       return 0;
     }
-    if (*rep) return report(report_dirs, report_labels, report_out);
+    if (*rep) return report(report_dirs, report_labels, report_out, report_animate);
+    if (*ens) {
+      if (ens_end > 0) eo.end_time = ens_end;
+      return fluidbed::run_ensemble(eo);
+    }
     if (*keys) {
       fmt::print("{}", fluidbed::case_keys_markdown());
       return 0;

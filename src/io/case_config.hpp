@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "analysis/bubble_tracker.hpp"
+#include "analysis/probes.hpp"
 #include "core/domain.hpp"
 #include "core/grid.hpp"
 #include "core/grid2.hpp"
@@ -100,6 +101,7 @@ struct CaseConfig {
   GasConfig gas{};
   CouplingConfig coupling{};
   BubbleConfig bubble{};
+  ProbesConfig probes{};  ///< [probes], [[probe]] (issue 15)
   tfm::TfmConfig tfm{};
   double max_overlap_fraction = 0.1;  ///< a run fails when an overlap exceeds this fraction of the diameter
   /// What the loader wants the user to read before a run: defaults it derived from other keys (and how), values

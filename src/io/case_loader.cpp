@@ -655,12 +655,53 @@ void read_output(CaseReader& r, CaseConfig& c) {
   c.output.tracers = r.boolean("output.tracers", true, "write the layer tracers (tracers/*.csv)");
 }
 
+// [probes] and [[probe]]: the probes of issue 15 (analysis/probes.hpp, docs/analysis.md "Probes").
+void read_probes(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  ProbesConfig& pc = c.probes;
+  pc.interval = r.number("probes.interval", 0.001, "s",
+                         "interval of probes.csv rows; 0: after every model step (gas step of CFD-DEM, TFM step)",
+                         R::non_negative());
+  const bool three_d = c.grid.dimension == 3;
+  const std::size_t n = r.table_count("probe", "probes: points, horizontal lines/planes, pressure drops (probes.csv)");
+  pc.probes.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::string p = fmt::format("probe[{}].", k);
+    ProbeSpec s;
+    const std::string kind = r.string(p + "kind", "point", "point (fields at position), plane (the mean over the "
+                                      "horizontal line, 3D plane, at height) or pressure_drop (mean pressure at "
+                                      "height minus at height_top)", {"point", "plane", "pressure_drop"});
+    s.kind = kind == "plane" ? ProbeKind::Plane : kind == "pressure_drop" ? ProbeKind::PressureDrop : ProbeKind::Point;
+    s.name = r.string(p + "name", fmt::format("probe{}", k), "column prefix in probes.csv");
+    if (s.name.empty() || s.name.find_first_of(", \t\n\"") != std::string::npos)
+      r.fail(p + "name", "a probe name is a column prefix: no commas, spaces or quotes");
+    for (std::size_t q = 0; q < k; ++q)
+      if (pc.probes[q].name == s.name) r.fail(p + "name", fmt::format("'{}' is also probe[{}]'s name", s.name, q));
+    if (s.kind == ProbeKind::Point) {
+      const std::size_t dims = three_d ? 3 : 2;
+      const std::vector<double> x = r.numbers(p + "position", {}, "m", "x, y (3D: x, y, z) of a point probe", dims);
+      for (std::size_t a = 0; a < x.size(); ++a) s.position[a] = x[a];
+      const double extent[3] = {c.domain.width, c.domain.height, c.domain.depth};
+      for (std::size_t a = 0; a < dims; ++a)
+        if (!(x[a] >= 0.0 && x[a] <= extent[a])) r.fail(p + "position", "the point lies outside the domain");
+    } else {
+      s.height = r.required_number(p + "height", "m", "height of a plane probe, lower tap of a pressure drop",
+                                   R::between(0.0, c.domain.height));
+      if (s.kind == ProbeKind::PressureDrop)
+        s.height_top = r.required_number(p + "height_top", "m", "upper tap of a pressure drop",
+                                         R::between(0.0, c.domain.height));
+    }
+    pc.probes.push_back(s);
+  }
+}
+
 LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) r.set_override(o);
   LoadedCase out;
   read_case(r, out.config);
   read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
   read_output(r, out.config);
+  read_probes(r, out.config);
   r.reject_unknown_keys();
   // What the gas solver and the bubble tracker check when they are built, so that `check` refuses what `run`
   // would (the TFM's own check, tfm::validate, runs in read_tfm).

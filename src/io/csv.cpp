@@ -177,8 +177,20 @@ void CsvWriter::row(std::span<const std::optional<double>> values) {
     throw std::invalid_argument(fmt::format("CsvWriter::row: {} values for {} columns of {}", values.size(),
                                             columns_.size(), path_.string()));
   }
+  write_line(format_row(values));
+}
+
+void CsvWriter::line(const std::string& text) {
+  if (std::count(text.begin(), text.end(), ',') + 1 != static_cast<std::ptrdiff_t>(columns_.size()) ||
+      text.find('\n') != std::string::npos) {
+    throw std::invalid_argument(fmt::format("CsvWriter::line: the line does not have the {} columns of {}",
+                                            columns_.size(), path_.string()));
+  }
+  write_line(text + "\n");
+}
+
+void CsvWriter::write_line(const std::string& line) {
   if (fd_ < 0) cannot_write(path_, "the file is not open");
-  const std::string line = format_row(values);
   // Where the file ends now: a write that fails part-way (disk full) is cut back to here, so the file keeps
   // whole rows only.
   struct stat before {};

@@ -43,6 +43,10 @@ class CsvWriter {
   void row(std::span<const std::optional<double>> values);
   void row(std::initializer_list<std::optional<double>> values) { row(std::span(values.begin(), values.size())); }
 
+  /// Append one formatted line (no newline) whose first value is the time, for series with text columns
+  /// (bubbles.csv); its comma count must match the header. Same guarantees as row().
+  void line(const std::string& text);
+
   const std::vector<std::string>& columns() const { return columns_; }
   const std::filesystem::path& path() const { return path_; }
 
@@ -52,6 +56,7 @@ class CsvWriter {
   int fd_ = -1;
 
   CsvWriter(std::filesystem::path path, std::vector<std::string> columns, const std::string& initial_content);
+  void write_line(const std::string& line);
 };
 
 /// One line of a particle CSV file. A 2D file has no z, vz, omega_x, omega_y (they read as 0).

@@ -24,6 +24,8 @@
 #include "analysis/layer_tracers.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/bubble_series.hpp"
+#include "io/probe_series.hpp"
 #include "io/checkpoint_set.hpp"
 #include "io/csv.hpp"
 #include "io/dem_model.hpp"
@@ -126,6 +128,7 @@ void save_bubble_state(Hdf5File& f, const BubbleTracker::State& s) {
   f.set_attribute("bubble", "bubble_count", static_cast<std::int64_t>(s.bubble_count));
   f.set_attribute("bubble", "detachment_time", s.detachment_time.value_or(kNone));
   f.set_attribute("bubble", "eruption_time", s.eruption_time.value_or(kNone));
+  f.write("bubble/centroid_h", s.centroid_h);
 }
 
 BubbleTracker::State load_bubble_state(const Hdf5File& f) {
@@ -141,6 +144,8 @@ BubbleTracker::State load_bubble_state(const Hdf5File& f) {
   const double eru = f.attribute_double("bubble", "eruption_time");
   if (!std::isnan(det)) s.detachment_time = det;
   if (!std::isnan(eru)) s.eruption_time = eru;
+  // Older checkpoints lack it: the centroid velocity then starts again from the restart.
+  if (f.has("bubble/centroid_h")) s.centroid_h = f.read_double("bubble/centroid_h");
   return s;
 }
 
@@ -177,7 +182,9 @@ std::string shell_word(const std::string& s) {
 }
 
 /// The results a run writes into its folder: the series files and the folders of frames and checkpoints.
-constexpr std::array<const char*, 5> kResultFiles{"monitor.csv", "fields.pvd", "particles.pvd", "bubble.csv", "cost.json"};
+constexpr std::array<const char*, 9> kResultFiles{"monitor.csv",     "fields.pvd",        "particles.pvd",
+                                                  "bubble.csv",      "cost.json",         "bubbles.csv",
+                                                  "bubble_events.csv", "bubble_frames.csv", "probes.csv"};
 constexpr std::array<const char*, 4> kResultFolders{"checkpoints", "fields", "particles", "tracers"};
 
 /// What in `out` is the result of an earlier run, for the refusal to overwrite it.
@@ -264,6 +271,7 @@ class Run {
       build_model();
       restore_state();
       open_series();
+      restart_file_.reset();
       step_until_end();
       return finish();
     } catch (const WriteError& e) {
@@ -383,12 +391,18 @@ class Run {
     frames_.interval = cfg_.output.interval;
     monitors_.interval = cfg_.output.monitor_interval;
     checkpoints_.interval = cfg_.output.checkpoint_interval;
+    probe_rows_.interval = cfg_.probes.interval;
     if (restart_) {
       const Hdf5File& f = *restart_file_;
       model_->load(f);
       frames_.next = f.attribute_int64("/", "next_frame");
       monitors_.next = f.attribute_int64("/", "next_monitor");
       checkpoints_.next = f.attribute_int64("/", "next_checkpoint");
+      if (f.has_attribute("/", "next_probe")) {
+        probe_rows_.next = f.attribute_int64("/", "next_probe");
+      } else if (probe_rows_.interval > 0.0) {  // a checkpoint of a run without probes: the next row after now
+        probe_rows_.advance(model_->time(), model_->macro_dt());
+      }
       wall_before_ = f.attribute_double("/", "wall_s");
       last_checkpoint_ = restart_path_;
     } else {
@@ -414,7 +428,6 @@ class Run {
       bubbles_.emplace(cfg_.bubble);
       if (restart_ && restart_file_->has("bubble/tracked")) bubbles_->restore(load_bubble_state(*restart_file_));
     }
-    restart_file_.reset();
   }
 
   /// monitor.csv, bubble.csv and the .pvd collections: new, or cut at the restart time and continued.
@@ -429,13 +442,33 @@ class Run {
                               : CsvWriter(out_ / "monitor.csv", monitor_cols));
     if (bubbles_) {
       std::vector<std::string> cols;
-      const std::string header = bubble_csv_header(model_->fields().dimension);
+      const std::string header = bubble_csv_header(model_->fields().dimension, true);
       for (std::size_t a = 0, b; a <= header.size(); a = b + 1) {
         b = header.find(',', a);
         if (b == std::string::npos) b = header.size();
         cols.push_back(header.substr(a, b - a));
       }
       bubble_csv_.emplace(restart_ ? CsvWriter::resume(out_ / "bubble.csv", cols, t_cut) : CsvWriter(out_ / "bubble.csv", cols));
+      // Every bubble, with the jet bubble's threshold, bed surface and least size (docs/output-format.md).
+      const FieldView fv = model_->fields();
+      PopulationConfig pc;
+      pc.eps_threshold = cfg_.bubble.eps_threshold;
+      pc.surface_eps = cfg_.bubble.surface_eps;
+      pc.min_size = fv.dimension == 3 ? cfg_.bubble.min_volume : cfg_.bubble.min_area;
+      population_.emplace(out_, fv.dimension, pc, restart_, t_cut, restart_ ? &*restart_file_ : nullptr);
+      if (restart_ && !restart_file_->has("bubbles/owner")) {
+        log().warn("the checkpoint holds no bubble population: bubbles.csv continues with new ids");
+      }
+    }
+    const FieldView fv = model_->fields();
+    if (!cfg_.probes.probes.empty()) {
+      if (fv.has_grid() && fv.p && fv.eps && fv.has_gas_velocity()) {
+        const double t_probe = t_start_ + kStampTolerance * std::max(cfg_.probes.interval, 0.0);
+        probes_.emplace(out_ / "probes.csv", cfg_.probes.probes, fv.dimension, fv.has_solids_velocity(), restart_,
+                        t_probe);
+      } else {
+        log().warn("[[probe]] given, but the model has no gas fields: no probes.csv");
+      }
     }
     fields_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "fields.pvd", t_cut) : PvdCollection(out_ / "fields.pvd"));
     particles_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "particles.pvd", t_cut)
@@ -525,6 +558,11 @@ class Run {
   // ---- observers ---------------------------------------------------------------------------------------------
 
   void observe(double t) {
+    // Probes may sample every step (probes.interval = 0), so before the coarser outputs.
+    if (probes_ && (probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_))) {
+      probes_->sample(probe_rows_.interval == 0.0 ? t : probe_rows_.stamp(t), model_->fields());
+      probe_rows_.advance(t, dt_);
+    }
     if (monitors_.due(t, dt_)) {
       std::vector<std::optional<double>> row{monitors_.stamp(t)};
       for (auto& v : model_->monitor_values()) row.push_back(v);
@@ -544,8 +582,9 @@ class Run {
         } else {
           b = bubbles_->observe(stamp, fv.grid2(), fv.field2(fv.eps), fv.field2(fv.ug[0]), fv.field2(fv.ug[1]));
         }
-        const auto values = bubble_csv_values(b);
+        const auto values = bubble_csv_values(b, true);
         bubble_csv_->row(std::span<const std::optional<double>>(values.data(), values.size()));
+        population_->observe(stamp, fv);
       }
       write_frame(stamp);
       frames_.advance(t, dt_);
@@ -615,9 +654,11 @@ class Run {
     f.set_attribute("/", "next_frame", frames_.next);
     f.set_attribute("/", "next_monitor", monitors_.next);
     f.set_attribute("/", "next_checkpoint", checkpoints_.next);
+    f.set_attribute("/", "next_probe", probe_rows_.next);
     f.set_attribute("/", "wall_s", wall_total);
     model_->save(f);
     if (bubbles_) save_bubble_state(f, bubbles_->state());
+    if (population_) population_->save(f);
     if (tracers_) save_tracers(f, *tracers_);
     f.commit();
     return path;
@@ -705,9 +746,11 @@ class Run {
   int threads_ = 1;
 
   std::unique_ptr<ModelRun> model_;
-  Schedule frames_, monitors_, checkpoints_;
+  Schedule frames_, monitors_, checkpoints_, probe_rows_;
   std::optional<CellTracers> tracers_;
   std::optional<BubbleTracker> bubbles_;
+  std::optional<BubbleSeries> population_;
+  std::optional<ProbeSeries> probes_;
   std::optional<CsvWriter> monitor_, bubble_csv_;
   std::optional<PvdCollection> fields_pvd_, particles_pvd_;
   fs::path last_checkpoint_;

@@ -51,6 +51,10 @@ TOML
 # bubble.csv without a wall_s column (none today; the same rule as monitor.csv should one be added).
 same_bubbles() {  # same_bubbles LABEL DIR_A DIR_B
   check "$1: bubble.csv rows identical" cmp <(monitor_without_wall "$2/bubble.csv") <(monitor_without_wall "$3/bubble.csv")
+  local f
+  for f in bubbles.csv bubble_events.csv bubble_frames.csv; do
+    check "$1: $f identical" cmp "$2/$f" "$3/$f"
+  done
 }
 
 # (d) check: the 3D domain, grid and jet.
@@ -99,6 +103,13 @@ check "3d restart: monitor.csv rows after T/2 identical (without wall_s)" \
   cmp <(after_mid "$WORK/full/monitor.csv") <(after_mid "$WORK/restart/monitor.csv")
 check "3d restart: bubble.csv rows after T/2 identical" \
   cmp <(after_mid "$WORK/full/bubble.csv") <(after_mid "$WORK/restart/bubble.csv")
+# Every bubble: the population (ids, velocities) continues from the checkpoint, so the rows after T/2 are the same.
+for f in bubbles.csv bubble_events.csv bubble_frames.csv; do
+  check "3d restart: $f rows after T/2 identical" cmp <(after_mid "$WORK/full/$f") <(after_mid "$WORK/restart/$f")
+done
+check "3d: bubbles.csv has a bubble on both sides of T/2 with centroid velocities after it" \
+  bash -c "awk -F, 'NR > 1 && \$1 + 0 <= 0.02' '$WORK/full/bubbles.csv' | grep -q . &&
+           awk -F, 'NR > 1 && \$1 + 0 > 0.02 && \$13 != \"\"' '$WORK/full/bubbles.csv' | grep -q ."
 check "3d restart: it wrote rows after T/2" test "$(after_mid "$WORK/restart/monitor.csv" | wc -l)" -ge 10
 # And the split run (0 to T/2, then --restart final.h5 in the same folder) equals the straight run in every file.
 run_ok "3d: 0 to T/2" run "$WORK/c3d.toml" --out "$WORK/split" --threads 1 --end-time 0.02

@@ -10,6 +10,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import tomllib
 
 import numpy as np
 
@@ -119,15 +120,24 @@ def main():
                 fail(f"Table 2 has no row for t = {t}")
             cells = [c.strip() for c in line.strip().strip("|").split("|")][1:]
             for r, folder in enumerate([dem, tfm]):
-                rows = list(csv.reader(open(os.path.join(folder, "bubble.csv"))))[1:]
+                table = list(csv.reader(open(os.path.join(folder, "bubble.csv"))))
+                col = {name: c for c, name in enumerate(table[0])}
+                rows = table[1:]
+                with open(os.path.join(folder, "case.toml"), "rb") as f:
+                    u_mf = tomllib.load(f)["bubble"]["u_mf"]
                 k = int(np.argmin([abs(float(row[0]) - t) for row in rows]))
-                got = cells[3 * r:3 * r + 3]
-                if rows[k][3] == "":
+                # Four cells per run: gas velocity at the nose [row time], centroid rise velocity U_b,
+                # (gas - U_b) / U_mf, nose rise velocity.
+                got = cells[4 * r:4 * r + 4]
+                row = rows[k]
+                if row[3] == "":
                     if not all(g.startswith("–") for g in got):
                         fail(f"Table 2 at t = {t}, run {r}: {got} but bubble.csv has no bubble")
                 else:
-                    want = [f"{float(rows[k][3]):.2f} [{float(rows[k][0]):.3f}]", f"{float(rows[k][2]):.2f}",
-                            f"{float(rows[k][4]):.2f}"]
+                    fmt = lambda v: f"{float(v):.2f}" if v != "" else "–"  # noqa: E731
+                    uc = row[col["centroid_rise_velocity_m_s"]]
+                    want = [f"{float(row[3]):.2f} [{float(row[0]):.3f}]", fmt(uc),
+                            fmt((float(row[3]) - float(uc)) / u_mf if uc != "" else ""), fmt(row[2])]
                     if got != want:
                         fail(f"Table 2 at t = {t}, run {r}: {got} != {want}")
                 checked += 1

@@ -1,0 +1,66 @@
+#pragma once
+// Probes of a run (issue 15, item 4): the gas pressure, voidage, gas and solids velocity at points and as
+// cross-section means on horizontal lines (2D) or planes (3D), and the pressure drop between two heights, as an
+// experimenter's pressure taps, optical probes and capacitance planes measure them. Pure functions of
+// cell-centred fields (CellView), so CFD-DEM and TFM, 2D and 3D share them. docs/analysis.md ("Probes").
+#include <array>
+#include <string>
+#include <vector>
+
+#include "analysis/cell_view.hpp"
+
+namespace fluidbed {
+
+/// What a probe measures where.
+enum class ProbeKind {
+  Point,         ///< the fields interpolated (bi-/trilinear) at `position`
+  Plane,         ///< the fields' mean over the horizontal line (2D) or plane (3D) at height `height`
+  PressureDrop,  ///< mean pressure at `height` minus mean pressure at `height_top` (Pa, > 0 for a fluidised bed)
+};
+
+/// One probe of the case file ([[probe]]).
+struct ProbeSpec {
+  ProbeKind kind = ProbeKind::Point;
+  std::string name;                      ///< column prefix, unique within the case
+  std::array<double, 3> position{};      ///< m, Point (z ignored in 2D)
+  double height = 0.0;                   ///< m above the bottom, Plane and the lower tap of PressureDrop
+  double height_top = 0.0;               ///< m, the upper tap of PressureDrop
+};
+
+/// The probes of a case and their sampling.
+struct ProbesConfig {
+  /// s between probe rows; 0 samples after every model step (every gas step of CFD-DEM, every TFM step).
+  double interval = 0.001;
+  std::vector<ProbeSpec> probes;
+};
+
+/// The cell-centred fields a probe reads; `us` may be null (no solids velocity field).
+template <int Dim>
+struct ProbeFields {
+  CellGeometry<Dim> geometry;
+  const double* p = nullptr;
+  const double* eps = nullptr;
+  std::array<const double*, Dim> ug{};
+  std::array<const double*, Dim> us{};
+  bool has_solids_velocity() const {
+    for (const double* c : us)
+      if (!c) return false;
+    return true;
+  }
+};
+
+/// Mean over the cells' columns (all x, and z in 3D) of a cell-centred field interpolated linearly in height to
+/// y (clamped to the outermost cell centres): the cell-weighted cross-section mean, exact for a field linear in y.
+template <int Dim>
+double plane_mean(const CellView<Dim>& f, double y);
+
+/// probes.csv header columns after time_s, per probe in order: Point and Plane `NAME_p_Pa,NAME_eps,NAME_ug_x_m_s,
+/// NAME_ug_y_m_s[,NAME_ug_z_m_s][,NAME_us_x_m_s,NAME_us_y_m_s[,NAME_us_z_m_s]]` (us with `solids`), PressureDrop
+/// `NAME_dp_Pa`.
+std::vector<std::string> probe_columns(const std::vector<ProbeSpec>& probes, int dimension, bool solids);
+
+/// The values of one probes.csv row after time_s, in probe_columns() order.
+template <int Dim>
+std::vector<double> sample_probes(const std::vector<ProbeSpec>& probes, const ProbeFields<Dim>& fields);
+
+}  // namespace fluidbed

@@ -1,0 +1,29 @@
+#pragma once
+// probes.csv of a run (issue 15, item 4): the case's probes sampled from the model's fields, one row per sample,
+// continued after a restart (docs/output-format.md).
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "analysis/probes.hpp"
+#include "io/csv.hpp"
+#include "io/model_run.hpp"
+
+namespace fluidbed {
+
+/// probes.csv: time_s, then probe_columns() of the case's probes.
+class ProbeSeries {
+ public:
+  /// New file `path`, or (restart) the file cut after `t_cut`. `solids`: the model has a solids velocity field.
+  ProbeSeries(const std::filesystem::path& path, const std::vector<ProbeSpec>& probes, int dimension, bool solids,
+              bool restart, double t_cut);
+  /// One row at time t.
+  void sample(double t, const FieldView& fv);
+
+ private:
+  std::vector<ProbeSpec> probes_;
+  int dim_;
+  std::optional<CsvWriter> csv_;
+};
+
+}  // namespace fluidbed

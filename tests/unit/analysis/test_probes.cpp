@@ -1,0 +1,109 @@
+// Probes on synthetic fields, 2D and 3D: every field is affine in x, y (and z), f = a + b x + c y + d z. Bi- and
+// trilinear interpolation between cell centres and the cross-section mean of the linear height interpolation are
+// exact for affine fields, so point values, plane means and the pressure drop are compared with the closed form to
+// rounding (1e-12 of the field's scale). A hydrostatic bed p = p0 - rho g y gives the pressure drop rho g (y2 - y1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "analysis/probes.hpp"
+
+namespace fluidbed {
+namespace {
+
+constexpr double h = 0.02;
+constexpr int nx = 10, ny = 20, nz = 4;
+
+template <int Dim>
+struct Affine {
+  double a, b, c, d;
+  double at(const std::array<double, 3>& x) const { return a + b * x[0] + c * x[1] + (Dim == 3 ? d * x[2] : 0.0); }
+};
+
+template <int Dim>
+struct Fields {
+  CellGeometry<Dim> g;
+  std::vector<std::vector<double>> v;  // p, eps, ug..., us...
+  std::vector<Affine<Dim>> law;
+  Fields() {
+    g.n[0] = nx;
+    g.n[1] = ny;
+    if constexpr (Dim == 3) g.n[2] = nz;
+    g.h.fill(h);
+    g.origin.fill(0.0);
+    // p: hydrostatic, 1500 kg/m^3 of bed weight under g = 9.81 (rho g = 14715 Pa/m), tilted a little in x and z.
+    law = {{8000.0, 10.0, -14715.0, 5.0}, {0.4, 0.1, 0.5, 0.2}};
+    for (int k = 0; k < 2 * Dim; ++k) law.push_back({0.1 * k, 0.3, -0.2 * k, 0.05});
+    for (const Affine<Dim>& f : law) {
+      std::vector<double> values(g.cells());
+      for (std::size_t q = 0; q < values.size(); ++q) {
+        const Index<Dim> c = g.cell_of(q);
+        std::array<double, 3> x{};
+        for (int a = 0; a < Dim; ++a) x[a] = g.centre(a, c[a]);
+        values[q] = f.at(x);
+      }
+      v.push_back(values);
+    }
+  }
+  ProbeFields<Dim> view() const {
+    ProbeFields<Dim> f;
+    f.geometry = g;
+    f.p = v[0].data();
+    f.eps = v[1].data();
+    for (int a = 0; a < Dim; ++a) {
+      f.ug[a] = v[2 + a].data();
+      f.us[a] = v[2 + Dim + a].data();
+    }
+    return f;
+  }
+};
+
+template <int Dim>
+void check_probes() {
+  const Fields<Dim> fields;
+  const double width = nx * h, depth = nz * h;
+  ProbeSpec point{ProbeKind::Point, "pt", {0.073, 0.211, 0.031}, 0.0, 0.0};
+  ProbeSpec plane{ProbeKind::Plane, "pl", {}, 0.137, 0.0};
+  ProbeSpec drop{ProbeKind::PressureDrop, "dp", {}, 0.05, 0.31};
+  const std::vector<ProbeSpec> probes{point, plane, drop};
+  const std::vector<std::string> cols = probe_columns(probes, Dim, true);
+  const std::vector<double> row = sample_probes<Dim>(probes, fields.view());
+  ASSERT_EQ(cols.size(), row.size());
+  ASSERT_EQ(cols.size(), static_cast<std::size_t>(2 * (2 + 2 * Dim) + 1));
+  EXPECT_EQ(cols[0], "pt_p_Pa");
+  EXPECT_EQ(cols[2], "pt_ug_x_m_s");
+  EXPECT_EQ(cols.back(), "dp_dp_Pa");
+  // The mean of an affine field over the cross-section at y: the field at the centre of the cross-section.
+  const std::array<double, 3> mid{0.5 * width, plane.height, 0.5 * depth};
+  std::size_t c = 0;
+  for (const std::array<double, 3>& x : {point.position, mid}) {
+    for (const Affine<Dim>& f : fields.law) {
+      const double exact = f.at(x), tol = 1e-12 * (std::abs(f.a) + 1.0);
+      std::printf("%dD %-12s exact %.15g computed %.15g error %.3g\n", Dim, cols[c].c_str(), exact, row[c],
+                  row[c] - exact);
+      EXPECT_NEAR(row[c], exact, tol) << cols[c];
+      ++c;
+    }
+  }
+  // Hydrostatic: the lower tap reads rho g (y2 - y1) more than the upper one.
+  const double exact = 14715.0 * (drop.height_top - drop.height);
+  std::printf("%dD dp exact %.15g computed %.15g error %.3g\n", Dim, exact, row.back(), row.back() - exact);
+  EXPECT_NEAR(row.back(), exact, 1e-9 * exact);
+}
+
+TEST(Probes, AffineFields2D) { check_probes<2>(); }
+TEST(Probes, AffineFields3D) { check_probes<3>(); }
+
+TEST(Probes, NoSolidsVelocityLeavesItsColumnsOut) {
+  Fields<2> fields;
+  ProbeFields<2> f = fields.view();
+  f.us = {};
+  const std::vector<ProbeSpec> probes{{ProbeKind::Point, "a", {0.1, 0.1, 0.0}, 0.0, 0.0}};
+  EXPECT_EQ(sample_probes<2>(probes, f).size(), probe_columns(probes, 2, false).size());
+  EXPECT_EQ(probe_columns(probes, 2, false).size(), 4u);
+}
+
+}  // namespace
+}  // namespace fluidbed
