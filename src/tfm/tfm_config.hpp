@@ -4,13 +4,16 @@
 #include <optional>
 #include <vector>
 
+#include "core/tvd_limiter.hpp"
 #include "core/vec2.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_config.hpp"
-#include "tfm/flux_limiter.hpp"
 #include "tfm/solids_stress.hpp"
 
 namespace fluidbed::tfm {
+
+/// The shared TVD limiter family (also the gas solver's).
+using Limiter = tvd::Limiter;
 
 /// Solids rheology of Eq. 19, the paper's three cases.
 enum class SolidsRheology {

@@ -37,22 +37,24 @@ double seeded_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t in
 
 // Advective term (U . grad) u of the x-velocity at u-face (i, j), TVD face values, advective form
 // div(U u) - u div(U) so that it vanishes for a uniform field.
-double advect_u(Limiter lim, const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
+template <class Law>
+double advect_u(const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
   const int nx = u.nx - 1, ny = u.ny;
   auto U = [&](int a, int b) { return u(clampi(a, 0, nx), clampi(b, 0, ny - 1)); };
   const double ue_vel = 0.5 * (U(i, j) + U(i + 1, j));
   const double uw_vel = 0.5 * (U(i - 1, j) + U(i, j));
   const double vn_vel = 0.5 * (v(i - 1, j + 1) + v(i, j + 1));
   const double vs_vel = 0.5 * (v(i - 1, j) + v(i, j));
-  const double fe = ue_vel * tvd_face_value(lim, ue_vel, U(i - 1, j), U(i, j), U(i + 1, j), U(i + 2, j));
-  const double fw = uw_vel * tvd_face_value(lim, uw_vel, U(i - 2, j), U(i - 1, j), U(i, j), U(i + 1, j));
-  const double fn = vn_vel * tvd_face_value(lim, vn_vel, U(i, j - 1), U(i, j), U(i, j + 1), U(i, j + 2));
-  const double fs = vs_vel * tvd_face_value(lim, vs_vel, U(i, j - 2), U(i, j - 1), U(i, j), U(i, j + 1));
+  const double fe = ue_vel * tvd::face_value<Law>(ue_vel, U(i - 1, j), U(i, j), U(i + 1, j), U(i + 2, j));
+  const double fw = uw_vel * tvd::face_value<Law>(uw_vel, U(i - 2, j), U(i - 1, j), U(i, j), U(i + 1, j));
+  const double fn = vn_vel * tvd::face_value<Law>(vn_vel, U(i, j - 1), U(i, j), U(i, j + 1), U(i, j + 2));
+  const double fs = vs_vel * tvd::face_value<Law>(vs_vel, U(i, j - 2), U(i, j - 1), U(i, j), U(i, j + 1));
   return (fe - fw) / dx + (fn - fs) / dy - U(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
 }
 
 // Same for the y-velocity at v-face (i, j).
-double advect_v(Limiter lim, const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
+template <class Law>
+double advect_v(const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
   const int nx = v.nx, ny = v.ny - 1;
   auto V = [&](int a, int b) { return v(clampi(a, 0, nx - 1), clampi(b, 0, ny)); };
   const int jl = clampi(j - 1, 0, ny - 1), jh = clampi(j, 0, ny - 1);
@@ -60,10 +62,10 @@ double advect_v(Limiter lim, const Field2& u, const Field2& v, int i, int j, dou
   const double vs_vel = 0.5 * (V(i, j - 1) + V(i, j));
   const double ue_vel = 0.5 * (u(i + 1, jl) + u(i + 1, jh));
   const double uw_vel = 0.5 * (u(i, jl) + u(i, jh));
-  const double fn = vn_vel * tvd_face_value(lim, vn_vel, V(i, j - 1), V(i, j), V(i, j + 1), V(i, j + 2));
-  const double fs = vs_vel * tvd_face_value(lim, vs_vel, V(i, j - 2), V(i, j - 1), V(i, j), V(i, j + 1));
-  const double fe = ue_vel * tvd_face_value(lim, ue_vel, V(i - 1, j), V(i, j), V(i + 1, j), V(i + 2, j));
-  const double fw = uw_vel * tvd_face_value(lim, uw_vel, V(i - 2, j), V(i - 1, j), V(i, j), V(i + 1, j));
+  const double fn = vn_vel * tvd::face_value<Law>(vn_vel, V(i, j - 1), V(i, j), V(i, j + 1), V(i, j + 2));
+  const double fs = vs_vel * tvd::face_value<Law>(vs_vel, V(i, j - 2), V(i, j - 1), V(i, j), V(i, j + 1));
+  const double fe = ue_vel * tvd::face_value<Law>(ue_vel, V(i - 1, j), V(i, j), V(i + 1, j), V(i + 2, j));
+  const double fw = uw_vel * tvd::face_value<Law>(uw_vel, V(i - 2, j), V(i - 1, j), V(i, j), V(i + 1, j));
   return (fe - fw) / dx + (fn - fs) / dy - V(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
 }
 
@@ -372,6 +374,9 @@ double TfmSolver::step(double t_stop) {
   };
   auto div_s = [&](int i, int j) { return (us0(i + 1, j) - us0(i, j)) / dx + (vs0(i, j + 1) - vs0(i, j)) / dy; };
 
+  // The momentum loops are compiled once per limiter law; the law is chosen here, once per step.
+  tvd::with_limiter(c.limiter, [&](auto law) {
+    using Law = decltype(law);
   // x-momentum on interior vertical faces (Eqs. 17-18).
   for (int j = 0; j < ny; ++j) {
     for (int i = 1; i < nx; ++i) {
@@ -379,7 +384,7 @@ double TfmSolver::step(double t_stop) {
       const double es = std::max(1.0 - eg, kEpsSFloor);
       const double beta = 0.5 * (beta_c_(i - 1, j) + beta_c_(i, j));
       const double dpdx = (p(i, j) - p(i - 1, j)) / dx;
-      const double adv_g = advect_u(c.limiter, ug0, vg0, i, j, dx, dy);
+      const double adv_g = advect_u<Law>(ug0, vg0, i, j, dx, dy);
       const double a_g = eg * rho_g / dt;
       const double rhs_g = a_g * ug0(i, j) - eg * rho_g * adv_g + eg * rho_g * gx - eg * dpdx;
       if (!bearing(i - 1, j, i, j)) {
@@ -402,7 +407,7 @@ double TfmSolver::step(double t_stop) {
       if (j > 0) diag += mu_corner(i, j) / (dy * dy);
       if (j < ny - 1) diag += mu_corner(i, j + 1) / (dy * dy);
       const double visc = (sxx(i) - sxx(i - 1)) / dx + (sxy(j + 1) - sxy(j)) / dy + diag * us0(i, j);
-      const double adv_s = advect_u(c.limiter, us0, vs0, i, j, dx, dy);
+      const double adv_s = advect_u<Law>(us0, vs0, i, j, dx, dy);
       const double a_s = es * rho_s / dt;
       const double rhs_s = a_s * us0(i, j) - es * rho_s * adv_s + es * rho_s * gx - es * dpdx - dpsdx + visc;
       const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
@@ -424,7 +429,7 @@ double TfmSolver::step(double t_stop) {
       const double beta = top ? beta_c_(i, ny - 1) : 0.5 * (beta_c_(i, j - 1) + beta_c_(i, j));
       const double p_above = top ? 2.0 * c.boundary.top_pressure - p(i, ny - 1) : p(i, j);
       const double dpdy = (p_above - p(i, j - 1)) / dy;
-      const double adv_g = advect_v(c.limiter, ug0, vg0, i, j, dx, dy);
+      const double adv_g = advect_v<Law>(ug0, vg0, i, j, dx, dy);
       const double a_g = eg * rho_g / dt;
       const double rhs_g = a_g * vg0(i, j) - eg * rho_g * adv_g + eg * rho_g * gy - eg * dpdy;
       if (top || !bearing(i, j - 1, i, j)) {
@@ -458,7 +463,7 @@ double TfmSolver::step(double t_stop) {
         }
       }
       const double visc = (syy(j) - syy(j - 1)) / dy + (sxy(i + 1) - sxy(i)) / dx + diag * vs0(i, j);
-      const double adv_s = advect_v(c.limiter, us0, vs0, i, j, dx, dy);
+      const double adv_s = advect_v<Law>(us0, vs0, i, j, dx, dy);
       const double a_s = es * rho_s / dt;
       const double rhs_s = a_s * vs0(i, j) - es * rho_s * adv_s + es * rho_s * gy - es * dpdy - dpsdy + visc;
       const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
@@ -470,6 +475,7 @@ double TfmSolver::step(double t_stop) {
       ssv(i, j) = f.ss;
     }
   }
+  });
   // Boundary faces: walls, inflow through the distributor, closed lid.
   for (int j = 0; j < ny; ++j) {
     s_.ug(0, j) = s_.ug(nx, j) = s_.us(0, j) = s_.us(nx, j) = 0.0;

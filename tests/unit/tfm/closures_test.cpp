@@ -3,11 +3,16 @@
 
 #include <cmath>
 
-#include "tfm/flux_limiter.hpp"
+#include "core/tvd_limiter.hpp"
 #include "tfm/solids_stress.hpp"
 
 namespace fluidbed::tfm {
 namespace {
+
+using tvd::Limiter;
+double superbee(double r) { return tvd::SuperbeeLaw::psi(r); }
+double minmod(double r) { return tvd::MinmodLaw::psi(r); }
+double van_leer(double r) { return tvd::VanLeerLaw::psi(r); }
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -25,7 +30,7 @@ TEST(Limiters, TextbookValues) {
   EXPECT_DOUBLE_EQ(van_leer(-2.0), 0.0);
   for (double r = -2.0; r <= 10.0; r += 0.125) {
     for (Limiter l : {Limiter::Superbee, Limiter::Minmod, Limiter::VanLeer}) {
-      const double psi = limiter_value(l, r);
+      const double psi = tvd::psi(l, r);
       // TVD region of Sweby (1984): 0 <= psi <= min(2r, 2) for r > 0, psi = 0 for r <= 0.
       EXPECT_GE(psi, 0.0);
       EXPECT_LE(psi, std::max(0.0, std::min(2.0 * r, 2.0)) + 1e-15);
@@ -35,13 +40,13 @@ TEST(Limiters, TextbookValues) {
 
 TEST(Limiters, FaceValuePicksUpwindSide) {
   // Linear data phi = 1, 2, 3, 4: r = 1 so every limiter gives the central value 2.5 on the middle face.
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, 1.0, 1, 2, 3, 4), 2.5);
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, -1.0, 1, 2, 3, 4), 2.5);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Superbee, 1.0, 1, 2, 3, 4), 2.5);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Superbee, -1.0, 1, 2, 3, 4), 2.5);
   // Upwind returns the upwind cell for each direction.
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Upwind, 1.0, 1, 2, 3, 4), 2.0);
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Upwind, -1.0, 1, 2, 3, 4), 3.0);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Upwind, 1.0, 1, 2, 3, 4), 2.0);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Upwind, -1.0, 1, 2, 3, 4), 3.0);
   // At an extremum (2 is a peak) the correction vanishes.
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, 1.0, 1, 2, 0, 4), 2.0);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Superbee, 1.0, 1, 2, 0, 4), 2.0);
 }
 
 TEST(KineticTheory, RadialDistributionAsPrinted) {
