@@ -268,14 +268,14 @@ void TfmSolver::compute_cell_closures() {
           mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
           break;
         case SolidsRheology::KineticTheory: {
-          StrainRate2 d;
-          d.xx = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
-          d.yy = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
+          StrainRate<2> d;
+          d(0, 0) = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
+          d(1, 1) = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
           const int il = std::max(i - 1, 0), ih = std::min(i + 1, nx - 1);
           const int jl = std::max(j - 1, 0), jh = std::min(j + 1, ny - 1);
           const double dudy = jh > jl ? (usc(i, jh) - usc(i, jl)) / ((jh - jl) * dy) : 0.0;
           const double dvdx = ih > il ? (vsc(ih, j) - vsc(il, j)) / ((ih - il) * dx) : 0.0;
-          d.xy = 0.5 * (dudy + dvdx);
+          d(0, 1) = 0.5 * (dudy + dvdx);
           if (eps <= c.eps_star) {
             mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
           } else if (eps_s > 0.0) {
