@@ -90,13 +90,15 @@ FaceSolve solve_face(double a_g, double a_s, double beta, double rhs_g, double r
   return f;
 }
 
+template <SolidsRheology R>
 double solids_pressure_law(const TfmConfig& c, const GranularMaterial& m, double eps, double theta) {
-  if (c.rheology == SolidsRheology::KineticTheory) {
+  if constexpr (R == SolidsRheology::KineticTheory) {
     // Eq. 19: frictional regime at or below eps*, kinetic theory above.
     if (eps <= c.eps_star) return frictional_pressure(eps, c.eps_star);
     return kt_pressure(m, eps, theta);
+  } else {
+    return modulus_pressure(c.modulus, eps, c.eps_star);
   }
-  return modulus_pressure(c.modulus, eps, c.eps_star);
 }
 
 }  // namespace
@@ -244,6 +246,11 @@ void TfmSolver::mask_trace_solids_velocity() {
 }
 
 void TfmSolver::compute_cell_closures() {
+  with_rheology(config_.rheology, [this](auto r) { compute_cell_closures_of<decltype(r)::value>(); });
+}
+
+template <SolidsRheology R>
+void TfmSolver::compute_cell_closures_of() {
   const TfmConfig& c = config_;
   const GranularMaterial mat{c.d_p, c.rho_s, c.e};
   const double phi = c.phi_deg * 3.14159265358979323846 / 180.0;
@@ -262,38 +269,33 @@ void TfmSolver::compute_cell_closures() {
       beta_c_(i, j) = beta_ergun_wen_yu(in, c.drag_switch);
 
       double mu = 0.0, lambda = 0.0, theta = 0.0;
-      switch (c.rheology) {
-        case SolidsRheology::Inviscid: break;
-        case SolidsRheology::ConstantViscosity:
-          mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
-          break;
-        case SolidsRheology::KineticTheory: {
-          StrainRate<2> d;
-          d(0, 0) = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
-          d(1, 1) = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
-          const int il = std::max(i - 1, 0), ih = std::min(i + 1, nx - 1);
-          const int jl = std::max(j - 1, 0), jh = std::min(j + 1, ny - 1);
-          const double dudy = jh > jl ? (usc(i, jh) - usc(i, jl)) / ((jh - jl) * dy) : 0.0;
-          const double dvdx = ih > il ? (vsc(ih, j) - vsc(il, j)) / ((ih - il) * dx) : 0.0;
-          d(0, 1) = 0.5 * (dudy + dvdx);
-          if (eps <= c.eps_star) {
-            mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
-          } else if (eps_s > 0.0) {
-            theta = algebraic_granular_temperature(mat, eps, d);
-            mu = std::min(kt_shear_viscosity(mat, eps, theta), c.mu_s_max);
-            lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
-          }
-          break;
+      if constexpr (R == SolidsRheology::ConstantViscosity) {
+        mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
+      } else if constexpr (R == SolidsRheology::KineticTheory) {
+        StrainRate<2> d;
+        d(0, 0) = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
+        d(1, 1) = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
+        const int il = std::max(i - 1, 0), ih = std::min(i + 1, nx - 1);
+        const int jl = std::max(j - 1, 0), jh = std::min(j + 1, ny - 1);
+        const double dudy = jh > jl ? (usc(i, jh) - usc(i, jl)) / ((jh - jl) * dy) : 0.0;
+        const double dvdx = ih > il ? (vsc(ih, j) - vsc(il, j)) / ((ih - il) * dx) : 0.0;
+        d(0, 1) = 0.5 * (dudy + dvdx);
+        if (eps <= c.eps_star) {
+          mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
+        } else if (eps_s > 0.0) {
+          theta = algebraic_granular_temperature(mat, eps, d);
+          mu = std::min(kt_shear_viscosity(mat, eps, theta), c.mu_s_max);
+          lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
         }
       }
       mu_s_(i, j) = mu;
       lambda_s_(i, j) = lambda;
       s_.theta(i, j) = theta;
-      p_s_(i, j) = solids_pressure_law(c, mat, eps, theta);
+      p_s_(i, j) = solids_pressure_law<R>(c, mat, eps, theta);
       // dP_s/d eps_s sets the speed of compaction waves that the explicit solids pressure must resolve.
       const double h = 1e-7;
       dps_deps_(i, j) =
-          std::max(0.0, (solids_pressure_law(c, mat, eps - h, theta) - solids_pressure_law(c, mat, eps + h, theta)) / (2 * h));
+          std::max(0.0, (solids_pressure_law<R>(c, mat, eps - h, theta) - solids_pressure_law<R>(c, mat, eps + h, theta)) / (2 * h));
     }
   }
 }
