@@ -3,12 +3,12 @@
 
 #include <vector>
 
-#include "tfm/flux_limiter.hpp"
+#include "core/tvd_limiter.hpp"
 #include "tfm/tfm_solver.hpp"
 
 namespace {
 
-using fluidbed::tfm::Limiter;
+using fluidbed::tvd::Limiter;
 
 void bm_tvd_face_value(benchmark::State& state) {
   std::vector<double> phi(4096);
@@ -16,7 +16,7 @@ void bm_tvd_face_value(benchmark::State& state) {
   for (auto _ : state) {
     double sum = 0.0;
     for (std::size_t k = 2; k + 2 < phi.size(); ++k) {
-      sum += fluidbed::tfm::tvd_face_value(Limiter::Superbee, (k & 1) ? 1.0 : -1.0, phi[k - 2], phi[k - 1], phi[k],
+      sum += fluidbed::tvd::face_value<fluidbed::tvd::SuperbeeLaw>((k & 1) ? 1.0 : -1.0, phi[k - 2], phi[k - 1], phi[k],
                                            phi[k + 1]);
     }
     benchmark::DoNotOptimize(sum);

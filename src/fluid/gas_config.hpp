@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/tvd_limiter.hpp"
 #include "core/vec.hpp"
 
 namespace fluidbed {
@@ -17,7 +18,7 @@ enum class TopBoundary {
 };
 
 /// Face-value scheme for the convection terms (higher orders by deferred correction on an upwind matrix).
-enum class ConvectionScheme { Upwind, VanLeer, Minmod };
+using ConvectionScheme = tvd::Limiter;
 
 /// Viscous stress in the gas momentum equation.
 enum class ViscousStress {

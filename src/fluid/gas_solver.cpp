@@ -15,23 +15,9 @@ namespace fluidbed {
 
 namespace {
 
-double limiter(ConvectionScheme scheme, double r) {
-  switch (scheme) {
-    case ConvectionScheme::VanLeer:
-      return (r + std::abs(r)) / (1.0 + std::abs(r));
-    case ConvectionScheme::Minmod:
-      return std::max(0.0, std::min(1.0, r));
-    case ConvectionScheme::Upwind:
-      break;
-  }
-  return 0.0;
-}
-
-// TVD face value minus the upwind one (Sweby 1984 form, r = upwind gradient ratio), added by deferred correction.
+// TVD face value minus the upwind one (the shared family, core/tvd_limiter.hpp), added by deferred correction.
 double high_order_correction(ConvectionScheme scheme, double phi_far, double phi_up, double phi_down) {
-  const double jump = phi_down - phi_up;
-  if (jump == 0.0) return 0.0;
-  return 0.5 * limiter(scheme, (phi_up - phi_far) / jump) * jump;
+  return tvd::correction(scheme, phi_far, phi_up, phi_down);
 }
 
 /// Area of a face normal to axis a (a length per metre of depth in 2D): the product of the other cell sizes,

@@ -17,13 +17,14 @@ struct PackingLimitResult {
 
 /// Scales down the inflow faces of every cell whose conservative update (conservative_update) would exceed
 /// max(phi_max, phi_old) (cells already above phi_max may not grow): such a cell ends on that bound, 1e-14 below
-/// it so that rounding cannot leave it above. Cutting a face also cuts its donor's outflow, so sweeps repeat,
-/// alternating direction, until no cell is over its bound at all (the check has no tolerance, and uses the very
-/// expression of conservative_update); after max_sweeps the run fails (simulation error). Where cut cells form
-/// a loop of flow, each cut returns to the cell that started it, so the sweeps converge geometrically: a whole
-/// bed resting on the bound needs 20-40 sweeps on the paper's grid and up to 56 on a twice finer one (a backstop
-/// that only catches overshoots, 3-7); the default cap leaves a wide margin. Cells are visited in a fixed order,
-/// so the result is deterministic. Non-periodic grids only (face 0 and face nx are distinct faces).
+/// it so that rounding cannot leave it above. Each sweep first finds the factor of every cell from the fluxes
+/// the previous sweep left (a Jacobi sweep), then cuts each face by the factor of its receiving cell (a face has
+/// exactly one): the result does not depend on the order of the cells, so the limiter can run on sub-domains
+/// with a halo exchange between sweeps. Cutting a face also cuts its donor's outflow, so sweeps repeat until no
+/// cell is over its bound at all (the check has no tolerance, and uses the very expression of
+/// conservative_update); after max_sweeps the run fails (simulation error). Where cut cells form a loop of flow,
+/// each cut returns to the cell that started it, so the sweeps converge geometrically; the default cap leaves a
+/// wide margin. Non-periodic grids only (face 0 and face nx are distinct faces).
 PackingLimitResult limit_packing(const Grid2& grid, const Field2& phi_old, double dt, double phi_max,
                                  FaceFluxes& flux, int max_sweeps = 1000);
 

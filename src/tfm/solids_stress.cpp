@@ -9,12 +9,12 @@ namespace {
 constexpr double sqrt_pi = 1.7724538509055160273;
 }
 
-double trace(const StrainRate2& d) { return d.xx + d.yy; }
-
-double double_dot(const StrainRate2& d) { return d.xx * d.xx + d.yy * d.yy + 2.0 * d.xy * d.xy; }
-
-double second_invariant(const StrainRate2& d) {
-  return ((d.xx - d.yy) * (d.xx - d.yy) + d.yy * d.yy + d.xx * d.xx) / 6.0 + d.xy * d.xy;
+template <int Dim>
+double second_invariant(const StrainRate<Dim>& d) {
+  const double xx = d.diag[0], yy = d.diag[1], zz = Dim == 3 ? d.diag[Dim - 1] : 0.0;
+  double shear = d.off[0] * d.off[0];
+  for (int k = 1; k < static_cast<int>(d.off.size()); ++k) shear += d.off[k] * d.off[k];
+  return ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) / 6.0 + shear;
 }
 
 double radial_distribution(double eps) { return (1.0 / eps) * (1.0 + 1.5 * (1.0 - eps) / eps); }
@@ -49,7 +49,8 @@ double kt_bulk_viscosity(const GranularMaterial& m, double eps, double theta) {
   return kt_k1(m, eps_s, radial_distribution(eps)) * eps_s * std::sqrt(theta);
 }
 
-double algebraic_granular_temperature(const GranularMaterial& m, double eps, const StrainRate2& d) {
+template <int Dim>
+double algebraic_granular_temperature(const GranularMaterial& m, double eps, const StrainRate<Dim>& d) {
   const double eps_s = 1.0 - eps;
   if (eps_s <= 0.0) return 0.0;
   const double g0 = radial_distribution(eps);
@@ -72,7 +73,8 @@ double frictional_p_star(double eps, double eps_star) {
 
 double frictional_pressure(double eps, double eps_star) { return (1.0 - eps) * frictional_p_star(eps, eps_star); }
 
-double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate2& d, double mu_max) {
+template <int Dim>
+double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate<Dim>& d, double mu_max) {
   const double p_star = frictional_p_star(eps, eps_star);
   if (p_star <= 0.0) return 0.0;
   const double root = std::sqrt(second_invariant(d));
@@ -91,5 +93,12 @@ double modulus_pressure(const ModulusParams& p, double eps, double eps_star) {
 double modulus_voidage_for_pressure(const ModulusParams& p, double p_s, double eps_star) {
   return eps_star - std::log(p_s * p.b / p.a) / p.b;
 }
+
+template double second_invariant<2>(const StrainRate<2>&);
+template double second_invariant<3>(const StrainRate<3>&);
+template double algebraic_granular_temperature<2>(const GranularMaterial&, double, const StrainRate<2>&);
+template double algebraic_granular_temperature<3>(const GranularMaterial&, double, const StrainRate<3>&);
+template double frictional_viscosity<2>(double, double, double, const StrainRate<2>&, double);
+template double frictional_viscosity<3>(double, double, double, const StrainRate<3>&, double);
 
 }  // namespace fluidbed::tfm

@@ -1,6 +1,7 @@
 #pragma once
 // Solids-phase stress closures of the two-fluid model (paper Eqs. 20-26), as small pure functions.
 // Voidage eps is the gas volume fraction; eps_s = 1 - eps.
+#include "core/sym_tensor.hpp"
 
 namespace fluidbed::tfm {
 
@@ -11,20 +12,17 @@ struct GranularMaterial {
   double e = 0.9;           ///< coefficient of restitution [-]
 };
 
-/// Symmetric 2D strain-rate tensor D = (grad v + grad v^T) / 2 [1/s]; the out-of-plane components are zero.
-struct StrainRate2 {
-  double xx = 0.0;
-  double yy = 0.0;
-  double xy = 0.0;
-};
+/// Strain-rate tensor D = (grad v + grad v^T) / 2 [1/s]; in 2D the out-of-plane components are zero.
+template <int Dim>
+using StrainRate = SymTensor<Dim>;
+using fluidbed::double_dot;
+using fluidbed::trace;
 
-/// tr(D).
-double trace(const StrainRate2& d);
-/// tr(D . D) = D:D.
-double double_dot(const StrainRate2& d);
-/// Second invariant used by Schaeffer's frictional viscosity:
-/// I_2D = [(Dxx - Dyy)^2 + Dyy^2 + Dxx^2] / 6 + Dxy^2 (plane strain, Dzz = 0).
-double second_invariant(const StrainRate2& d);
+/// Second invariant used by Schaeffer's frictional viscosity (Eq. 21):
+/// I_2D = [(Dxx - Dyy)^2 + (Dyy - Dzz)^2 + (Dzz - Dxx)^2] / 6 + Dxy^2 + Dxz^2 + Dyz^2; in 2D Dzz = Dxz = Dyz = 0
+/// (plane strain), which is the paper's [(Dxx - Dyy)^2 + Dyy^2 + Dxx^2] / 6 + Dxy^2 to the last bit.
+template <int Dim>
+double second_invariant(const StrainRate<Dim>& d);
 
 /// Eq. 26 exactly as printed: g0 = (1/eps) (1 + 1.5 eps_s / eps), eps the voidage.
 double radial_distribution(double eps);
@@ -47,14 +45,16 @@ double kt_bulk_viscosity(const GranularMaterial& m, double eps, double theta);
 /// Granular temperature [m^2/s^2] from the algebraic granular energy balance (production by the
 /// kinetic-theory stresses of Eqs. 23-25 equals collisional dissipation; convection and conduction dropped),
 /// the form of Syamlal, Rogers & O'Brien (1993, MFIX Theory Guide). Zero for eps_s <= 0.
-double algebraic_granular_temperature(const GranularMaterial& m, double eps, const StrainRate2& d);
+template <int Dim>
+double algebraic_granular_temperature(const GranularMaterial& m, double eps, const StrainRate<Dim>& d);
 
 /// Eq. 22: P* = 1e24 (eps* - eps)^10 Pa for eps < eps*, else 0.
 double frictional_p_star(double eps, double eps_star);
 /// Eq. 21: P_s^f = (1 - eps) P*.
 double frictional_pressure(double eps, double eps_star);
 /// Eq. 21: mu_s^f = P* sin(phi) / (2 sqrt(I_2D)), capped at mu_max because sqrt(I_2D) -> 0 in a bed at rest.
-double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate2& d, double mu_max);
+template <int Dim>
+double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate<Dim>& d, double mu_max);
 
 /// Parameters of the solids-pressure modulus of Eq. 20 in the exponential form the paper cites,
 /// G = A exp(B (eps* - eps)).

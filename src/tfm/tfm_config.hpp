@@ -2,15 +2,20 @@
 // Configuration of the two-fluid model (paper section 2.2, Table 1 TFM column); defaults are the paper's case.
 #include <cstdint>
 #include <optional>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
+#include "core/tvd_limiter.hpp"
 #include "core/vec2.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_config.hpp"
-#include "tfm/flux_limiter.hpp"
 #include "tfm/solids_stress.hpp"
 
 namespace fluidbed::tfm {
+
+/// The shared TVD limiter family (also the gas solver's).
+using Limiter = tvd::Limiter;
 
 /// Solids rheology of Eq. 19, the paper's three cases.
 enum class SolidsRheology {
@@ -18,6 +23,20 @@ enum class SolidsRheology {
   Inviscid,           ///< mu_s = 0, P_s from Eq. 20
   KineticTheory,      ///< Eqs. 23-26 with algebraic Theta above eps*, frictional Eqs. 21-22 at or below eps*
 };
+
+/// Calls f(std::integral_constant<SolidsRheology, R>{}) for the rheology r: the one run-time switch, taken before
+/// a loop that is compiled once per rheology.
+template <class F>
+decltype(auto) with_rheology(SolidsRheology r, F&& f) {
+  switch (r) {
+    case SolidsRheology::ConstantViscosity:
+      return std::forward<F>(f)(std::integral_constant<SolidsRheology, SolidsRheology::ConstantViscosity>{});
+    case SolidsRheology::Inviscid:
+      return std::forward<F>(f)(std::integral_constant<SolidsRheology, SolidsRheology::Inviscid>{});
+    case SolidsRheology::KineticTheory: break;
+  }
+  return std::forward<F>(f)(std::integral_constant<SolidsRheology, SolidsRheology::KineticTheory>{});
+}
 
 struct TfmConfig {
   // Domain and grid (Table 1: 0.6 x 1.0 m, 0.02 x 0.02 m cells).

@@ -37,22 +37,24 @@ double seeded_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t in
 
 // Advective term (U . grad) u of the x-velocity at u-face (i, j), TVD face values, advective form
 // div(U u) - u div(U) so that it vanishes for a uniform field.
-double advect_u(Limiter lim, const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
+template <class Law>
+double advect_u(const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
   const int nx = u.nx - 1, ny = u.ny;
   auto U = [&](int a, int b) { return u(clampi(a, 0, nx), clampi(b, 0, ny - 1)); };
   const double ue_vel = 0.5 * (U(i, j) + U(i + 1, j));
   const double uw_vel = 0.5 * (U(i - 1, j) + U(i, j));
   const double vn_vel = 0.5 * (v(i - 1, j + 1) + v(i, j + 1));
   const double vs_vel = 0.5 * (v(i - 1, j) + v(i, j));
-  const double fe = ue_vel * tvd_face_value(lim, ue_vel, U(i - 1, j), U(i, j), U(i + 1, j), U(i + 2, j));
-  const double fw = uw_vel * tvd_face_value(lim, uw_vel, U(i - 2, j), U(i - 1, j), U(i, j), U(i + 1, j));
-  const double fn = vn_vel * tvd_face_value(lim, vn_vel, U(i, j - 1), U(i, j), U(i, j + 1), U(i, j + 2));
-  const double fs = vs_vel * tvd_face_value(lim, vs_vel, U(i, j - 2), U(i, j - 1), U(i, j), U(i, j + 1));
+  const double fe = ue_vel * tvd::face_value<Law>(ue_vel, U(i - 1, j), U(i, j), U(i + 1, j), U(i + 2, j));
+  const double fw = uw_vel * tvd::face_value<Law>(uw_vel, U(i - 2, j), U(i - 1, j), U(i, j), U(i + 1, j));
+  const double fn = vn_vel * tvd::face_value<Law>(vn_vel, U(i, j - 1), U(i, j), U(i, j + 1), U(i, j + 2));
+  const double fs = vs_vel * tvd::face_value<Law>(vs_vel, U(i, j - 2), U(i, j - 1), U(i, j), U(i, j + 1));
   return (fe - fw) / dx + (fn - fs) / dy - U(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
 }
 
 // Same for the y-velocity at v-face (i, j).
-double advect_v(Limiter lim, const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
+template <class Law>
+double advect_v(const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
   const int nx = v.nx, ny = v.ny - 1;
   auto V = [&](int a, int b) { return v(clampi(a, 0, nx - 1), clampi(b, 0, ny)); };
   const int jl = clampi(j - 1, 0, ny - 1), jh = clampi(j, 0, ny - 1);
@@ -60,10 +62,10 @@ double advect_v(Limiter lim, const Field2& u, const Field2& v, int i, int j, dou
   const double vs_vel = 0.5 * (V(i, j - 1) + V(i, j));
   const double ue_vel = 0.5 * (u(i + 1, jl) + u(i + 1, jh));
   const double uw_vel = 0.5 * (u(i, jl) + u(i, jh));
-  const double fn = vn_vel * tvd_face_value(lim, vn_vel, V(i, j - 1), V(i, j), V(i, j + 1), V(i, j + 2));
-  const double fs = vs_vel * tvd_face_value(lim, vs_vel, V(i, j - 2), V(i, j - 1), V(i, j), V(i, j + 1));
-  const double fe = ue_vel * tvd_face_value(lim, ue_vel, V(i - 1, j), V(i, j), V(i + 1, j), V(i + 2, j));
-  const double fw = uw_vel * tvd_face_value(lim, uw_vel, V(i - 2, j), V(i - 1, j), V(i, j), V(i + 1, j));
+  const double fn = vn_vel * tvd::face_value<Law>(vn_vel, V(i, j - 1), V(i, j), V(i, j + 1), V(i, j + 2));
+  const double fs = vs_vel * tvd::face_value<Law>(vs_vel, V(i, j - 2), V(i, j - 1), V(i, j), V(i, j + 1));
+  const double fe = ue_vel * tvd::face_value<Law>(ue_vel, V(i - 1, j), V(i, j), V(i + 1, j), V(i + 2, j));
+  const double fw = uw_vel * tvd::face_value<Law>(uw_vel, V(i - 2, j), V(i - 1, j), V(i, j), V(i + 1, j));
   return (fe - fw) / dx + (fn - fs) / dy - V(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
 }
 
@@ -88,13 +90,15 @@ FaceSolve solve_face(double a_g, double a_s, double beta, double rhs_g, double r
   return f;
 }
 
+template <SolidsRheology R>
 double solids_pressure_law(const TfmConfig& c, const GranularMaterial& m, double eps, double theta) {
-  if (c.rheology == SolidsRheology::KineticTheory) {
+  if constexpr (R == SolidsRheology::KineticTheory) {
     // Eq. 19: frictional regime at or below eps*, kinetic theory above.
     if (eps <= c.eps_star) return frictional_pressure(eps, c.eps_star);
     return kt_pressure(m, eps, theta);
+  } else {
+    return modulus_pressure(c.modulus, eps, c.eps_star);
   }
-  return modulus_pressure(c.modulus, eps, c.eps_star);
 }
 
 }  // namespace
@@ -242,6 +246,11 @@ void TfmSolver::mask_trace_solids_velocity() {
 }
 
 void TfmSolver::compute_cell_closures() {
+  with_rheology(config_.rheology, [this](auto r) { compute_cell_closures_of<decltype(r)::value>(); });
+}
+
+template <SolidsRheology R>
+void TfmSolver::compute_cell_closures_of() {
   const TfmConfig& c = config_;
   const GranularMaterial mat{c.d_p, c.rho_s, c.e};
   const double phi = c.phi_deg * 3.14159265358979323846 / 180.0;
@@ -260,38 +269,34 @@ void TfmSolver::compute_cell_closures() {
       beta_c_(i, j) = beta_ergun_wen_yu(in, c.drag_switch);
 
       double mu = 0.0, lambda = 0.0, theta = 0.0;
-      switch (c.rheology) {
-        case SolidsRheology::Inviscid: break;
-        case SolidsRheology::ConstantViscosity:
-          mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
-          break;
-        case SolidsRheology::KineticTheory: {
-          StrainRate2 d;
-          d.xx = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
-          d.yy = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
-          const int il = std::max(i - 1, 0), ih = std::min(i + 1, nx - 1);
-          const int jl = std::max(j - 1, 0), jh = std::min(j + 1, ny - 1);
-          const double dudy = jh > jl ? (usc(i, jh) - usc(i, jl)) / ((jh - jl) * dy) : 0.0;
-          const double dvdx = ih > il ? (vsc(ih, j) - vsc(il, j)) / ((ih - il) * dx) : 0.0;
-          d.xy = 0.5 * (dudy + dvdx);
-          if (eps <= c.eps_star) {
-            mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
-          } else if (eps_s > 0.0) {
-            theta = algebraic_granular_temperature(mat, eps, d);
-            mu = std::min(kt_shear_viscosity(mat, eps, theta), c.mu_s_max);
-            lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
-          }
-          break;
+      if constexpr (R == SolidsRheology::ConstantViscosity) {
+        mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
+      } else if constexpr (R == SolidsRheology::KineticTheory) {
+        StrainRate<2> d;
+        d(0, 0) = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
+        d(1, 1) = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
+        const int il = std::max(i - 1, 0), ih = std::min(i + 1, nx - 1);
+        const int jl = std::max(j - 1, 0), jh = std::min(j + 1, ny - 1);
+        const double dudy = jh > jl ? (usc(i, jh) - usc(i, jl)) / ((jh - jl) * dy) : 0.0;
+        const double dvdx = ih > il ? (vsc(ih, j) - vsc(il, j)) / ((ih - il) * dx) : 0.0;
+        d(0, 1) = 0.5 * (dudy + dvdx);
+        if (eps <= c.eps_star) {
+          mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
+        } else if (eps_s > 0.0) {
+          theta = algebraic_granular_temperature(mat, eps, d);
+          mu = std::min(kt_shear_viscosity(mat, eps, theta), c.mu_s_max);
+          lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
         }
       }
       mu_s_(i, j) = mu;
       lambda_s_(i, j) = lambda;
       s_.theta(i, j) = theta;
-      p_s_(i, j) = solids_pressure_law(c, mat, eps, theta);
+      p_s_(i, j) = solids_pressure_law<R>(c, mat, eps, theta);
       // dP_s/d eps_s sets the speed of compaction waves that the explicit solids pressure must resolve.
       const double h = 1e-7;
-      dps_deps_(i, j) =
-          std::max(0.0, (solids_pressure_law(c, mat, eps - h, theta) - solids_pressure_law(c, mat, eps + h, theta)) / (2 * h));
+      const double p_lo = solids_pressure_law<R>(c, mat, eps - h, theta);
+      const double p_hi = solids_pressure_law<R>(c, mat, eps + h, theta);
+      dps_deps_(i, j) = std::max(0.0, (p_lo - p_hi) / (2 * h));
     }
   }
 }
@@ -372,104 +377,108 @@ double TfmSolver::step(double t_stop) {
   };
   auto div_s = [&](int i, int j) { return (us0(i + 1, j) - us0(i, j)) / dx + (vs0(i, j + 1) - vs0(i, j)) / dy; };
 
-  // x-momentum on interior vertical faces (Eqs. 17-18).
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 1; i < nx; ++i) {
-      const double eg = 0.5 * (eps(i - 1, j) + eps(i, j));
-      const double es = std::max(1.0 - eg, kEpsSFloor);
-      const double beta = 0.5 * (beta_c_(i - 1, j) + beta_c_(i, j));
-      const double dpdx = (p(i, j) - p(i - 1, j)) / dx;
-      const double adv_g = advect_u(c.limiter, ug0, vg0, i, j, dx, dy);
-      const double a_g = eg * rho_g / dt;
-      const double rhs_g = a_g * ug0(i, j) - eg * rho_g * adv_g + eg * rho_g * gx - eg * dpdx;
-      if (!bearing(i - 1, j, i, j)) {
-        // No solids on one side: the solids velocity stays as extrapolated from the bed, the gas feels its drag.
-        s_.ug(i, j) = (rhs_g + beta * us0(i, j)) / (a_g + beta);
-        dgu(i, j) = eg / (a_g + beta);
-        dsu(i, j) = 0.0;
-        continue;
-      }
-      const double dpsdx = (p_s_(i, j) - p_s_(i - 1, j)) / dx;
-      // Eq. 19 stress divergence; the Laplacian diagonal is taken implicitly (point-implicit) for stability.
-      auto sxx = [&](int ci) {
-        return 2.0 * mu_s_(ci, j) * (us0(ci + 1, j) - us0(ci, j)) / dx + lambda_s_(ci, j) * div_s(ci, j);
-      };
-      auto sxy = [&](int jc) {  // corner (i, jc); bottom and top are free-slip for the solids
-        if (jc == 0 || jc == ny) return 0.0;
-        return mu_corner(i, jc) * ((us0(i, jc) - us0(i, jc - 1)) / dy + (vs0(i, jc) - vs0(i - 1, jc)) / dx);
-      };
-      double diag = 2.0 * (mu_s_(i, j) + mu_s_(i - 1, j)) / (dx * dx);
-      if (j > 0) diag += mu_corner(i, j) / (dy * dy);
-      if (j < ny - 1) diag += mu_corner(i, j + 1) / (dy * dy);
-      const double visc = (sxx(i) - sxx(i - 1)) / dx + (sxy(j + 1) - sxy(j)) / dy + diag * us0(i, j);
-      const double adv_s = advect_u(c.limiter, us0, vs0, i, j, dx, dy);
-      const double a_s = es * rho_s / dt;
-      const double rhs_s = a_s * us0(i, j) - es * rho_s * adv_s + es * rho_s * gx - es * dpdx - dpsdx + visc;
-      const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
-      s_.ug(i, j) = f.ug;
-      s_.us(i, j) = f.us;
-      dgu(i, j) = f.dg;
-      dsu(i, j) = f.ds;
-      gsu(i, j) = f.gs;
-      ssu(i, j) = f.ss;
-    }
-  }
-  // y-momentum on interior horizontal faces and, when open, the top face (ghost pressure keeps P = P_top there).
-  for (int j = 1; j <= ny; ++j) {
-    const bool top = j == ny;
-    if (top && !top_open) break;
-    for (int i = 0; i < nx; ++i) {
-      const double eg = top ? eps(i, ny - 1) : 0.5 * (eps(i, j - 1) + eps(i, j));
-      const double es = std::max(1.0 - eg, kEpsSFloor);
-      const double beta = top ? beta_c_(i, ny - 1) : 0.5 * (beta_c_(i, j - 1) + beta_c_(i, j));
-      const double p_above = top ? 2.0 * c.boundary.top_pressure - p(i, ny - 1) : p(i, j);
-      const double dpdy = (p_above - p(i, j - 1)) / dy;
-      const double adv_g = advect_v(c.limiter, ug0, vg0, i, j, dx, dy);
-      const double a_g = eg * rho_g / dt;
-      const double rhs_g = a_g * vg0(i, j) - eg * rho_g * adv_g + eg * rho_g * gy - eg * dpdy;
-      if (top || !bearing(i, j - 1, i, j)) {
-        // Solids cannot leave through the top; on a face with no solids on one side the solids velocity stays
-        // as extrapolated from the bed. Only the gas row remains, with the drag of those solids.
-        const double v_s = top ? 0.0 : vs0(i, j);
-        s_.vg(i, j) = (rhs_g + beta * v_s) / (a_g + beta);
-        dgv(i, j) = eg / (a_g + beta);
-        s_.vs(i, j) = v_s;
-        dsv(i, j) = 0.0;
-        continue;
-      }
-      const double dpsdy = (p_s_(i, j) - p_s_(i, j - 1)) / dy;
-      auto syy = [&](int cj) {
-        return 2.0 * mu_s_(i, cj) * (vs0(i, cj + 1) - vs0(i, cj)) / dy + lambda_s_(i, cj) * div_s(i, cj);
-      };
-      double diag = 2.0 * (mu_s_(i, j) + mu_s_(i, j - 1)) / (dy * dy);
-      auto sxy = [&](int ic) {  // corner (ic, j); side walls slip, or no-slip with the wall at dx/2
-        if (ic == 0 || ic == nx) {
-          const double mu_w = mu_wall * 0.5 * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j));
-          const double v_in = vs0(ic == 0 ? 0 : nx - 1, j);
-          return (ic == 0 ? 2.0 : -2.0) * mu_w * v_in / dx;
+  // The momentum loops are compiled once per limiter law; the law is chosen here, once per step.
+  tvd::with_limiter(c.limiter, [&](auto law) {
+    using Law = decltype(law);
+    // x-momentum on interior vertical faces (Eqs. 17-18).
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 1; i < nx; ++i) {
+        const double eg = 0.5 * (eps(i - 1, j) + eps(i, j));
+        const double es = std::max(1.0 - eg, kEpsSFloor);
+        const double beta = 0.5 * (beta_c_(i - 1, j) + beta_c_(i, j));
+        const double dpdx = (p(i, j) - p(i - 1, j)) / dx;
+        const double adv_g = advect_u<Law>(ug0, vg0, i, j, dx, dy);
+        const double a_g = eg * rho_g / dt;
+        const double rhs_g = a_g * ug0(i, j) - eg * rho_g * adv_g + eg * rho_g * gx - eg * dpdx;
+        if (!bearing(i - 1, j, i, j)) {
+          // No solids on one side: the solids velocity stays as extrapolated from the bed, the gas feels its drag.
+          s_.ug(i, j) = (rhs_g + beta * us0(i, j)) / (a_g + beta);
+          dgu(i, j) = eg / (a_g + beta);
+          dsu(i, j) = 0.0;
+          continue;
         }
-        return mu_corner(ic, j) * ((us0(ic, j) - us0(ic, j - 1)) / dy + (vs0(ic, j) - vs0(ic - 1, j)) / dx);
-      };
-      for (int ic : {i, i + 1}) {
-        if (ic == 0 || ic == nx) {
-          diag += mu_wall * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j)) / (dx * dx);
-        } else {
-          diag += mu_corner(ic, j) / (dx * dx);
-        }
+        const double dpsdx = (p_s_(i, j) - p_s_(i - 1, j)) / dx;
+        // Eq. 19 stress divergence; the Laplacian diagonal is taken implicitly (point-implicit) for stability.
+        auto sxx = [&](int ci) {
+          return 2.0 * mu_s_(ci, j) * (us0(ci + 1, j) - us0(ci, j)) / dx + lambda_s_(ci, j) * div_s(ci, j);
+        };
+        auto sxy = [&](int jc) {  // corner (i, jc); bottom and top are free-slip for the solids
+          if (jc == 0 || jc == ny) return 0.0;
+          return mu_corner(i, jc) * ((us0(i, jc) - us0(i, jc - 1)) / dy + (vs0(i, jc) - vs0(i - 1, jc)) / dx);
+        };
+        double diag = 2.0 * (mu_s_(i, j) + mu_s_(i - 1, j)) / (dx * dx);
+        if (j > 0) diag += mu_corner(i, j) / (dy * dy);
+        if (j < ny - 1) diag += mu_corner(i, j + 1) / (dy * dy);
+        const double visc = (sxx(i) - sxx(i - 1)) / dx + (sxy(j + 1) - sxy(j)) / dy + diag * us0(i, j);
+        const double adv_s = advect_u<Law>(us0, vs0, i, j, dx, dy);
+        const double a_s = es * rho_s / dt;
+        const double rhs_s = a_s * us0(i, j) - es * rho_s * adv_s + es * rho_s * gx - es * dpdx - dpsdx + visc;
+        const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
+        s_.ug(i, j) = f.ug;
+        s_.us(i, j) = f.us;
+        dgu(i, j) = f.dg;
+        dsu(i, j) = f.ds;
+        gsu(i, j) = f.gs;
+        ssu(i, j) = f.ss;
       }
-      const double visc = (syy(j) - syy(j - 1)) / dy + (sxy(i + 1) - sxy(i)) / dx + diag * vs0(i, j);
-      const double adv_s = advect_v(c.limiter, us0, vs0, i, j, dx, dy);
-      const double a_s = es * rho_s / dt;
-      const double rhs_s = a_s * vs0(i, j) - es * rho_s * adv_s + es * rho_s * gy - es * dpdy - dpsdy + visc;
-      const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
-      s_.vg(i, j) = f.ug;
-      s_.vs(i, j) = f.us;
-      dgv(i, j) = f.dg;
-      dsv(i, j) = f.ds;
-      gsv(i, j) = f.gs;
-      ssv(i, j) = f.ss;
     }
-  }
+    // y-momentum on interior horizontal faces and, when open, the top face (ghost pressure keeps P = P_top there).
+    for (int j = 1; j <= ny; ++j) {
+      const bool top = j == ny;
+      if (top && !top_open) break;
+      for (int i = 0; i < nx; ++i) {
+        const double eg = top ? eps(i, ny - 1) : 0.5 * (eps(i, j - 1) + eps(i, j));
+        const double es = std::max(1.0 - eg, kEpsSFloor);
+        const double beta = top ? beta_c_(i, ny - 1) : 0.5 * (beta_c_(i, j - 1) + beta_c_(i, j));
+        const double p_above = top ? 2.0 * c.boundary.top_pressure - p(i, ny - 1) : p(i, j);
+        const double dpdy = (p_above - p(i, j - 1)) / dy;
+        const double adv_g = advect_v<Law>(ug0, vg0, i, j, dx, dy);
+        const double a_g = eg * rho_g / dt;
+        const double rhs_g = a_g * vg0(i, j) - eg * rho_g * adv_g + eg * rho_g * gy - eg * dpdy;
+        if (top || !bearing(i, j - 1, i, j)) {
+          // Solids cannot leave through the top; on a face with no solids on one side the solids velocity stays
+          // as extrapolated from the bed. Only the gas row remains, with the drag of those solids.
+          const double v_s = top ? 0.0 : vs0(i, j);
+          s_.vg(i, j) = (rhs_g + beta * v_s) / (a_g + beta);
+          dgv(i, j) = eg / (a_g + beta);
+          s_.vs(i, j) = v_s;
+          dsv(i, j) = 0.0;
+          continue;
+        }
+        const double dpsdy = (p_s_(i, j) - p_s_(i, j - 1)) / dy;
+        auto syy = [&](int cj) {
+          return 2.0 * mu_s_(i, cj) * (vs0(i, cj + 1) - vs0(i, cj)) / dy + lambda_s_(i, cj) * div_s(i, cj);
+        };
+        double diag = 2.0 * (mu_s_(i, j) + mu_s_(i, j - 1)) / (dy * dy);
+        auto sxy = [&](int ic) {  // corner (ic, j); side walls slip, or no-slip with the wall at dx/2
+          if (ic == 0 || ic == nx) {
+            const double mu_w = mu_wall * 0.5 * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j));
+            const double v_in = vs0(ic == 0 ? 0 : nx - 1, j);
+            return (ic == 0 ? 2.0 : -2.0) * mu_w * v_in / dx;
+          }
+          return mu_corner(ic, j) * ((us0(ic, j) - us0(ic, j - 1)) / dy + (vs0(ic, j) - vs0(ic - 1, j)) / dx);
+        };
+        for (int ic : {i, i + 1}) {
+          if (ic == 0 || ic == nx) {
+            diag += mu_wall * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j)) / (dx * dx);
+          } else {
+            diag += mu_corner(ic, j) / (dx * dx);
+          }
+        }
+        const double visc = (syy(j) - syy(j - 1)) / dy + (sxy(i + 1) - sxy(i)) / dx + diag * vs0(i, j);
+        const double adv_s = advect_v<Law>(us0, vs0, i, j, dx, dy);
+        const double a_s = es * rho_s / dt;
+        const double rhs_s = a_s * vs0(i, j) - es * rho_s * adv_s + es * rho_s * gy - es * dpdy - dpsdy + visc;
+        const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
+        s_.vg(i, j) = f.ug;
+        s_.vs(i, j) = f.us;
+        dgv(i, j) = f.dg;
+        dsv(i, j) = f.ds;
+        gsv(i, j) = f.gs;
+        ssv(i, j) = f.ss;
+      }
+    }
+  });
   // Boundary faces: walls, inflow through the distributor, closed lid.
   for (int j = 0; j < ny; ++j) {
     s_.ug(0, j) = s_.ug(nx, j) = s_.us(0, j) = s_.us(nx, j) = 0.0;

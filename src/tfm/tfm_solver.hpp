@@ -104,6 +104,9 @@ class TfmSolver {
   double vg_interstitial(int i, int j) const;
   void mask_trace_solids_velocity();
   void compute_cell_closures();
+  /// compute_cell_closures for one rheology (chosen once, outside the cell loop).
+  template <SolidsRheology R>
+  void compute_cell_closures_of();
   double choose_dt(double t_stop) const;
   /// Throws a simulation error with a diagnosis (time, cell, what, likely cause, remedy) when the state just
   /// reached is not physical: non-finite values, voidage outside [0, 1], speeds above reference_speed().

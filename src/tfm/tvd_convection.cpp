@@ -44,8 +44,11 @@ void divergence_from_faces(const Grid2& g, const FaceVelocity& vel, const Field2
 
 }  // namespace
 
-void tvd_face_values(const Grid2& g, Limiter limiter, const Field2& phi, const FaceVelocity& vel, Field2& phi_x,
-                     Field2& phi_y) {
+namespace {
+
+// The face loops, compiled once per limiter law.
+template <class Law>
+void tvd_face_values_of(const Grid2& g, const Field2& phi, const FaceVelocity& vel, Field2& phi_x, Field2& phi_y) {
   const bool per = vel.periodic_x;
   phi_x = Field2(g.nx + 1, g.ny);
   phi_y = Field2(g.nx, g.ny + 1);
@@ -55,8 +58,8 @@ void tvd_face_values(const Grid2& g, Limiter limiter, const Field2& phi, const F
         phi_x(i, j) = phi(i == 0 ? 0 : g.nx - 1, j);
         continue;
       }
-      phi_x(i, j) = tvd_face_value(limiter, face_u(vel, i, j), cell(phi, i - 2, j, per), cell(phi, i - 1, j, per),
-                                   cell(phi, i, j, per), cell(phi, i + 1, j, per));
+      phi_x(i, j) = tvd::face_value<Law>(face_u(vel, i, j), cell(phi, i - 2, j, per), cell(phi, i - 1, j, per),
+                                         cell(phi, i, j, per), cell(phi, i + 1, j, per));
     }
   }
   for (int j = 0; j <= g.ny; ++j) {
@@ -65,10 +68,17 @@ void tvd_face_values(const Grid2& g, Limiter limiter, const Field2& phi, const F
         phi_y(i, j) = phi(i, j == 0 ? 0 : g.ny - 1);
         continue;
       }
-      phi_y(i, j) = tvd_face_value(limiter, vel.v(i, j), cell(phi, i, j - 2, per), cell(phi, i, j - 1, per),
-                                   cell(phi, i, j, per), cell(phi, i, j + 1, per));
+      phi_y(i, j) = tvd::face_value<Law>(vel.v(i, j), cell(phi, i, j - 2, per), cell(phi, i, j - 1, per),
+                                         cell(phi, i, j, per), cell(phi, i, j + 1, per));
     }
   }
+}
+
+}  // namespace
+
+void tvd_face_values(const Grid2& g, Limiter limiter, const Field2& phi, const FaceVelocity& vel, Field2& phi_x,
+                     Field2& phi_y) {
+  tvd::with_limiter(limiter, [&](auto law) { tvd_face_values_of<decltype(law)>(g, phi, vel, phi_x, phi_y); });
 }
 
 void convective_divergence(const Grid2& g, Limiter limiter, const Field2& phi, const FaceVelocity& vel,

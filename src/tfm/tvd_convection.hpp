@@ -3,9 +3,12 @@
 // (paper section 2.2.1: upwind flux plus a limited 0.5|U|(phi_i - phi_{i-1}) correction).
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
-#include "tfm/flux_limiter.hpp"
+#include "core/tvd_limiter.hpp"
 
 namespace fluidbed::tfm {
+
+/// The shared TVD limiter family (also the gas solver's).
+using Limiter = tvd::Limiter;
 
 /// Staggered velocities that carry the scalar: u on vertical faces ((nx+1) x ny), v on horizontal faces
 /// (nx x (ny+1)). With periodic_x, face 0 and face nx are the same face (u(0, j) is used for both).

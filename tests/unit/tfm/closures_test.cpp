@@ -3,11 +3,24 @@
 
 #include <cmath>
 
-#include "tfm/flux_limiter.hpp"
+#include "core/tvd_limiter.hpp"
 #include "tfm/solids_stress.hpp"
 
 namespace fluidbed::tfm {
 namespace {
+
+using tvd::Limiter;
+double superbee(double r) { return tvd::SuperbeeLaw::psi(r); }
+double minmod(double r) { return tvd::MinmodLaw::psi(r); }
+double van_leer(double r) { return tvd::VanLeerLaw::psi(r); }
+// 2D strain rate from its three components.
+StrainRate<2> d2(double xx, double yy, double xy) {
+  StrainRate<2> d;
+  d(0, 0) = xx;
+  d(1, 1) = yy;
+  d(0, 1) = xy;
+  return d;
+}
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -25,7 +38,7 @@ TEST(Limiters, TextbookValues) {
   EXPECT_DOUBLE_EQ(van_leer(-2.0), 0.0);
   for (double r = -2.0; r <= 10.0; r += 0.125) {
     for (Limiter l : {Limiter::Superbee, Limiter::Minmod, Limiter::VanLeer}) {
-      const double psi = limiter_value(l, r);
+      const double psi = tvd::psi(l, r);
       // TVD region of Sweby (1984): 0 <= psi <= min(2r, 2) for r > 0, psi = 0 for r <= 0.
       EXPECT_GE(psi, 0.0);
       EXPECT_LE(psi, std::max(0.0, std::min(2.0 * r, 2.0)) + 1e-15);
@@ -35,13 +48,13 @@ TEST(Limiters, TextbookValues) {
 
 TEST(Limiters, FaceValuePicksUpwindSide) {
   // Linear data phi = 1, 2, 3, 4: r = 1 so every limiter gives the central value 2.5 on the middle face.
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, 1.0, 1, 2, 3, 4), 2.5);
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, -1.0, 1, 2, 3, 4), 2.5);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Superbee, 1.0, 1, 2, 3, 4), 2.5);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Superbee, -1.0, 1, 2, 3, 4), 2.5);
   // Upwind returns the upwind cell for each direction.
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Upwind, 1.0, 1, 2, 3, 4), 2.0);
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Upwind, -1.0, 1, 2, 3, 4), 3.0);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Upwind, 1.0, 1, 2, 3, 4), 2.0);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Upwind, -1.0, 1, 2, 3, 4), 3.0);
   // At an extremum (2 is a peak) the correction vanishes.
-  EXPECT_DOUBLE_EQ(tvd_face_value(Limiter::Superbee, 1.0, 1, 2, 0, 4), 2.0);
+  EXPECT_DOUBLE_EQ(tvd::face_value(Limiter::Superbee, 1.0, 1, 2, 0, 4), 2.0);
 }
 
 TEST(KineticTheory, RadialDistributionAsPrinted) {
@@ -86,7 +99,7 @@ TEST(KineticTheory, DiluteLimitOfViscosity) {
 TEST(KineticTheory, AlgebraicTemperatureBalancesProductionAndDissipation) {
   const GranularMaterial m{0.004, 2700.0, 0.9};
   for (double eps : {0.45, 0.6, 0.9}) {
-    for (StrainRate2 d : {StrainRate2{0.0, 0.0, 5.0}, StrainRate2{2.0, -1.0, 3.0}, StrainRate2{-4.0, 1.0, 0.5}}) {
+    for (const StrainRate<2>& d : {d2(0.0, 0.0, 5.0), d2(2.0, -1.0, 3.0), d2(-4.0, 1.0, 0.5)}) {
       const double theta = algebraic_granular_temperature(m, eps, d);
       ASSERT_GT(theta, 0.0);
       const double eps_s = 1.0 - eps;
@@ -100,10 +113,10 @@ TEST(KineticTheory, AlgebraicTemperatureBalancesProductionAndDissipation) {
     }
   }
   // Pure shear in the dense limit: Theta scales with the square of the shear rate (no intrinsic rate scale).
-  const double t1 = algebraic_granular_temperature(m, 0.45, {0.0, 0.0, 1.0});
-  const double t2 = algebraic_granular_temperature(m, 0.45, {0.0, 0.0, 2.0});
+  const double t1 = algebraic_granular_temperature(m, 0.45, d2(0.0, 0.0, 1.0));
+  const double t2 = algebraic_granular_temperature(m, 0.45, d2(0.0, 0.0, 2.0));
   EXPECT_NEAR(t2 / t1, 4.0, 1e-12);
-  EXPECT_DOUBLE_EQ(algebraic_granular_temperature(m, 0.45, {}), 0.0);
+  EXPECT_DOUBLE_EQ(algebraic_granular_temperature(m, 0.45, StrainRate<2>{}), 0.0);
 }
 
 TEST(Frictional, HandComputedValues) {
@@ -113,9 +126,51 @@ TEST(Frictional, HandComputedValues) {
   EXPECT_DOUBLE_EQ(frictional_p_star(0.44, 0.43), 0.0);
   // Simple shear D_xy = 1: I_2D = 1, mu = 1e4 sin(40 deg) / 2.
   const double phi = 40.0 * kPi / 180.0;
-  EXPECT_NEAR(frictional_viscosity(0.42, 0.43, phi, {0.0, 0.0, 1.0}, 1e9), 0.5e4 * std::sin(phi), 1e-8);
-  EXPECT_DOUBLE_EQ(frictional_viscosity(0.42, 0.43, phi, {}, 100.0), 100.0);
-  EXPECT_NEAR(second_invariant({1.0, -1.0, 0.0}), (4.0 + 1.0 + 1.0) / 6.0, 1e-15);
+  EXPECT_NEAR(frictional_viscosity(0.42, 0.43, phi, d2(0.0, 0.0, 1.0), 1e9), 0.5e4 * std::sin(phi), 1e-8);
+  EXPECT_DOUBLE_EQ(frictional_viscosity(0.42, 0.43, phi, StrainRate<2>{}, 100.0), 100.0);
+  EXPECT_NEAR(second_invariant(d2(1.0, -1.0, 0.0)), (4.0 + 1.0 + 1.0) / 6.0, 1e-15);
+}
+
+TEST(StrainRateInvariants, ThreeDimensionalFormReducesToPlaneStrain) {
+  // A 3D strain rate with zero out-of-plane components is the 2D one: trace, D:D and Schaeffer's invariant agree
+  // to the last bit (the zero terms are exact), so 2D results do not move when the closures are shared with 3D.
+  for (const StrainRate<2>& d : {d2(0.3, -1.7, 2.2), d2(-4.0, 1.0, 0.5), d2(1e-3, 2e-3, -7e-4)}) {
+    StrainRate<3> e;
+    e(0, 0) = d(0, 0);
+    e(1, 1) = d(1, 1);
+    e(0, 1) = d(0, 1);
+    EXPECT_EQ(trace(e), trace(d));
+    EXPECT_EQ(double_dot(e), double_dot(d));
+    EXPECT_EQ(second_invariant(e), second_invariant(d));
+    // The paper's plane-strain formula, written out.
+    const double xx = d(0, 0), yy = d(1, 1), xy = d(0, 1);
+    EXPECT_EQ(second_invariant(d), ((xx - yy) * (xx - yy) + yy * yy + xx * xx) / 6.0 + xy * xy);
+  }
+}
+
+TEST(StrainRateInvariants, ThreeDimensionalHandValues) {
+  // Uniaxial extension D = diag(1, 0, 0): I_2D = (1 + 0 + 1) / 6 = 1/3; D:D = 1.
+  StrainRate<3> a;
+  a(0, 0) = 1.0;
+  EXPECT_DOUBLE_EQ(second_invariant(a), 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(double_dot(a), 1.0);
+  // Isotropic D = I: no deviatoric part, I_2D = 0; tr = 3, D:D = 3.
+  StrainRate<3> b;
+  for (int k = 0; k < 3; ++k) b(k, k) = 1.0;
+  EXPECT_DOUBLE_EQ(second_invariant(b), 0.0);
+  EXPECT_DOUBLE_EQ(trace(b), 3.0);
+  // Shear in the y-z plane, D_yz = 2: I_2D = 4, D:D = 2 * 4; symmetric access (2, 1) is the same slot.
+  StrainRate<3> c;
+  c(1, 2) = 2.0;
+  EXPECT_DOUBLE_EQ(c(2, 1), 2.0);
+  EXPECT_DOUBLE_EQ(second_invariant(c), 4.0);
+  EXPECT_DOUBLE_EQ(double_dot(c), 8.0);
+  // I_2D is frame-invariant: D_xy = 1 (simple shear) rotated by 45 degrees about z is diag(1, -1, 0).
+  StrainRate<3> s, r;
+  s(0, 1) = 1.0;
+  r(0, 0) = 1.0;
+  r(1, 1) = -1.0;
+  EXPECT_DOUBLE_EQ(second_invariant(s), second_invariant(r));
 }
 
 TEST(Modulus, Eq20ExponentialForm) {
