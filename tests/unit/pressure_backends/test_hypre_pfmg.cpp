@@ -7,6 +7,7 @@
 // all-Neumann problem (pinned first cell) must agree with Eigen's pinned answer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -109,6 +110,46 @@ TEST(HyprePfmg, Poisson2dFixedPressure) { check<2>({30, 50}, true); }
 TEST(HyprePfmg, Poisson2dNeumannPinned) { check<2>({17, 23}, false); }
 TEST(HyprePfmg, Poisson3dFixedPressure) { check<3>({20, 24, 16}, true); }
 TEST(HyprePfmg, Poisson3dNeumannPinned) { check<3>({9, 11, 7}, false); }
+
+}  // namespace
+}  // namespace fluidbed
+
+namespace fluidbed {
+namespace {
+
+// Timing of one gas step's pressure solves (run with --gtest_also_run_disabled_tests; docs/performance.md,
+// "Pressure solve backends"): a fresh solve (factorisation or multigrid set-up) and 8 more SIMPLE-like solves with
+// coefficients moved by 1e-3 and a warm start, as the gas solver calls them; median of 5 such steps.
+template <int Dim>
+void time_backends(const Index<Dim>& n) {
+  if (!hypre_available()) GTEST_SKIP() << "built without hypre";
+  Problem<Dim> pr = make_problem<Dim>(n, true);
+  std::array<std::unique_ptr<StructuredSolver<Dim>>, 3> s{make_eigen_structured_solver<Dim>(pr.grid),
+                                                          make_eigen_structured_solver<Dim>(pr.grid, PressureSolverKind::ConjugateGradient),
+                                                          make_hypre_structured_solver<Dim>(pr.grid)};
+  const std::array<const char*, 3> label{"eigen", "eigen-cg", "hypre-pfmg"};
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    StructuredSolver<Dim>* solver = s[k].get();
+    std::vector<double> ms;
+    for (int rep = 0; rep < 5; ++rep) {
+      Field<Dim> x(pr.grid.owned, 0);
+      FaceFields<Dim> c = pr.coeff;
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int it = 0; it < 9; ++it) {
+        for (int a = 0; a < Dim; ++a)
+          for (double& v : c[a].data()) v *= 1.0 + 1e-3 * ((it + a) % 3 - 1);
+        solver->solve(c, pr.rhs, x, it > 0);
+      }
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(ms.begin(), ms.end());
+    std::printf("[ timing ] %dD %zu cells, %-10s: %.3g ms per gas step (9 solves), median of 5\n", Dim,
+                pr.grid.owned.count(), label[k], ms[2]);
+  }
+}
+
+TEST(HyprePfmg, DISABLED_TimingPaperGrid) { time_backends<2>({30, 50}); }
+TEST(HyprePfmg, DISABLED_Timing3d100k) { time_backends<3>({40, 60, 42}); }
 
 }  // namespace
 }  // namespace fluidbed
