@@ -125,10 +125,10 @@ template <int Dim>
 void time_backends(const Index<Dim>& n, int reps) {
   if (!hypre_available()) GTEST_SKIP() << "built without hypre";
   Problem<Dim> pr = make_problem<Dim>(n, true);
-  std::array<std::unique_ptr<StructuredSolver<Dim>>, 3> s{make_eigen_structured_solver<Dim>(pr.grid),
+  std::array<std::unique_ptr<StructuredSolver<Dim>>, 3> s{make_hypre_structured_solver<Dim>(pr.grid),
                                                           make_eigen_structured_solver<Dim>(pr.grid, PressureSolverKind::ConjugateGradient),
-                                                          make_hypre_structured_solver<Dim>(pr.grid)};
-  const std::array<const char*, 3> label{"eigen", "eigen-cg", "hypre-pfmg"};
+                                                          make_eigen_structured_solver<Dim>(pr.grid)};
+  const std::array<const char*, 3> label{"hypre-pfmg", "eigen-cg", "eigen"};
   for (std::size_t k = 0; k < s.size(); ++k) {
     StructuredSolver<Dim>* solver = s[k].get();
     std::vector<double> ms;
