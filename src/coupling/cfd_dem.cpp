@@ -37,32 +37,12 @@ void CfdDemSimulation<Dim>::deposit() {
   // One set of kernel weights per gas step serves the deposition here and the interpolation to the particles in
   // update_particle_forces (the particles do not move in between).
   particle_cell_weights(dem_.particles(), g, eps_, coupling_.voidage, weights_);
-  compute_voidage(dem_.particles(), weights_, g, depth_, eps_);
+  // Voidage, mean solids velocity and the interphase coefficient as the gas sees it in one pass: the particles'
+  // drag coefficients K_p = V_p beta / (1 - eps) summed with the deposition kernel per unit cell volume (Eq. 12's
+  // beta) and the K-weighted mean particle velocity, so that the gas receives what the particles feel (Newton's
+  // third law).
+  deposition_.deposit(dem_.particles(), weights_, g, depth_, DepositedFields<Dim>{&eps_, &us_, &beta_, &us_gas_});
   clip_voidage();
-  cell_solids_velocity<Dim>(dem_.particles(), weights_, g, us_);
-
-  // Interphase coefficient of each cell as the gas sees it: the particles' drag coefficients K_p = V_p beta /
-  // (1 - eps) summed with the deposition kernel, per unit cell volume (Eq. 12's beta), and the K-weighted mean
-  // particle velocity, so that the gas receives what the particles feel (Newton's third law).
-  const ParticleStore<Dim>& p = dem_.particles();
-  const std::size_t n = eps_.data().size();
-  std::vector<double> k_sum(n, 0.0);
-  std::array<std::vector<double>, Dim> ku;
-  for (auto& v : ku) v.assign(n, 0.0);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const CellWeights<Dim>& cw = weights_[i];
-    for (int k = 0; k < cw.count; ++k) {
-      const std::size_t c = cw.cell[static_cast<std::size_t>(k)];
-      const double w = cw.w[static_cast<std::size_t>(k)] * p.drag_k[i];
-      k_sum[c] += w;
-      for (int a = 0; a < Dim; ++a) ku[a][c] += w * p.velocity(a)[i];
-    }
-  }
-  const double vcell = deposition_volume(g, depth_);
-  for (std::size_t c = 0; c < n; ++c) {
-    beta_.data()[c] = k_sum[c] / vcell;
-    for (int a = 0; a < Dim; ++a) us_gas_[a].data()[c] = k_sum[c] > 0.0 ? ku[a][c] / k_sum[c] : us_[a].data()[c];
-  }
 }
 
 template <int Dim>
@@ -73,13 +53,22 @@ void CfdDemSimulation<Dim>::update_particle_forces() {
   const auto n = static_cast<std::ptrdiff_t>(p.size());
   const bool pressure_force = coupling_.pressure_gradient_force;
   if (weights_.size() != p.size()) particle_cell_weights(p, g, eps_, coupling_.voidage, weights_);
+  // Gas velocity and pressure gradient at cell centres once per gas step, then one weighted sum per particle with
+  // the deposition's own weights (the weights fold at walls: the boundary cell's value holds up to the wall).
+  gas_->cell_velocity(ug_);
+  if (pressure_force) gas_->cell_pressure_gradient(grad_p_);
+  // The paper's counting deposits into one cell; the gas fields are still read multilinearly.
+  const bool counting = coupling_.voidage == VoidageMethod::Centre;
+  if (counting) particle_cell_weights(p, g, eps_, VoidageMethod::Bilinear, interp_weights_);
+  const std::vector<CellWeights<Dim>>& iw = counting ? interp_weights_ : weights_;
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const CellWeights<Dim>& cw = weights_[i];
+    const CellWeights<Dim>& cwi = iw[i];
     const double eps = std::min(gather(eps_gas_, cw), 1.0 - 1e-9);
-    const Vec<Dim> x = p.pos(i);
-    const Vec<Dim> ug = gas_->velocity_at(x);
+    Vec<Dim> ug{};
+    for (int a = 0; a < Dim; ++a) ug[a] = gather(ug_[static_cast<std::size_t>(a)], cwi);
     const double r = p.radius[i];
     const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
     const double slip = norm(ug - p.vel(i));
@@ -88,13 +77,11 @@ void CfdDemSimulation<Dim>::update_particle_forces() {
     p.drag_k[i] = vp * beta / (1.0 - eps);
     for (int a = 0; a < Dim; ++a) p.gas_velocity(a)[i] = ug[a];
     if (pressure_force) {
-      const Vec<Dim> gp = gas_->pressure_gradient_at(x);
-      for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = -vp * gp[a];
+      for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = -vp * gather(grad_p_[static_cast<std::size_t>(a)], cwi);
     } else {
       for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = 0.0;
     }
   }
-  gas_->cell_velocity(ug_);
 }
 
 template <int Dim>
@@ -175,7 +162,11 @@ void CfdDemSimulation<Dim>::restore(Field<Dim> eps, std::uint64_t gas_steps) {
   const Grid<Dim>& g = gas_->grid();
   clip_voidage();
   particle_cell_weights(dem_.particles(), g, eps_, coupling_.voidage, weights_);  // of the restored particles
-  cell_solids_velocity<Dim>(dem_.particles(), weights_, g, us_);
+  // The solids velocity as deposit() computes it (the voidage stays the restored one; the rest is recomputed
+  // before the next gas step).
+  Field<Dim> eps_now, beta_now;
+  std::array<Field<Dim>, Dim> us_gas_now;
+  deposition_.deposit(dem_.particles(), weights_, g, depth_, DepositedFields<Dim>{&eps_now, &us_, &beta_now, &us_gas_now});
   gas_->cell_velocity(ug_);
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/field.hpp"
 #include "coupling/coupling_config.hpp"
+#include "coupling/deposition.hpp"
 #include "coupling/voidage.hpp"
 #include "dem/dem_solver.hpp"
 #include "fluid/gas_solver.hpp"
@@ -69,7 +70,10 @@ class CfdDemSimulation {
   // us_: volume-weighted mean particle velocity (observers); us_gas_: drag-weighted (the gas).
   Field<Dim> eps_, eps_gas_old_, eps_gas_, beta_;
   std::array<Field<Dim>, Dim> us_, us_gas_, ug_;
+  std::array<Field<Dim>, Dim> grad_p_;     ///< cell-centred pressure gradient of the last gas step
   std::vector<CellWeights<Dim>> weights_;  ///< kernel weights of the particles at the last deposit
+  std::vector<CellWeights<Dim>> interp_weights_;  ///< multilinear weights for the gather when the deposition counts
+  Deposition<Dim> deposition_;
   GasStepReport report_{};
   std::uint64_t gas_steps_ = 0;
 };

@@ -27,6 +27,13 @@ enum class ViscousStress {
   Full,       ///< div(eps mu_g (grad u + grad u^T)), the transpose part lagged by deferred correction
 };
 
+/// Backend of the pressure-correction solve (src/fluid/pressure_correction.hpp, structured_solver_hypre.hpp).
+enum class PressureBackend {
+  Eigen,      ///< Eigen's sparse Cholesky, reused as CG preconditioner within a step (the default)
+  EigenCg,    ///< Eigen's incomplete-Cholesky CG, warm-started
+  HyprePfmg,  ///< hypre's PFMG-preconditioned CG (structured multigrid), warm-started
+};
+
 /// Pressure-velocity coupling of the outer iterations.
 enum class PressureCoupling { Simple, Simplec };
 
@@ -80,6 +87,7 @@ struct GasConfig {
   ViscousStress viscous = ViscousStress::Off;
   ConvectionScheme convection = ConvectionScheme::VanLeer;
   PressureCoupling coupling = PressureCoupling::Simplec;
+  PressureBackend pressure_solver = PressureBackend::Eigen;
   double relax_velocity = 0.8;   ///< momentum under-relaxation (0, 1]
   double relax_pressure = 1.0;   ///< pressure under-relaxation (0, 1]; about 0.3 with Simple
   int max_simple_iterations = 200;

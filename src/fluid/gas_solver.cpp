@@ -1,4 +1,5 @@
 #include "fluid/gas_solver.hpp"
+#include "fluid/structured_solver_hypre.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
@@ -189,6 +190,17 @@ void copy_interior(const Field<2>& f, Field2& out) {
     for (int i = 0; i < out.nx; ++i) out(i, j) = f(b.lo[0] + i, b.lo[1] + j);
 }
 
+// The case's backend; the constructor's kind chooses between Eigen's two where the case asks for Eigen.
+template <int Dim>
+std::unique_ptr<StructuredSolver<Dim>> make_pressure_backend(const Grid<Dim>& g, const GasConfig& c, PressureSolverKind kind) {
+  switch (c.pressure_solver) {
+    case PressureBackend::HyprePfmg: return make_hypre_structured_solver<Dim>(g);
+    case PressureBackend::EigenCg: return make_eigen_structured_solver<Dim>(g, PressureSolverKind::ConjugateGradient);
+    case PressureBackend::Eigen: break;
+  }
+  return make_eigen_structured_solver<Dim>(g, kind);
+}
+
 template <int Dim>
 struct GasSolver<Dim>::Impl {
   Grid<Dim> grid;
@@ -207,7 +219,7 @@ struct GasSolver<Dim>::Impl {
   int linear_fallbacks = 0;  // momentum solves of the current step answered by the LU
 
   Impl(const Grid<Dim>& g, const GasConfig& c, PressureSolverKind kind, const Comm& cm)
-      : grid(g), cfg(c), comm(&cm), pressure(make_eigen_structured_solver<Dim>(g, kind)) {
+      : grid(g), cfg(c), comm(&cm), pressure(make_pressure_backend<Dim>(g, c, kind)) {
     if constexpr (Dim == 2) {
       gravity = {c.gravity.x, c.gravity.y};
       grid2 = to_grid2(g);

@@ -427,6 +427,11 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                  : conv == "minmod" ? ConvectionScheme::Minmod : ConvectionScheme::VanLeer;
   const std::string pc = r.string("gas.pressure_coupling", "simplec", "pressure-velocity coupling", {"simple", "simplec"});
   g.coupling = pc == "simple" ? PressureCoupling::Simple : PressureCoupling::Simplec;
+  const std::string ps = r.string("gas.pressure_solver", "eigen", "pressure-correction solver: eigen (sparse Cholesky), "
+                                  "eigen-cg (incomplete-Cholesky CG) or hypre-pfmg (structured multigrid CG; needs a build "
+                                  "with hypre)", {"eigen", "eigen-cg", "hypre-pfmg"});
+  g.pressure_solver = ps == "hypre-pfmg" ? PressureBackend::HyprePfmg
+                      : ps == "eigen-cg" ? PressureBackend::EigenCg : PressureBackend::Eigen;
   g.relax_velocity = r.number("gas.relax_velocity", 0.8, "", "momentum under-relaxation", R::Range{0.0, 1.0, true, false});
   g.relax_pressure = r.number("gas.relax_pressure", 1.0, "", "pressure under-relaxation", R::Range{0.0, 1.0, true, false});
   g.max_simple_iterations = static_cast<int>(r.integer("gas.max_iterations", 200, "SIMPLE iterations per gas step at most",
