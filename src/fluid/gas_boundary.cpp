@@ -265,7 +265,11 @@ void validate(const GasConfig& c) {
   require(c.relax_pressure > 0.0 && c.relax_pressure <= 1.0, "relax_pressure must be in (0, 1]");
   require(c.max_simple_iterations >= 1, "max_simple_iterations must be at least 1");
   require(c.mass_tolerance > 0.0, "mass_tolerance must be positive");
-  require(c.momentum_solver_tolerance > 0.0, "momentum_solver_tolerance must be positive");
+  require(c.momentum_tolerance > 0.0, "momentum_tolerance must be positive");
+  require(c.momentum_solver_tolerance > 0.0 && c.momentum_solver_tolerance < 1.0,
+          "momentum_solver_tolerance must lie in (0, 1)");
+  require(c.pressure_solver_tolerance > 0.0 && c.pressure_solver_tolerance < 1.0,
+          "pressure_solver_tolerance must lie in (0, 1)");
   require(c.momentum_solver_max_iterations >= 1, "momentum_solver_max_iterations must be at least 1");
   require(c.boundary.ramp_time >= 0.0 && std::isfinite(c.boundary.ramp_time), "inlet ramp_time must be non-negative");
   require(std::isfinite(c.boundary.ramp_from), "inlet ramp_from must be finite");

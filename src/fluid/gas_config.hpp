@@ -92,9 +92,16 @@ struct GasConfig {
   double relax_pressure = 1.0;   ///< pressure under-relaxation (0, 1]; about 0.3 with Simple
   int max_simple_iterations = 200;
   /// Converged when sum over cells |mass imbalance of the predicted velocities| / reference mass flow is below this;
-  /// reference = max(inlet mass flow, rho_g * largest face speed * domain width).
+  /// reference = max(inlet mass flow, rho_g * largest face speed * domain width) ...
   double mass_tolerance = 1e-8;
-  double momentum_solver_tolerance = 1e-10;  ///< relative residual of the linear momentum solves
+  /// ... and the normalised momentum residual of the iterate entering the iteration (GasStepReport::
+  /// momentum_residual) below this, so that loose inner solves cannot end SIMPLE on a stalled iterate.
+  double momentum_tolerance = 1e-8;
+  /// Each momentum solve reduces the residual of its iterate by this factor (it solves for the increment), so its
+  /// precision follows the outer residual down (inexact Newton, Dembo et al. 1982) rather than a fixed 1e-10.
+  double momentum_solver_tolerance = 1e-4;
+  /// The pressure-correction solves after the step's first (direct) one: relative residual of the warm CG.
+  double pressure_solver_tolerance = 1e-3;
   int momentum_solver_max_iterations = 500;
   GasBoundaryConfig boundary;
 };

@@ -23,6 +23,9 @@ namespace fluidbed {
 struct GasStepReport {
   int simple_iterations = 0;
   double mass_residual = 0.0;        ///< normalised continuity residual of the last predicted velocities
+  /// Normalised momentum residual of the last iterate entering SIMPLE, the largest over the components:
+  /// sum_faces |b - A u| / (U_ref sum_faces a_P), U_ref = reference_mass_flow / (rho_g x cross-section).
+  double momentum_residual = 0.0;
   double reference_mass_flow = 0.0;  ///< the normalisation of mass_residual (see GasConfig::mass_tolerance)
   double mass_in = 0.0;              ///< through the bottom
   double mass_out = 0.0;             ///< through the top

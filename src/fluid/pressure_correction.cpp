@@ -61,7 +61,7 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
     });
     a_.build(n, nb);
     cg_.setTolerance(cg_tolerance);
-    pcg_.setTolerance(1e-12);
+    pcg_.setTolerance(cg_tolerance);
     b_.resize(n);
     x_.resize(n);
   }

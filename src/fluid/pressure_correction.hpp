@@ -36,7 +36,7 @@ class StructuredSolver {
 };
 
 /// Today's backend: Eigen's sparse Cholesky (Direct: factorised at the first solve of a step, CG preconditioned by
-/// that factorisation after) or incomplete-Cholesky CG. Serial: the grid's owned box must be its whole domain.
+/// that factorisation after, to cg_tolerance) or incomplete-Cholesky CG to cg_tolerance. Serial: the grid's owned box must be its whole domain.
 template <int Dim>
 std::unique_ptr<StructuredSolver<Dim>> make_eigen_structured_solver(const Grid<Dim>& grid,
                                                                     PressureSolverKind kind = PressureSolverKind::Direct,
@@ -57,7 +57,7 @@ class PressureCorrectionSolver {
   ///
   /// With `reuse_factorisation` (Direct kind, after a first solve) the matrix is not factorised again: the system
   /// is solved by conjugate gradients preconditioned with the last factorisation, to a relative residual of
-  /// 1e-12. Within one SIMPLE step the coefficients change little between iterations, so a few CG iterations
+  /// cg_tolerance (also the ConjugateGradient kind's). Within one SIMPLE step the coefficients change little between iterations, so a few CG iterations
   /// (one triangular solve each) replace a factorisation.
   void solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x, bool reuse_factorisation = false);
 

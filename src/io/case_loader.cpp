@@ -438,6 +438,12 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                                                        R::between(1, 100000)));
   g.mass_tolerance = r.number("gas.mass_tolerance", 1e-8, "", "SIMPLE stops when the normalised mass residual is below this",
                               R::positive());
+  g.momentum_tolerance = r.number("gas.momentum_tolerance", 1e-8, "", "SIMPLE also needs the normalised momentum "
+                                  "residual below this", R::positive());
+  g.momentum_solver_tolerance = r.number("gas.momentum_solver_tolerance", 1e-4, "", "each momentum solve reduces "
+                                         "its residual by this factor", R::Range{0.0, 1.0, true, true});
+  g.pressure_solver_tolerance = r.number("gas.pressure_solver_tolerance", 1e-3, "", "relative residual of the "
+                                         "pressure-correction solves after a step's first", R::Range{0.0, 1.0, true, true});
   const std::string side = r.string("gas.side_walls", "no_slip", "tangential gas condition on the side walls", {"slip", "no_slip"});
   g.boundary.side_walls = side == "slip" ? WallKind::Slip : WallKind::NoSlip;
   if (c.domain.dimension == 3) {
