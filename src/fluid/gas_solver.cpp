@@ -16,11 +16,6 @@ namespace fluidbed {
 
 namespace {
 
-// TVD face value minus the upwind one (the shared family, core/tvd_limiter.hpp), added by deferred correction.
-double high_order_correction(ConvectionScheme scheme, double phi_far, double phi_up, double phi_down) {
-  return tvd::correction(scheme, phi_far, phi_up, phi_down);
-}
-
 /// Area of a face normal to axis a (a length per metre of depth in 2D): the product of the other cell sizes,
 /// taken in axis order so that 2D keeps its single factor exactly.
 template <int Dim>
@@ -237,6 +232,8 @@ struct GasSolver<Dim>::Impl {
   void setup();
   template <int d>
   void solve_momentum(double dt);
+  template <int d, class Law>
+  void solve_momentum_with(double dt);
   void mass_fluxes();
   double continuity(const Field<Dim>& eps_old, const Field<Dim>& eps_new, double dt);  // sum |imbalance|
   double reference_mass_flow() const;
@@ -374,6 +371,13 @@ double GasSolver<Dim>::Impl::reference_mass_flow() const {
 template <int Dim>
 template <int d>
 void GasSolver<Dim>::Impl::solve_momentum(double dt) {
+  // The limiter is chosen once here, so the face loops below are compiled per limiter.
+  tvd::with_limiter(cfg.convection, [&](auto law) { solve_momentum_with<d, decltype(law)>(dt); });
+}
+
+template <int Dim>
+template <int d, class Law>
+void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
   Momentum<Dim>& m = mom[d];
   const IndexBox<Dim>& cells = grid.domain;
   const double h_al = grid.h[d];
@@ -394,6 +398,7 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
   const Field<Dim>& us_face = us_f[d];
   const Field<Dim>& m_al = mflux[d];
   const bool full_stress = cfg.viscous == ViscousStress::Full;
+  // TVD face value minus the upwind one (core/tvd_limiter.hpp, limiter Law), added by deferred correction.
   const ConvectionScheme scheme = cfg.convection;
   const bool outlet_top = d == 1 && outlet;
   // The walls (and the distributor, and the lid or outlet) across the component: axis e, tangential kind, speed.
@@ -477,8 +482,8 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
       if (scheme != ConvectionScheme::Upwind && !half) {
         const bool fwd = fm > 0.0;
         const double phi_far = P[kf + (fwd ? -2 : 1) * sfd];
-        const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfd], P[kf])
-                              : high_order_correction(scheme, phi_far, P[kf], P[kf - sfd]);
+        const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf - sfd], P[kf])
+                              : tvd::correction<Law>(phi_far, P[kf], P[kf - sfd]);
         b_src += fm * cc;
       }
     }
@@ -489,8 +494,8 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
       if (scheme != ConvectionScheme::Upwind) {
         const bool fwd = fp > 0.0;
         const double phi_far = P[kf + (fwd ? -1 : 2) * sfd];
-        const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfd])
-                              : high_order_correction(scheme, phi_far, P[kf + sfd], P[kf]);
+        const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf], P[kf + sfd])
+                              : tvd::correction<Law>(phi_far, P[kf + sfd], P[kf]);
         b_src -= fp * cc;
       }
       // Across the component, per axis e: faces at the corners b -/+ 1/2.
@@ -514,8 +519,8 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
             const int far = fwd ? b - 2 : b + 1;
             if (far >= cells.lo[e] && far < cells.hi[e]) {
               const double phi_far = P[kf + (far - b) * sfe];
-              const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf - sfe], P[kf])
-                                    : high_order_correction(scheme, phi_far, P[kf], P[kf - sfe]);
+              const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf - sfe], P[kf])
+                                    : tvd::correction<Law>(phi_far, P[kf], P[kf - sfe]);
               b_src += fs * cc;
             }
           }
@@ -533,8 +538,8 @@ void GasSolver<Dim>::Impl::solve_momentum(double dt) {
             const int far = fwd ? b - 1 : b + 2;
             if (far >= cells.lo[e] && far < cells.hi[e]) {
               const double phi_far = P[kf + (far - b) * sfe];
-              const double cc = fwd ? high_order_correction(scheme, phi_far, P[kf], P[kf + sfe])
-                                    : high_order_correction(scheme, phi_far, P[kf + sfe], P[kf]);
+              const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf], P[kf + sfe])
+                                    : tvd::correction<Law>(phi_far, P[kf + sfe], P[kf]);
               b_src -= fn * cc;
             }
           }
