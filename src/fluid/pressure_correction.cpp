@@ -69,16 +69,7 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
   const char* name() const override { return "eigen"; }
 
   void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override {
-    bool has_boundary = false;
-    for (int a = 0; a < Dim; ++a)
-      for (bool high : {false, true}) {
-        IndexBox<Dim> side = cells_.inside(a, high);
-        if (high) {
-          side.lo[a] += 1;
-          side.hi[a] += 1;
-        }
-        for_each(side, [&](const Index<Dim>& f) { has_boundary = has_boundary || coeff[a][f] > 0.0; });
-      }
+    const bool has_boundary = couples_to_boundary(cells_, coeff);
     // Pinning the first cell of an all-Neumann problem: drop its couplings from both its row and its neighbours'
     // rows, which keeps the matrix symmetric (the pinned value is zero, so the dropped terms vanish).
     const bool pin = !has_boundary;

@@ -35,6 +35,23 @@ class StructuredSolver {
   virtual const char* name() const = 0;
 };
 
+/// Whether any face on the boundary of `cells` has a coefficient (a fixed-pressure face); without one the problem
+/// is singular and every backend pins the first cell.
+template <int Dim>
+bool couples_to_boundary(const IndexBox<Dim>& cells, const FaceFields<Dim>& coeff) {
+  bool any = false;
+  for (int a = 0; a < Dim; ++a)
+    for (bool high : {false, true}) {
+      IndexBox<Dim> side = cells.inside(a, high);
+      if (high) {
+        side.lo[a] += 1;
+        side.hi[a] += 1;
+      }
+      for_each(side, [&](const Index<Dim>& f) { any = any || coeff[a][f] > 0.0; });
+    }
+  return any;
+}
+
 /// Today's backend: Eigen's sparse Cholesky (Direct: factorised at the first solve of a step, CG preconditioned by
 /// that factorisation after, to cg_tolerance) or incomplete-Cholesky CG to cg_tolerance. Serial: the grid's owned box must be its whole domain.
 template <int Dim>

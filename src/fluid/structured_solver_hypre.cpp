@@ -96,16 +96,7 @@ class HypreStructuredSolver final : public StructuredSolver<Dim> {
   const char* name() const override { return "hypre-pfmg"; }
 
   void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override {
-    bool has_boundary = false;
-    for (int a = 0; a < Dim; ++a)
-      for (bool high : {false, true}) {
-        IndexBox<Dim> side = cells_.inside(a, high);
-        if (high) {
-          side.lo[a] += 1;
-          side.hi[a] += 1;
-        }
-        for_each(side, [&](const Index<Dim>& f) { has_boundary = has_boundary || coeff[a][f] > 0.0; });
-      }
+    const bool has_boundary = couples_to_boundary(cells_, coeff);
     // As the Eigen backend: an all-Neumann problem pins its first cell to zero symmetrically.
     const bool pin = !has_boundary;
     std::size_t r = 0;  // hypre's box order: axis 0 fastest, as for_each runs
