@@ -706,6 +706,22 @@ void read_probes(CaseReader& r, CaseConfig& c) {
   }
 }
 
+// [averages]: the window of the time-averaged fields (analysis/time_average.hpp, docs/analysis.md "Time averages").
+void read_averages(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  AveragesConfig& a = c.averages;
+  a.t_start = r.number("averages.t_start", 0.0, "s", "first sample of the time averages (averages.vti, .csv)",
+                       R::non_negative());
+  a.t_end = r.number("averages.t_end", 0.0, "s",
+                     "last sample of the time averages; 0: no averages", R::non_negative());
+  a.interval = r.number("averages.interval", 0.01, "s",
+                        "interval of the samples; 0: after every model step (gas step of CFD-DEM, TFM step)",
+                        R::non_negative());
+  if (a.t_end != 0.0 && !(a.t_end > a.t_start))
+    r.fail("averages.t_end", fmt::format("{} s is not after averages.t_start = {} s", a.t_end, a.t_start));
+  a.enabled = a.t_end > a.t_start;
+}
+
 LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) r.set_override(o);
   LoadedCase out;
@@ -713,6 +729,7 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
   read_output(r, out.config);
   read_probes(r, out.config);
+  read_averages(r, out.config);
   r.reject_unknown_keys();
   // What the gas solver and the bubble tracker check when they are built, so that `check` refuses what `run`
   // would (the TFM's own check, tfm::validate, runs in read_tfm).
