@@ -26,6 +26,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from psd import welch_psd  # noqa: E402
+import averages as time_averages  # noqa: E402
 import bubble_stats  # noqa: E402
 
 import matplotlib
@@ -787,6 +788,20 @@ def figure_bubbling_statistics(runs, path, notes):
     return None
 
 
+def figure_time_averages(runs, path, notes):
+    entries = []
+    for r in runs:
+        got = time_averages.read_averages(r.folder)
+        if got is None:
+            notes.append(f"{r.label}: left out, no averages.csv (no [averages] window reached)")
+        else:
+            entries.append((r.label, got[0], got[1]))
+    if not entries:
+        return "no run has averages.csv"
+    time_averages.figure(entries, path)
+    return None
+
+
 # ------------------------------------------------------------------------------------------------------ tables
 
 def nearest_row(cols, t):
@@ -1127,7 +1142,10 @@ def write_report(folders, out, labels=None, animate=False):
     ] + ([
         ("bubbling_statistics.png", "Freely bubbling statistics of the beds without a jet (post/bubble_stats.py)",
          lambda p, n: figure_bubbling_statistics(runs, p, n)),
-    ] if any(r.has_jet() is False for r in runs) else []) + [
+    ] if any(r.has_jet() is False for r in runs) else []) + ([
+        ("time_averages.png", "Time-averaged fields of the [averages] window (post/averages.py)",
+         lambda p, n: figure_time_averages(runs, p, n)),
+    ] if any(os.path.isfile(os.path.join(r.folder, "averages.csv")) for r in runs) else []) + [
         ("pressure_drop.png", "Bed pressure drop",
          lambda p, n: figure_curves(runs, "monitor", "pressure_drop_Pa", "pressure drop (Pa)", "Bed pressure drop",
                                     p, n)),
