@@ -43,12 +43,17 @@ constexpr const char* kAxis[3] = {"x", "y", "z"};
 }  // namespace
 
 AverageSeries::AverageSeries(std::filesystem::path out, const AveragesConfig& config, const FieldView& fv,
-                             const Hdf5File* checkpoint)
+                             const Hdf5File* checkpoint, double t_now)
     : out_(std::move(out)), config_(config), dim_(fv.dimension) {
   if (dim_ == 3) {
     avg3_.emplace(geometry_of<3>(fv));
   } else {
     avg2_.emplace(geometry_of<2>(fv));
+  }
+  if (checkpoint && config_.interval > 0.0 && t_now >= config_.t_start) {
+    // On the window's schedule, after the instant the checkpoint holds: 1e-9 of an interval absorbs the rounding
+    // of t_now - t_start.
+    next_ = static_cast<std::int64_t>(std::floor((t_now - config_.t_start) / config_.interval + 1e-9)) + 1;
   }
   if (!checkpoint || !checkpoint->has("averages/sums")) return;
   const Hdf5File& f = *checkpoint;

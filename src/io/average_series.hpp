@@ -18,9 +18,11 @@ namespace fluidbed {
 class AverageSeries {
  public:
   /// A fresh average on the grid of `fv`, or (checkpoint given) the one saved in it. A checkpoint without
-  /// averages, or with those of another window, starts a fresh one (`restored()` then says false).
+  /// averages, or with those of another window, starts a fresh one (`restored()` then says false) whose first
+  /// sample is the first one due after `t_now`, the model time (the instant itself was observed before the
+  /// checkpoint was written).
   AverageSeries(std::filesystem::path out, const AveragesConfig& config, const FieldView& fv,
-                const Hdf5File* checkpoint);
+                const Hdf5File* checkpoint, double t_now);
 
   /// Called after every model step at model time t, with the step's time-step slack `dt` (as the output
   /// schedules): adds a sample when one is due in the window, and writes the files once the window is over.

@@ -474,7 +474,7 @@ class Run {
     }
     if (cfg_.averages.enabled) {
       if (fv.has_grid() && fv.eps && fv.has_gas_velocity()) {
-        averages_.emplace(out_, cfg_.averages, fv, restart_ ? &*restart_file_ : nullptr);
+        averages_.emplace(out_, cfg_.averages, fv, restart_ ? &*restart_file_ : nullptr, t_start_);
         if (restart_ && !averages_->restored()) {
           log().warn("the checkpoint holds no time averages of this window: they start again at t = {:.6g} s", t_start_);
         }

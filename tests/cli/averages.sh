@@ -47,6 +47,13 @@ run_ok "2D: restart T/2 to T" run "$WORK/c2.toml" --out "$WORK/split" --threads 
   --restart "$WORK/split/checkpoints/final.h5"
 same_averages "2D restart" "$WORK/full" "$WORK/split"
 
+# A restart with another window: the saved sums belong to the old one, so the averages start again (with a warning).
+run_ok "2D: restart with another window" run "$WORK/c2.toml" --out "$WORK/rewindow" --threads 1 --end-time 0.012
+run_ok "2D: ... continued with t_start = 0.008" run "$WORK/c2.toml" --out "$WORK/rewindow" --threads 1 \
+  --set averages.t_start=0.008 --restart "$WORK/rewindow/checkpoints/final.h5"
+check "2D: the restart says the averages start again" grep -q 'start again at t = 0.012' "$WORK/rewindow/log.txt"
+check "2D: ... and counts only its own samples (0.013-0.02 s: 8)" grep -q '"samples": 8,' "$WORK/rewindow/averages.json"
+
 run_ok "2D: 2 threads" run "$WORK/c2.toml" --out "$WORK/threads2" --threads 2
 same_averages "2D 1 vs 2 threads" "$WORK/full" "$WORK/threads2"
 
