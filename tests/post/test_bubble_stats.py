@@ -7,7 +7,8 @@ is 0.1 with no spread. Tolerances are rounding (1e-9). The 3D Darton diameter is
 formula evaluated by hand, and its h^0.8 scaling; the 2D form of Shen et al. (2004) likewise with its h^(2/3)
 scaling. The report's entry point (run_statistics, table_runs) on a run folder with a case.toml without a jet: the
 case's [averages] window is the statistics window, U and U_mf come from the case, the frequency heights are the
-quarters of the mean bed height; its table carries the exact numbers above. Usage (CTest): test_bubble_stats.py FLUIDBED_BINARY SOURCE_DIR"""
+quarters of the mean bed height; its table carries the exact numbers above. A 3D file (volume_m3) gets Darton's
+correlation and 0.711. Usage (CTest): test_bubble_stats.py FLUIDBED_BINARY SOURCE_DIR"""
 import os
 import sys
 import tempfile
@@ -116,4 +117,29 @@ with tempfile.TemporaryDirectory() as run:
     check("no [averages]: the second half of the samples, t0 (s)", 1.0, s2["t0"])
     empty, why3 = bs.run_statistics(os.path.join(run, "missing"), case, 2)
     check("a folder without bubbles.csv is left out with a reason", 1, int(empty is None and "no bubbles.csv" in why3), 0)
+# 3D: the same bubbles as spheres (volume_m3, centroid_z_m): the dimension comes from the header, the correlation
+# is Darton's at every bin centre, the rise constant 0.711.
+with tempfile.TemporaryDirectory() as run:
+    with open(os.path.join(run, "bubbles.csv"), "w") as fh:
+        fh.write("time_s,id,event,parents,volume_m3,equivalent_diameter_m,centroid_x_m,centroid_y_m,centroid_z_m,"
+                 "nose_m,tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s\n")
+        vol = np.pi * 0.04**3 / 6
+        for k in range(21):
+            t = 0.1 * k
+            y = 0.05 + 0.3 * t
+            if y <= 0.5:
+                u = "" if k == 0 else "0.3"
+                fh.write(f"{t},0,,,{vol},0.04,0.1,{y},0.05,{y + 0.02},{y - 0.02},1,{u},{u}\n")
+    with open(os.path.join(run, "bubble_frames.csv"), "w") as fh:
+        fh.write("time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction\n")
+        for k in range(21):
+            fh.write(f"{0.1 * k},0.84,0.012,0.0012,1,0.1\n")
+    s3, _ = bs.run_statistics(run, {"inlet": {"velocity": 1.0}, "bubble": {"u_mf": 0.5}}, 3)
+    check("3D from the header", 3, bs.bubble_statistics(bs.read_csv(os.path.join(run, "bubbles.csv")),
+                                                       bs.read_csv(os.path.join(run, "bubble_frames.csv")))["dimension"], 0)
+    check("3D: Darton at the bin centres, max error", 0.0,
+          float(np.max(np.abs(s3["d_corr"] - bs.darton_diameter(s3["h"], 1.0, 0.5)))), 0)
+    check("3D: 0.711 sqrt(g D), max error", 0.0,
+          float(np.max(np.abs(s3["u_theory"] - 0.711 * np.sqrt(9.81 * s3["D"])))), 1e-15)
+    check("3D: mean centroid velocity", 0.3, s3["u_all_mean"])
 sys.exit(1 if failures else 0)
