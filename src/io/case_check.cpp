@@ -345,6 +345,13 @@ std::string describe_case(const CaseConfig& c) {
     line("bed weight per area", fmt::format("{:.0f} Pa", (1.0 - t.eps_initial) * (t.rho_s - t.rho_g) * g * t.packed_height));
     line("memory estimate", fmt::format("{:.2f} MB", static_cast<double>(c.grid.cells()) * 40 * 8 / 1e6));
   }
+  if (c.averages.enabled) {
+    const AveragesConfig& a = c.averages;
+    line("time averages ([averages])",
+         a.interval > 0.0 ? fmt::format("{} to {} s, a sample every {} s ({:.0f} samples)", a.t_start, a.t_end,
+                                        a.interval, std::floor((a.t_end - a.t_start) / a.interval + 1e-9) + 1)
+                          : fmt::format("{} to {} s, a sample after every model step", a.t_start, a.t_end));
+  }
   return s;
 }
 
