@@ -94,8 +94,8 @@ void AverageSeries::observe(double t, double dt, const FieldView& fv, const std:
     while (config_.interval > 0.0 && due_time() <= t + slack) ++next_;
   }
   if (t >= config_.t_end - slack) {
+    closed_ = true;  // before write(): the files say the window is complete
     if (samples() > 0) write();
-    closed_ = true;
   }
 }
 
@@ -159,7 +159,7 @@ void AverageSeries::write() const {
   } else {
     write_dim(*avg2_);
   }
-  const bool complete = last_t_ >= config_.t_end - 1e-9 * std::max(config_.t_end, 1.0) || closed_;
+  const bool complete = closed_;
   write_file_atomic(out_ / "averages.json",
                     fmt::format("{{\"t_start\": {}, \"t_end\": {}, \"interval\": {}, \"samples\": {}, "
                                 "\"first_sample_s\": {}, \"last_sample_s\": {}, \"window_complete\": {}, "

@@ -73,6 +73,11 @@ same_averages "2D CSV in id order vs shuffled" "$WORK/file-in-order" "$WORK/file
 run_ok "2D: every step" run "$WORK/c2.toml" --out "$WORK/every" --threads 1 --set averages.interval=0
 check "2D: every gas step sampled" grep -q '"samples": 76,' "$WORK/every/averages.json"
 
+# A window whose end is not on the sampling schedule: the last sample is the last due one, the window complete.
+run_ok "2D: t_end off the schedule" run "$WORK/c2.toml" --out "$WORK/offgrid" --threads 1 --set averages.t_end=0.0195
+check "2D: ... 15 samples, complete" bash -c "grep -q '\"samples\": 15,' '$WORK/offgrid/averages.json' &&
+  grep -q '\"last_sample_s\": 0.019,' '$WORK/offgrid/averages.json' && grep -q '\"window_complete\": true' '$WORK/offgrid/averages.json'"
+
 # A window that is not a window: bad input naming the key.
 expect 2 "averages.t_end" "bad window: t_end before t_start" "$FLUIDBED" check "$WORK/c2.toml" \
   --set averages.t_end=0.002
