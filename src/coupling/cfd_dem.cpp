@@ -61,27 +61,33 @@ void CfdDemSimulation<Dim>::update_particle_forces() {
   const bool counting = coupling_.voidage == VoidageMethod::Centre;
   if (counting) particle_cell_weights(p, g, eps_, VoidageMethod::Bilinear, interp_weights_);
   const std::vector<CellWeights<Dim>>& iw = counting ? interp_weights_ : weights_;
+  // The drag law is chosen here, once; the particle loop is compiled per law.
+  with_drag_law(DragModel{coupling_.drag_law, coupling_.drag_switch}, [&](auto law) {
+    using Law = decltype(law);
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const CellWeights<Dim>& cw = weights_[i];
-    const CellWeights<Dim>& cwi = iw[i];
-    const double eps = std::min(gather(eps_gas_, cw), 1.0 - 1e-9);
-    Vec<Dim> ug{};
-    for (int a = 0; a < Dim; ++a) ug[a] = gather(ug_[static_cast<std::size_t>(a)], cwi);
-    const double r = p.radius[i];
-    const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
-    const double slip = norm(ug - p.vel(i));
-    const double beta = beta_ergun_wen_yu(DragInput{eps, 2.0 * r, gc.rho_g, gc.mu_g, slip}, coupling_.drag_switch);
-    // Eq. 12's beta is per unit mixture volume; one particle's share is V_p / (1 - eps).
-    p.drag_k[i] = vp * beta / (1.0 - eps);
-    for (int a = 0; a < Dim; ++a) p.gas_velocity(a)[i] = ug[a];
-    if (pressure_force) {
-      for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = -vp * gather(grad_p_[static_cast<std::size_t>(a)], cwi);
-    } else {
-      for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = 0.0;
+    for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const CellWeights<Dim>& cw = weights_[i];
+      const CellWeights<Dim>& cwi = iw[i];
+      const double eps = std::min(gather(eps_gas_, cw), 1.0 - 1e-9);
+      Vec<Dim> ug{};
+      for (int a = 0; a < Dim; ++a) ug[a] = gather(ug_[static_cast<std::size_t>(a)], cwi);
+      const double r = p.radius[i];
+      const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      const double slip = norm(ug - p.vel(i));
+      // The particle's own diameter; the cell's mean diameter (Beetstra's polydisperse correction) is taken equal
+      // to it until the cell's Sauter mean is deposited.
+      const double beta = Law::beta(DragInput{eps, 2.0 * r, gc.rho_g, gc.mu_g, slip});
+      // Eq. 12's beta is per unit mixture volume; one particle's share is V_p / (1 - eps).
+      p.drag_k[i] = vp * beta / (1.0 - eps);
+      for (int a = 0; a < Dim; ++a) p.gas_velocity(a)[i] = ug[a];
+      if (pressure_force) {
+        for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = -vp * gather(grad_p_[static_cast<std::size_t>(a)], cwi);
+      } else {
+        for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = 0.0;
+      }
     }
-  }
+  });
 }
 
 template <int Dim>
