@@ -596,16 +596,17 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                 : law == "koch-hill" ? DragLaw::KochHill
                                      : DragLaw::ErgunWenYu;
   // Gidaspow's law is used with the Huilin-Gidaspow blend (MFIX's GIDASPOW_BLEND); the paper's with its step.
-  const bool switched = cc.drag_law == DragLaw::ErgunWenYu || cc.drag_law == DragLaw::Gidaspow;
-  if (!switched && r.has("coupling.drag_switch")) {
-    r.fail("coupling.drag_switch", fmt::format("the drag law \"{}\" has no Ergun/Wen-Yu switch; drag_switch is for "
-                                               "\"ergun-wen-yu\" and \"gidaspow\"", law));
-  }
   const std::string sw = r.string("coupling.drag_switch", cc.drag_law == DragLaw::Gidaspow ? "smooth" : "sharp",
                                   "Ergun to Wen-Yu at eps = 0.8 (drag_law ergun-wen-yu or gidaspow): a step or the "
                                   "arctan blend of Huilin & Gidaspow (2003)", {"sharp", "smooth"});
   r.describe_default("coupling.drag_switch", "\"sharp\"; \"smooth\" for gidaspow");
   cc.drag_switch = sw == "smooth" ? DragSwitch::Smooth : DragSwitch::Sharp;
+  // "sharp" (the resolved default) is harmless for a law without branches; asking for a blend there is an error.
+  const bool switched = cc.drag_law == DragLaw::ErgunWenYu || cc.drag_law == DragLaw::Gidaspow;
+  if (!switched && cc.drag_switch == DragSwitch::Smooth) {
+    r.fail("coupling.drag_switch", fmt::format("the drag law \"{}\" has no Ergun/Wen-Yu branches to blend; "
+                                               "\"smooth\" is for \"ergun-wen-yu\" and \"gidaspow\"", law));
+  }
   cc.pressure_gradient_force = r.boolean("coupling.pressure_force", true, "apply -V_p grad P to each particle");
 
   if (c.model == Model::Tfm) read_tfm(r, c);  // before [bubble]: the U_mf default needs the solids
