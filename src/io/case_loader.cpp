@@ -288,6 +288,7 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   t.mu_g = c.gas.mu_g;
   t.gravity = c.domain.gravity_vector<2>();
   t.boundary = c.gas.boundary;
+  t.drag_law = c.coupling.drag_law;
   t.drag_switch = c.coupling.drag_switch;
   t.d_p = r.number("tfm.particle_diameter", 0.004, "m", "particle diameter d_p", R::positive());
   t.rho_s = r.number("tfm.particle_density", 2700.0, "kg/m^3", "particle density rho_s", R::positive());
@@ -585,9 +586,27 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                                   "most {:.3g} s for a Courant number of 0.5 on the inflow and half the Stokes time "
                                   "of the smallest particle)", cc.dem_substeps, cc.dem_substeps * c.dem.dt, gas_dt_max));
   }
-  const std::string sw = r.string("coupling.drag_switch", "sharp", "Ergun to Wen-Yu at eps = 0.8: the paper's step or "
-                                  "a smooth blend", {"sharp", "smooth"});
+  const std::string law = r.string("coupling.drag_law", "ergun-wen-yu", "gas-particle drag law (docs/model.md): the "
+                                   "paper's Eqs. 13-14, Gidaspow (1994), Di Felice (1994), Beetstra et al. (2007) or "
+                                   "Koch & Hill (2001); CFD-DEM and TFM",
+                                   {"ergun-wen-yu", "gidaspow", "di-felice", "beetstra", "koch-hill"});
+  cc.drag_law = law == "gidaspow"    ? DragLaw::Gidaspow
+                : law == "di-felice" ? DragLaw::DiFelice
+                : law == "beetstra"  ? DragLaw::Beetstra
+                : law == "koch-hill" ? DragLaw::KochHill
+                                     : DragLaw::ErgunWenYu;
+  // Gidaspow's law is used with the Huilin-Gidaspow blend (MFIX's GIDASPOW_BLEND); the paper's with its step.
+  const std::string sw = r.string("coupling.drag_switch", cc.drag_law == DragLaw::Gidaspow ? "smooth" : "sharp",
+                                  "Ergun to Wen-Yu at eps = 0.8 (drag_law ergun-wen-yu or gidaspow): a step or the "
+                                  "arctan blend of Huilin & Gidaspow (2003)", {"sharp", "smooth"});
+  r.describe_default("coupling.drag_switch", "\"sharp\"; \"smooth\" for gidaspow");
   cc.drag_switch = sw == "smooth" ? DragSwitch::Smooth : DragSwitch::Sharp;
+  // "sharp" (the resolved default) is harmless for a law without branches; asking for a blend there is an error.
+  const bool switched = cc.drag_law == DragLaw::ErgunWenYu || cc.drag_law == DragLaw::Gidaspow;
+  if (!switched && cc.drag_switch == DragSwitch::Smooth) {
+    r.fail("coupling.drag_switch", fmt::format("the drag law \"{}\" has no Ergun/Wen-Yu branches to blend; "
+                                               "\"smooth\" is for \"ergun-wen-yu\" and \"gidaspow\"", law));
+  }
   cc.pressure_gradient_force = r.boolean("coupling.pressure_force", true, "apply -V_p grad P to each particle");
 
   if (c.model == Model::Tfm) read_tfm(r, c);  // before [bubble]: the U_mf default needs the solids
