@@ -354,6 +354,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
     }
   }
   c.gas_enabled = r.boolean("gas.enabled", true, "couple the particles to the gas (false: DEM alone, in vacuum)");
+  if (c.gas_enabled && c.domain.any_periodic()) {
+    r.fail("domain.periodic", "periodic axes are implemented for the particles only in this version (the gas "
+                              "solver, its pressure matrix and the deposition have walls on every side): set "
+                              "gas.enabled = false for a periodic DEM case");
+  }
   c.max_overlap_fraction = r.number("dem.max_overlap_fraction", 0.1, "",
                                     "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
 }
