@@ -226,6 +226,19 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.dem.skin = r.number("dem.skin", 0.5 * c.dem.species[0].diameter, "m",
                         "Verlet skin of the neighbour list; the list is rebuilt when a particle has moved half of it",
                         R::non_negative());
+  {
+    // The neighbour search through periodic images (DemSolver) needs a period above two reaches.
+    double d_max = 0.0;
+    for (const Species& sp : c.dem.species) d_max = std::max(d_max, sp.diameter);
+    const double reach = d_max + c.dem.skin;
+    for (int a : {0, 2}) {
+      const double L = a == 0 ? c.domain.width : c.domain.depth;
+      if (c.domain.periodic[static_cast<std::size_t>(a)] && !(L > 2.0 * reach)) {
+        r.fail("domain.periodic", fmt::format("a periodic axis needs a period above 2 (largest diameter + dem.skin) "
+                                              "= {} m; domain.{} is {} m", 2.0 * reach, a == 0 ? "width" : "depth", L));
+      }
+    }
+  }
   const double dt_max = dem_stable_time_step(c.dem);
   if (c.dem.dt > dt_max) {
     r.fail("dem.time_step", fmt::format("{} s is above the stability limit of the stiffest contact; the largest "
