@@ -178,8 +178,9 @@ std::string describe_case(const CaseConfig& c) {
   for (const std::string& n : c.notes) s += fmt::format("  note: {}\n", n);
   const bool three_d = c.domain.dimension == 3;
   if (three_d) {
-    line("domain", fmt::format("{} x {} x {} m (width x height x depth, front and back walls), gravity ({}, {}, {}) "
-                               "m/s^2", c.domain.width, c.domain.height, c.domain.depth, c.domain.gravity.x,
+    line("domain", fmt::format("{} x {} x {} m (width x height x depth, {}), gravity ({}, {}, {}) "
+                               "m/s^2", c.domain.width, c.domain.height, c.domain.depth,
+                               c.domain.periodic[2] ? "periodic in z" : "front and back walls", c.domain.gravity.x,
                                c.domain.gravity.y, c.domain.gravity.z));
   } else {
     line("domain", fmt::format("{} x {} m, gravity ({}, {}) m/s^2", c.domain.width, c.domain.height, c.domain.gravity.x,

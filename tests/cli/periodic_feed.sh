@@ -70,4 +70,37 @@ run_ok "periodic feed: run to 0.12 s" run "$WORK/feed.toml" --out "$WORK/split" 
 run_ok "periodic feed: restart to 0.25 s" run "$WORK/feed.toml" --out "$WORK/split" --threads 2 \
   --restart "$WORK/split/checkpoints/final.h5"
 same_results "restarted" "$WORK/one" "$WORK/split"
+
+# 3D, periodic in x and z, a feed in kg/s: the same on 1 and 2 threads, every particle inside the periodic box.
+cat >"$WORK/feed3d.toml" <<'TOML'
+case.name = "feed3d"
+case.dimension = 3
+case.end_time = 0.05
+domain.width = 0.04
+domain.height = 0.06
+domain.depth = 0.04
+domain.gravity = [2.0, -9.81, 1.0]
+domain.periodic = ["x", "z"]
+particles.count = 150
+particles.fill_height = 0.04
+settle.enabled = false
+gas.enabled = false
+grid.cell_width = 0.01
+insertion.mass_rate = 0.05
+insertion.region_min = [0.0, 0.045, 0.0]
+insertion.region_max = [0.04, 0.055, 0.04]
+output.interval = 0.025
+output.particles_csv = true
+output.checkpoint_interval = 0.0
+TOML
+expect 0 "periodic axes +x and z" "3D: check reports x and z periodic" "$FLUIDBED" check "$WORK/feed3d.toml"
+expect 0 "depth, periodic in z" "3D: check says the depth is periodic" "$FLUIDBED" check "$WORK/feed3d.toml"
+run_ok "3D periodic feed: 1 thread" run "$WORK/feed3d.toml" --out "$WORK/one3d" --threads 1
+run_ok "3D periodic feed: 2 threads" run "$WORK/feed3d.toml" --out "$WORK/two3d" --threads 2
+same_results "3D, 1 vs 2 threads" "$WORK/one3d" "$WORK/two3d"
+check "3D: the feed placed floor(rate t) particles (rate = 0.05 kg/s over the particle mass)" \
+  awk -F, -v m="$m_p" 'NR == 1 { for (k = 1; k <= NF; ++k) if ($k == "particles_inserted") c = k; next }
+    { n = $c } END { want = int(0.05 / m * 0.05); exit !(n == want) }' "$WORK/one3d/monitor.csv"
+check "3D: every particle inside [0, 0.04) in x and z in the last frame" \
+  bash -c "f=\$(ls '$WORK/one3d/particles/'*.csv | tail -1); awk -F, 'NR > 1 && (\$2 < 0 || \$2 >= 0.04 || \$4 < 0 || \$4 >= 0.04) { bad = 1 } END { exit bad }' \"\$f\""
 finish
