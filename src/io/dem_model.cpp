@@ -76,6 +76,10 @@ std::string settled_bed_record(const CaseConfig& c) {
   line("domain.gravity.x", d.domain.gravity.x);
   line("domain.gravity.y", d.domain.gravity.y);
   if (d.walls.top) line("domain.height (top wall)", d.domain.height);
+  // A bed settled across a periodic side is not one settled against walls (only written when periodic, so the
+  // records of the closed beds stay as they were).
+  if (d.domain.periodic[0]) line("domain.periodic.x", 1.0);
+  if (d.domain.periodic[2]) line("domain.periodic.z", 1.0);
   // A 3D bed also depends on its depth and its placement across it.
   if (d.domain.dimension == 3) {
     line("domain.depth", d.domain.depth);
