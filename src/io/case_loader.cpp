@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -113,13 +114,53 @@ void read_case(CaseReader& r, CaseConfig& c) {
                                          "or set case.dimension = 3", grav[2]));
   }
   c.domain.gravity = {grav[0], grav[1], grav.size() == 3 ? grav[2] : 0.0};
+  const std::vector<std::string> periodic =
+      r.strings("domain.periodic", {}, "periodic axes: particles and gas leaving through one side re-enter through "
+                "the opposite one, with no walls there (x; z too in 3D; CFD-DEM and DEM only)",
+                three_d ? std::vector<std::string>{"x", "z"} : std::vector<std::string>{"x"});
+  for (const std::string& axis : periodic) c.domain.periodic[axis == "x" ? 0 : 2] = true;
+  if (c.model == Model::Tfm && !periodic.empty()) {
+    r.fail("domain.periodic", "the two-fluid model has walls on every side in this version: periodic axes need "
+                              "case.model = \"dem\"");
+  }
   c.dem.domain = c.domain;
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
-                                    "outflow (they leave, removed and counted in monitor.csv); the sides, the "
-                                    "bottom and, in 3D, the front and back are always walls", {"open", "wall", "outflow"});
+                                    "outflow (they leave, removed and counted in monitor.csv); the other sides are "
+                                    "walls unless periodic (domain.periodic) or outflow (domain.particle_outflow)",
+                                    {"open", "wall", "outflow"});
   c.dem.walls.top = ptop == "wall";
   c.dem.walls.top_outflow = ptop == "outflow";
+  {
+    const std::vector<std::string> sides = three_d
+        ? std::vector<std::string>{"left", "right", "bottom", "top", "back", "front"}
+        : std::vector<std::string>{"left", "right", "bottom", "top"};
+    const std::vector<std::string> out =
+        r.strings("domain.particle_outflow", {}, "sides particles leave through (no wall there; each particle that "
+                  "crosses is removed and counted in monitor.csv, particles_lost and mass_lost_kg); \"top\" is "
+                  "domain.particle_top = \"outflow\"", sides);
+    for (const std::string& side : out) {
+      const auto w = static_cast<std::size_t>(std::find(sides.begin(), sides.end(), side) - sides.begin());
+      if (c.domain.periodic[w / 2]) {
+        r.fail("domain.particle_outflow", fmt::format("the {} side lies on a periodic axis (domain.periodic): it has "
+                                                      "no boundary to leave through", side));
+      }
+      if (w == 3 && ptop == "wall") {
+        r.fail("domain.particle_outflow", "the top is an outflow here but domain.particle_top = \"wall\"");
+      }
+      if (w == 3) {
+        c.dem.walls.top_outflow = true;
+      } else {
+        c.dem.walls.side_outflow[w] = true;
+      }
+    }
+    WallConfig& wl = c.dem.walls;
+    wl.left = !wl.outflow(0) && !c.domain.periodic[0];
+    wl.right = !wl.outflow(1) && !c.domain.periodic[0];
+    wl.bottom = !wl.outflow(2);
+    wl.back = !wl.outflow(4) && !c.domain.periodic[2];
+    wl.front = !wl.outflow(5) && !c.domain.periodic[2];
+  }
 
   if (c.model == Model::Tfm) return;  // the particle keys belong to the discrete model
 
@@ -185,6 +226,19 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.dem.skin = r.number("dem.skin", 0.5 * c.dem.species[0].diameter, "m",
                         "Verlet skin of the neighbour list; the list is rebuilt when a particle has moved half of it",
                         R::non_negative());
+  {
+    // The neighbour search through periodic images (DemSolver) needs a period above two reaches.
+    double d_max = 0.0;
+    for (const Species& sp : c.dem.species) d_max = std::max(d_max, sp.diameter);
+    const double reach = d_max + c.dem.skin;
+    for (int a : {0, 2}) {
+      const double L = a == 0 ? c.domain.width : c.domain.depth;
+      if (c.domain.periodic[static_cast<std::size_t>(a)] && !(L > 2.0 * reach)) {
+        r.fail("domain.periodic", fmt::format("a periodic axis needs a period above 2 (largest diameter + dem.skin) "
+                                              "= {} m; domain.{} is {} m", 2.0 * reach, a == 0 ? "width" : "depth", L));
+      }
+    }
+  }
   const double dt_max = dem_stable_time_step(c.dem);
   if (c.dem.dt > dt_max) {
     r.fail("dem.time_step", fmt::format("{} s is above the stability limit of the stiffest contact; the largest "
@@ -194,6 +248,48 @@ void read_case(CaseReader& r, CaseConfig& c) {
     c.notes.push_back(fmt::format("dem.time_step = {:g} s is above {:.3g} s, the limit of the spin mode of a packed "
                                   "bed with sticking contacts: sticking springs there oscillate until they slide "
                                   "(the paper case steps at 1e-4 s for this reason)", c.dem.dt, dt_bed));
+  }
+
+  // [insertion]: a feed of new particles during the run.
+  {
+    InsertionConfig& in = c.dem.insertion;
+    const std::size_t nd = three_d ? 3 : 2;
+    in.rate = r.number("insertion.rate", 0.0, "1/s", "particles added per second during the run (0: none; or "
+                       "insertion.mass_rate)", R::non_negative());
+    const double mass_rate = r.number("insertion.mass_rate", 0.0, "kg/s", "mass added per second (instead of "
+                                      "insertion.rate: rate = mass_rate / particle mass)", R::non_negative());
+    if (in.rate > 0.0 && mass_rate > 0.0) {
+      r.fail("insertion.mass_rate", "give insertion.rate or insertion.mass_rate, not both");
+    }
+    in.species = static_cast<int>(r.integer("insertion.species", 0, "species of the new particles",
+                                            R::between(0, static_cast<double>(ns - 1))));
+    if (mass_rate > 0.0) in.rate = mass_rate / c.dem.species[static_cast<std::size_t>(in.species)].mass();
+    const std::vector<double> zero(nd, 0.0);
+    const auto lo = r.numbers("insertion.region_min", zero, "m", "low corner of the box the new centres are drawn "
+                              "in (x, y; z in 3D)", nd);
+    const auto hi = r.numbers("insertion.region_max", zero, "m", "high corner of that box", nd);
+    const auto vel = r.numbers("insertion.velocity", zero, "m/s", "velocity of each new particle", nd);
+    in.t_start = r.number("insertion.start_time", 0.0, "s", "the feed starts", R::non_negative());
+    const double t_end = r.number("insertion.end_time", 0.0, "s", "the feed stops (0: at the end of the run)",
+                                  R::non_negative());
+    in.t_end = t_end > 0.0 ? t_end : std::numeric_limits<double>::infinity();
+    in.seed = static_cast<std::uint64_t>(r.integer("insertion.seed", static_cast<std::int64_t>(c.seed) + 1,
+                                                   "seed of the random positions of the new particles",
+                                                   R::non_negative()));
+    in.attempts_per_particle = static_cast<int>(r.integer("insertion.attempts", 50, "random positions tried per "
+                                                          "particle and step before it waits for the next step",
+                                                          R::between(1, 1e6)));
+    const Vec3 ext{c.domain.width, c.domain.height, c.domain.depth};
+    for (std::size_t a = 0; a < nd; ++a) {
+      in.region_lo[static_cast<int>(a)] = lo[a];
+      in.region_hi[static_cast<int>(a)] = hi[a];
+      in.velocity[static_cast<int>(a)] = vel[a];
+      if (in.rate > 0.0 && !(lo[a] >= 0.0 && lo[a] <= hi[a] && hi[a] <= ext[static_cast<int>(a)])) {
+        r.fail("insertion.region_max", fmt::format("the region [{}, {}] on axis {} must lie inside the domain [0, {}] "
+                                                   "with region_min <= region_max", lo[a], hi[a], "xyz"[a],
+                                                   ext[static_cast<int>(a)]));
+      }
+    }
   }
 
   // [particles]
@@ -271,6 +367,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
     }
   }
   c.gas_enabled = r.boolean("gas.enabled", true, "couple the particles to the gas (false: DEM alone, in vacuum)");
+  if (c.gas_enabled && c.domain.any_periodic()) {
+    r.fail("domain.periodic", "periodic axes are implemented for the particles only in this version (the gas "
+                              "solver, its pressure matrix and the deposition have walls on every side): set "
+                              "gas.enabled = false for a periodic DEM case");
+  }
   c.max_overlap_fraction = r.number("dem.max_overlap_fraction", 0.1, "",
                                     "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
 }
