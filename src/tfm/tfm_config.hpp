@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/domain.hpp"
 #include "core/tvd_limiter.hpp"
-#include "core/vec2.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_config.hpp"
 #include "tfm/solids_stress.hpp"
@@ -39,10 +39,9 @@ decltype(auto) with_rheology(SolidsRheology r, F&& f) {
 }
 
 struct TfmConfig {
-  // Domain and grid (Table 1: 0.6 x 1.0 m, 0.02 x 0.02 m cells).
-  double width = 0.6;          ///< [m]
-  double height = 1.0;         ///< [m]
-  double cell_size = 0.02;     ///< [m], square cells
+  /// Dimension, box and gravity, shared with the DEM and the gas ([case] and [domain]; Table 1: 0.6 x 1.0 m).
+  DomainConfig domain{};
+  double cell_size = 0.02;     ///< [m], cubic (square in 2D) cells (Table 1: 0.02 m)
   // Particles and gas (Table 1).
   double d_p = 0.004;          ///< [m]
   double rho_s = 2700.0;       ///< [kg/m^3]
@@ -50,7 +49,6 @@ struct TfmConfig {
   double phi_deg = 40.0;       ///< angle of internal friction [deg]
   double rho_g = 1.205;        ///< [kg/m^3], constant (incompressible gas)
   double mu_g = 1.8e-5;        ///< [Pa s]
-  Vec2 gravity{0.0, -9.81};    ///< [m/s^2]
   DragSwitch drag_switch = DragSwitch::Sharp;
   // Initial bed (Table 1): uniform voidage up to the packed height, gas above.
   double eps_initial = 0.431;
