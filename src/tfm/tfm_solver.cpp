@@ -44,27 +44,30 @@ Index<Dim> with(Index<Dim> c, int a, int value) {
 // momentum cell is the mean of the two faces it joins. Ghost layers stand in for the clamped stencil.
 template <int Dim, int d, class Law>
 double advect(const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& f) {
+  // Offsets from the face's storage slot (the hottest stencil of the momentum predictor).
   const Field<Dim>& u = vel[d];
-  auto at = [&](int a, int s) { return u[shifted<Dim>(f, a, s)]; };
-  const Index<Dim> back = shifted<Dim>(f, d, -1);
+  const double* pu = u.data().data() + u.index(f);
   double flux = 0.0, div = 0.0;
   for (int a = 0; a < Dim; ++a) {
+    const auto su = static_cast<std::ptrdiff_t>(u.stride(a));
     double v_hi, v_lo;
     if (a == d) {
-      v_hi = 0.5 * (u[f] + at(d, 1));
-      v_lo = 0.5 * (at(d, -1) + u[f]);
+      v_hi = 0.5 * (pu[0] + pu[su]);
+      v_lo = 0.5 * (pu[-su] + pu[0]);
     } else {
       const Field<Dim>& v = vel[a];
-      v_hi = 0.5 * (v[shifted<Dim>(back, a, 1)] + v[shifted<Dim>(f, a, 1)]);
-      v_lo = 0.5 * (v[back] + v[f]);
+      const double* pv = v.data().data() + v.index(f);
+      const auto sd = static_cast<std::ptrdiff_t>(v.stride(d)), sa = static_cast<std::ptrdiff_t>(v.stride(a));
+      v_hi = 0.5 * (pv[sa - sd] + pv[sa]);
+      v_lo = 0.5 * (pv[-sd] + pv[0]);
     }
-    const double f_hi = v_hi * tvd::face_value<Law>(v_hi, at(a, -1), u[f], at(a, 1), at(a, 2));
-    const double f_lo = v_lo * tvd::face_value<Law>(v_lo, at(a, -2), at(a, -1), u[f], at(a, 1));
+    const double f_hi = v_hi * tvd::face_value<Law>(v_hi, pu[-su], pu[0], pu[su], pu[2 * su]);
+    const double f_lo = v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
     const double t_flux = (f_hi - f_lo) / g.h[a], t_div = (v_hi - v_lo) / g.h[a];
     flux = a == 0 ? t_flux : flux + t_flux;
     div = a == 0 ? t_div : div + t_div;
   }
-  return flux - u[f] * div;
+  return flux - pu[0] * div;
 }
 
 // Partial elimination of the interphase drag (Syamlal 1998, MFIX): the gas and solids momentum equations of

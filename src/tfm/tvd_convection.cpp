@@ -44,31 +44,62 @@ namespace {
 template <int Dim>
 void divergence_from_faces(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, const FaceFields<Dim>& phi_f,
                            Field<Dim>& out) {
-  for_each(g.domain, [&](const Index<Dim>& c) {
-    double div = 0.0;
+  bool periodic = false;
+  for (int a = 0; a < Dim; ++a) periodic = periodic || vel.periodic[a];
+  IndexBox<Dim> lines = g.domain;
+  lines.hi[0] = lines.lo[0] + 1;
+  for_each(lines, [&](Index<Dim> c) {
+    std::array<const double*, Dim> pu{}, pf{};
+    std::array<std::ptrdiff_t, Dim> su{}, sf{};
     for (int a = 0; a < Dim; ++a) {
-      const Index<Dim> hi = shifted<Dim>(c, a, 1);
-      const double term = (vel.at(a, hi) * phi_f[a][hi] - vel.at(a, c) * phi_f[a][c]) / g.h[a];
-      div = a == 0 ? term : div + term;
+      pu[a] = vel.u[a].data().data() + vel.u[a].index(c);
+      pf[a] = phi_f[a].data().data() + phi_f[a].index(c);
+      su[a] = static_cast<std::ptrdiff_t>(vel.u[a].stride(a));
+      sf[a] = static_cast<std::ptrdiff_t>(phi_f[a].stride(a));
     }
-    out[c] = div;
+    double* o = out.data().data() + out.index(c);
+    for (int i = g.domain.lo[0]; i < g.domain.hi[0]; ++i, ++o) {
+      c[0] = i;
+      double div = 0.0;
+      for (int a = 0; a < Dim; ++a) {
+        const std::ptrdiff_t k = i - g.domain.lo[0];
+        const double u_lo = pu[a][k], u_hi = periodic ? vel.at(a, shifted<Dim>(c, a, 1)) : pu[a][k + su[a]];
+        const double term = (u_hi * pf[a][k + sf[a]] - u_lo * pf[a][k]) / g.h[a];
+        div = a == 0 ? term : div + term;
+      }
+      *o = div;
+    }
   });
 }
 
-// The face loops, compiled once per limiter law.
+// The face loops, compiled once per limiter law; each line along axis 0 walks its cells, faces and results with
+// pointers (axis 0 has unit stride in every field), since this is the most frequent stencil of a step.
 template <int Dim, class Law>
 void tvd_face_values_of(const Grid<Dim>& g, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
                         FaceFields<Dim>& phi_f) {
   for (int a = 0; a < Dim; ++a) {
     const bool per = vel.periodic[a];
     const int lo = g.domain.lo[a], hi = g.domain.hi[a];
-    for_each(g.domain.faces(a), [&](const Index<Dim>& f) {
-      if (!per && (f[a] == lo || f[a] == hi)) {
-        phi_f[a][f] = phi[f[a] == lo ? f : shifted<Dim>(f, a, -1)];
-        return;
+    const IndexBox<Dim> faces = g.domain.faces(a);
+    const Field<Dim>& u = vel.u[a];
+    const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
+    // A periodic axis reads face n's velocity from face 0.
+    const auto wrap = static_cast<std::ptrdiff_t>(u.stride(a)) * (hi - lo);
+    IndexBox<Dim> lines = faces;
+    lines.hi[0] = lines.lo[0] + 1;
+    for_each(lines, [&](Index<Dim> f) {
+      const double* p = phi.data().data() + phi.index(f);
+      const double* v = u.data().data() + u.index(f);
+      double* out = phi_f[a].data().data() + phi_f[a].index(f);
+      for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++p, ++v, ++out) {
+        f[0] = i;
+        if (!per && (f[a] == lo || f[a] == hi)) {
+          *out = f[a] == lo ? p[0] : p[-sp];
+          continue;
+        }
+        const double vf = (per && f[a] == hi) ? v[-wrap] : v[0];
+        *out = tvd::face_value<Law>(vf, p[-2 * sp], p[-sp], p[0], p[sp]);
       }
-      phi_f[a][f] = tvd::face_value<Law>(vel.at(a, f), phi[shifted<Dim>(f, a, -2)], phi[shifted<Dim>(f, a, -1)],
-                                         phi[f], phi[shifted<Dim>(f, a, 1)]);
     });
   }
 }
@@ -117,15 +148,17 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   const IndexBox<Dim>& box = g.domain;
   const int n = static_cast<int>(box.count());
   // Row of the neighbour across the face on side `high` of axis a (wrapped when periodic), -1 beyond a boundary.
-  auto neighbour = [&](Index<Dim> c, int a, bool high) {
-    c[a] += high ? 1 : -1;
-    if (vel.periodic[a]) {
-      const int m = box.extent(a);
-      c[a] = box.lo[a] + ((c[a] - box.lo[a]) % m + m) % m;
-    } else if (c[a] < box.lo[a] || c[a] >= box.hi[a]) {
-      return -1;
-    }
-    return cell_row(box, c);
+  std::array<int, Dim> row_stride{};
+  for (int a = 0, st = 1; a < Dim; ++a) {
+    row_stride[a] = st;
+    st *= box.extent(a);
+  }
+  auto neighbour = [&](const Index<Dim>& c, int p, int a, bool high) {
+    const int m = box.extent(a);
+    const int k = c[a] - box.lo[a] + (high ? 1 : -1);
+    if (k >= 0 && k < m) return p + (high ? row_stride[a] : -row_stride[a]);
+    if (!vel.periodic[a]) return -1;
+    return p + (high ? -(m - 1) : (m - 1)) * row_stride[a];
   };
   // Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume.
   std::vector<Eigen::Triplet<double>> trip;
@@ -140,11 +173,12 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
       trip.emplace_back(p, nb, flux_out);
     }
   };
+  int row = 0;
   for_each(box, [&](const Index<Dim>& c) {
-    const int p = cell_row(box, c);
+    const int p = row++;  // for_each runs in row order
     for (int a = 0; a < Dim; ++a) {
-      add_face(p, neighbour(c, a, true), vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a]);
-      add_face(p, neighbour(c, a, false), -vel.at(a, c) / g.h[a]);
+      add_face(p, neighbour(c, p, a, true), vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a]);
+      add_face(p, neighbour(c, p, a, false), -vel.at(a, c) / g.h[a]);
     }
   });
   for (int p = 0; p < n; ++p) trip.emplace_back(p, p, diag[p]);
@@ -168,20 +202,33 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
       // Limited face values less their upwind part: only the limiter's correction remains on each face.
       tvd_face_values(g, limiter, phi, vel, phi_f);
       for (int a = 0; a < Dim; ++a) {
-        for_each(box.faces(a), [&](const Index<Dim>& f) {
-          if (!vel.periodic[a] && (f[a] == box.lo[a] || f[a] == box.hi[a])) {
-            phi_f[a][f] = 0.0;  // boundary faces carry the adjacent cell value in both schemes
-            return;
+        const IndexBox<Dim> faces = box.faces(a);
+        const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
+        const auto wrap = static_cast<std::ptrdiff_t>(vel.u[a].stride(a)) * box.extent(a);
+        const bool per = vel.periodic[a];
+        IndexBox<Dim> lines = faces;
+        lines.hi[0] = lines.lo[0] + 1;
+        for_each(lines, [&](Index<Dim> f) {
+          const double* p = phi.data().data() + phi.index(f);
+          const double* v = vel.u[a].data().data() + vel.u[a].index(f);
+          double* out = phi_f[a].data().data() + phi_f[a].index(f);
+          for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++p, ++v, ++out) {
+            f[0] = i;
+            if (!per && (f[a] == box.lo[a] || f[a] == box.hi[a])) {
+              *out = 0.0;  // boundary faces carry the adjacent cell value in both schemes
+              continue;
+            }
+            const double vf = (per && f[a] == box.hi[a]) ? v[-wrap] : v[0];
+            *out -= vf >= 0.0 ? p[-sp] : p[0];
           }
-          phi_f[a][f] -= vel.at(a, f) >= 0.0 ? phi[shifted<Dim>(f, a, -1)] : phi[f];
         });
       }
       divergence_from_faces(g, vel, phi_f, corr_div);
     }
+    int r = 0;
     for_each(box, [&](const Index<Dim>& c) {
-      const int p = cell_row(box, c);
-      rhs[p] = phi_old[c] / dt - corr_div[c];
-      x[p] = phi[c];
+      rhs[r] = phi_old[c] / dt - corr_div[c];
+      x[r++] = phi[c];
     });
     const LinearSolveOutcome res = solver.solve(mat, rhs, x);
     if (res.fell_back && fallbacks) ++*fallbacks;
@@ -200,7 +247,8 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
                              ": " + res.why + cell +
                              "; the face velocities or dt that build the matrix are not finite or not usable");
     }
-    for_each(box, [&](const Index<Dim>& c) { phi[c] = x[cell_row(box, c)]; });
+    r = 0;
+    for_each(box, [&](const Index<Dim>& c) { phi[c] = x[r++]; });
     fill_cell_ghosts(phi, vel.periodic);
     if (limiter == Limiter::Upwind && pass == 0) break;
   }
