@@ -339,23 +339,32 @@ double TfmSolver<Dim>::advance(double t_stop) {
 template <int Dim>
 void TfmSolver<Dim>::mask_trace_solids_velocity() {
   const IndexBox<Dim>& cells = grid_.domain;
-  auto has = [&](const Index<Dim>& c) { return 1.0 - s_.eps[c] > kEpsSTrace; };
   // A face with (almost) no solids on one side has no meaningful solids velocity; it takes the velocity of the
   // next face into the solids (zero gradient), so stresses and convection at a bed surface see the bed only.
   for (int d = 0; d < Dim; ++d) {
-    const Field<Dim> u0 = s_.us[d];
+    Field<Dim>& u0 = w_->s0[d];  // the velocities before masking (s0 is rewritten by the predictor later)
+    u0.data() = s_.us[d].data();
     const int n = grid_.n(d);
     IndexBox<Dim> faces = cells.faces(d);
     faces.lo[d] += 1;
     faces.hi[d] -= 1;
-    for_each(faces, [&](const Index<Dim>& f) {
-      const Index<Dim> lo = shifted<Dim>(f, d, -1);
-      const bool l = has(lo), r = has(f);
-      if (l && r) return;
-      double val = 0.0;
-      if (l && f[d] - 1 > 0 && has(shifted<Dim>(lo, d, -1))) val = u0[shifted<Dim>(f, d, -1)];
-      if (r && f[d] + 1 < n && has(shifted<Dim>(f, d, 1))) val = u0[shifted<Dim>(f, d, 1)];
-      s_.us[d][f] = val;
+    const auto se = static_cast<std::ptrdiff_t>(s_.eps.stride(d)), su = static_cast<std::ptrdiff_t>(u0.stride(d));
+    IndexBox<Dim> lines = faces;
+    lines.hi[0] = lines.lo[0] + 1;
+    for_each(lines, [&](Index<Dim> f) {
+      const double* pe = s_.eps.data().data() + s_.eps.index(f);  // the cell above the face; pe[-se] below
+      const double* pu = u0.data().data() + u0.index(f);
+      double* out = s_.us[d].data().data() + s_.us[d].index(f);
+      auto has = [](double eps) { return 1.0 - eps > kEpsSTrace; };
+      for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++pe, ++pu, ++out) {
+        f[0] = i;
+        const bool l = has(pe[-se]), r = has(pe[0]);
+        if (l && r) continue;
+        double val = 0.0;
+        if (l && f[d] - 1 > 0 && has(pe[-2 * se])) val = pu[-su];
+        if (r && f[d] + 1 < n && has(pe[se])) val = pu[su];
+        *out = val;
+      }
     });
   }
 }
@@ -932,6 +941,8 @@ void TfmSolver<Dim>::check_health(double dt) const {
   for (int a = 0; a < Dim; ++a)
     for_each(cells.faces(a), [&](const Index<Dim>& f) {
       const double ug = s_.ug[a][f], us = s_.us[a][f];
+      // The common case first: finite and slower than both limits (no cell needs to be looked at).
+      if (std::abs(us) <= v_ref && std::abs(ug) <= v_gas_max) return;
       // The cell on the inner side of the face (the last cell for the high boundary face).
       const Index<Dim> ci = with<Dim>(f, a, std::min(f[a], cells.hi[a] - 1));
       if (!std::isfinite(ug) || !std::isfinite(us)) {

@@ -255,8 +255,21 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   // Final face fluxes from the limited face values of the converged phi; a periodic face n repeats face 0.
   tvd_face_values(g, limiter, phi, vel, phi_f);
   ensure_faces(box, flux);
-  for (int a = 0; a < Dim; ++a)
-    for_each(box.faces(a), [&](const Index<Dim>& f) { flux[a][f] = vel.at(a, f) * phi_f[a][f]; });
+  for (int a = 0; a < Dim; ++a) {
+    if (vel.periodic[a]) {
+      for_each(box.faces(a), [&](const Index<Dim>& f) { flux[a][f] = vel.at(a, f) * phi_f[a][f]; });
+      continue;
+    }
+    // Same layout (faces of axis a, kGhost layers): one pass over the stored arrays, ghosts included.
+    std::vector<double>& out = flux[a].data();
+    const std::vector<double>& u = vel.u[a].data();
+    const std::vector<double>& v = phi_f[a].data();
+    if (vel.u[a].ghost() == kGhost && vel.u[a].box() == flux[a].box()) {
+      for (std::size_t k = 0; k < out.size(); ++k) out[k] = u[k] * v[k];
+    } else {
+      for_each(box.faces(a), [&](const Index<Dim>& f) { flux[a][f] = vel.u[a][f] * phi_f[a][f]; });
+    }
+  }
   return conservative_update(g, phi_old, flux, dt);
 }
 
