@@ -285,6 +285,7 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   t.rho_g = c.gas.rho_g;
   t.mu_g = c.gas.mu_g;
   t.boundary = c.gas.boundary;
+  t.pressure_solver = c.gas.pressure_solver;
   t.drag_switch = c.coupling.drag_switch;
   t.d_p = r.number("tfm.particle_diameter", 0.004, "m", "particle diameter d_p", R::positive());
   t.rho_s = r.number("tfm.particle_density", 2700.0, "kg/m^3", "particle density rho_s", R::positive());

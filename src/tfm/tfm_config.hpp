@@ -86,7 +86,14 @@ struct TfmConfig {
   /// BiCGSTAB iterations of the solids-fraction correction and the implicit continuity at most; 0: Eigen's
   /// default (twice the cell count). A solve that stops short falls back to a sparse LU (tests cap it).
   int linear_max_iterations = 0;
+  /// Backend of the gas-pressure correction (the case's gas.pressure_solver): Eigen's sparse Cholesky (the 2D
+  /// default), incomplete-Cholesky CG or hypre PFMG. The iterative ones solve to kPressureTolerance, since the
+  /// mixture volume constraint closes Eq. 15 to rounding; in 3D the Cholesky factorisation dominates the cost.
+  PressureBackend pressure_solver = PressureBackend::Eigen;
 };
+
+/// Relative residual to which an iterative pressure backend solves the TFM's P' equation.
+inline constexpr double kPressureTolerance = 1e-12;
 
 /// The limiter is a backstop below the working range of the solids pressure, not a substitute for it (it stops
 /// solids but transmits no force): its default bound lies just below the voidage at which the rheology's solids

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_boundary.hpp"
+#include "fluid/structured_solver_hypre.hpp"
 #include "tfm/packing_limiter.hpp"
 
 namespace fluidbed::tfm {
@@ -206,7 +207,13 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     });
     w.e_matrix.build(static_cast<int>(cells.count()), nb);
   }
-  w.pressure = make_eigen_structured_solver<Dim>(grid_);
+  switch (config_.pressure_solver) {
+    case PressureBackend::HyprePfmg: w.pressure = make_hypre_structured_solver<Dim>(grid_, kPressureTolerance); break;
+    case PressureBackend::EigenCg:
+      w.pressure = make_eigen_structured_solver<Dim>(grid_, PressureSolverKind::ConjugateGradient, kPressureTolerance);
+      break;
+    case PressureBackend::Eigen: w.pressure = make_eigen_structured_solver<Dim>(grid_); break;
+  }
   for (FaceFields<Dim>* f : {&w.g0, &w.s0, &w.dg, &w.ds, &w.gs, &w.ss, &w.eg, &w.es, &w.a, &w.fs, &w.fs_unlimited,
                              &w.fs_corr, &w.fg_shift}) {
     *f = FaceFields<Dim>(cells, kGhost);
