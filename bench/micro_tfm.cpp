@@ -29,7 +29,7 @@ BENCHMARK(bm_tvd_face_value);
 void bm_tfm_step(benchmark::State& state) {
   fluidbed::tfm::TfmConfig config;
   config.rheology = static_cast<fluidbed::tfm::SolidsRheology>(state.range(0));
-  fluidbed::tfm::TfmSolver solver(config);
+  fluidbed::tfm::TfmSolver<2> solver(config);
   solver.advance_to(0.05);
   for (auto _ : state) benchmark::DoNotOptimize(solver.step(1.0));
   state.counters["sim_time_s"] = solver.time();

@@ -85,10 +85,6 @@ void read_case(CaseReader& r, CaseConfig& c) {
                                                   "of depth, coupling.depth deep); 3: a box with front and back walls "
                                                   "(domain.depth deep)", R::between(2, 3)));
   const bool three_d = c.domain.dimension == 3;
-  if (three_d && c.model == Model::Tfm) {
-    r.fail("case.dimension", "the two-fluid model is two-dimensional in this version: case.dimension = 3 needs "
-                             "case.model = \"dem\"");
-  }
 
   // [domain]: the box and gravity of every model, read here only and copied into each model's config.
   c.domain.width = r.number("domain.width", 0.6, "m", "bed width (x)", R::positive());
@@ -379,17 +375,19 @@ void read_case(CaseReader& r, CaseConfig& c) {
 void read_tfm(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   tfm::TfmConfig& t = c.tfm;
-  t.width = c.domain.width;
-  t.height = c.domain.height;
+  t.domain = c.domain;
   if (std::abs(c.grid.dx - c.grid.dy) > 1e-12 * c.grid.dx) {
     r.fail("grid.cell_height", "the two-fluid model needs square cells (cell_height = cell_width)");
+  }
+  if (c.domain.dimension == 3 && std::abs(c.grid.dx - c.grid.dz) > 1e-12 * c.grid.dx) {
+    r.fail("grid.cell_depth", "the two-fluid model needs cubic cells in 3D (cell_depth = cell_width)");
   }
   t.cell_size = c.grid.dx;
   t.rho_g = c.gas.rho_g;
   t.mu_g = c.gas.mu_g;
-  t.gravity = c.domain.gravity_vector<2>();
   t.boundary = c.gas.boundary;
   t.drag_law = c.coupling.drag_law;
+  t.pressure_solver = c.gas.pressure_solver;
   t.drag_switch = c.coupling.drag_switch;
   t.d_p = r.number("tfm.particle_diameter", 0.004, "m", "particle diameter d_p", R::positive());
   t.rho_s = r.number("tfm.particle_density", 2700.0, "kg/m^3", "particle density rho_s", R::positive());

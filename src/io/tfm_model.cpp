@@ -12,13 +12,10 @@ namespace fluidbed {
 
 namespace {
 
+template <int Dim>
 class TfmModel final : public ModelRun {
  public:
-  explicit TfmModel(const CaseConfig& c) : config_(c), solver_(c.tfm) {
-    const Grid2& g = solver_.grid();
-    for (Field2* f : {&ug_, &vg_, &us_, &vs_}) *f = Field2(g.nx, g.ny);
-    refresh();
-  }
+  explicit TfmModel(const CaseConfig& c) : config_(c), solver_(c.tfm) { refresh(); }
 
   double time() const override { return solver_.time(); }
   void advance(double t_end) override {
@@ -29,14 +26,15 @@ class TfmModel final : public ModelRun {
     for (double interval : {config_.output.monitor_interval, config_.output.interval, config_.output.checkpoint_interval}) {
       if (interval > 0.0) t_stop = std::min(t_stop, (std::floor(t / interval + 1e-9) + 1.0) * interval);
     }
-    last_dt_ = solver_.step(t_stop);
+    last_dt_ = solver_.advance(t_stop);
     refresh();
   }
   /// The step is adaptive and lands on the output times: no scheduling slack is needed.
   double macro_dt() const override { return 0.0; }
-  // Columns defined in docs/output-format.md ("monitor.csv columns"). Mass and kinetic energy come per metre of
-  // depth (the two-dimensional equations) and, for the contract columns, for a slab coupling.depth deep, the
-  // basis of the CFD-DEM monolayer, so that the two models' columns of one name compare directly.
+  // Columns defined in docs/output-format.md ("monitor.csv columns"). In 2D, mass and kinetic energy come per
+  // metre of depth (the two-dimensional equations) and, for the contract columns, for a slab coupling.depth deep,
+  // the basis of the CFD-DEM monolayer, so that the two models' columns of one name compare directly; in 3D both
+  // are of the whole box (the _per_depth columns then divide by domain.depth).
   std::vector<std::string> monitor_columns() const override {
     return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
             "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "time_step_s", "min_voidage",
@@ -44,27 +42,41 @@ class TfmModel final : public ModelRun {
             "linear_solver_fallbacks"};
   }
   std::vector<std::optional<double>> monitor_values() override {
-    // Kinetic energy of the solids' mean motion per metre of depth, from cell-centred velocities.
-    const Grid2& g = solver_.grid();
-    const tfm::TfmState& s = solver_.state();
+    // Kinetic energy of the solids' mean motion, from cell-centred velocities.
+    const Grid<Dim>& g = solver_.grid();
     double ke = 0.0;
-    for (std::size_t c = 0; c < g.cells(); ++c) {
-      ke += 0.5 * config_.tfm.rho_s * (1.0 - s.eps.v[c]) * (us_.v[c] * us_.v[c] + vs_.v[c] * vs_.v[c]) * g.dx * g.dy;
+    for (std::size_t c = 0; c < eps_.size(); ++c) {
+      double sq = us_[0][c] * us_[0][c];
+      for (int a = 1; a < Dim; ++a) sq += us_[a][c] * us_[a][c];
+      double e = 0.5 * config_.tfm.rho_s * (1.0 - eps_[c]) * sq;
+      for (int a = 0; a < Dim; ++a) e *= g.h[a];
+      ke += e;
     }
-    const double depth = config_.coupling.depth;
     const double mass = solver_.solids_mass();
-    return {ke * depth, solver_.pressure_drop(), std::nullopt, solver_.gas_volume_residual(), mass * depth, mass, ke,
-            last_dt_, solver_.min_voidage(), solver_.max_solids_speed(), solver_.bed_granular_temperature_max(),
-            solver_.solids_mean_granular_temperature(), static_cast<double>(solver_.linear_fallbacks())};
+    // 2D: per metre of depth, and for the slab of coupling.depth; 3D: the box, and per metre of its depth.
+    const double depth = Dim == 2 ? config_.coupling.depth : 1.0;
+    const double per_depth = Dim == 2 ? 1.0 : 1.0 / config_.domain.depth;
+    return {ke * depth, solver_.pressure_drop(), std::nullopt, solver_.gas_volume_residual(), mass * depth,
+            mass * per_depth, ke * per_depth, last_dt_, solver_.min_voidage(), solver_.max_solids_speed(),
+            solver_.bed_granular_temperature_max(), solver_.solids_mean_granular_temperature(),
+            static_cast<double>(solver_.linear_fallbacks())};
   }
   FieldView fields() override {
+    const Grid<Dim>& g = solver_.grid();
     FieldView f;
-    f.set_grid(solver_.grid());
-    f.eps = solver_.state().eps.v.data();
-    f.p = solver_.state().p.v.data();
-    f.ug = {ug_.v.data(), vg_.v.data(), nullptr};
-    f.us = {us_.v.data(), vs_.v.data(), nullptr};
-    f.theta = solver_.state().theta.v.data();
+    f.dimension = Dim;
+    for (int a = 0; a < Dim; ++a) {
+      f.n[static_cast<std::size_t>(a)] = g.n(a);
+      f.h[static_cast<std::size_t>(a)] = g.h[a];
+      f.origin[static_cast<std::size_t>(a)] = g.origin[a];
+    }
+    f.eps = eps_.data();
+    f.p = p_.data();
+    for (int a = 0; a < Dim; ++a) {
+      f.ug[static_cast<std::size_t>(a)] = ug_[a].data();
+      f.us[static_cast<std::size_t>(a)] = us_[a].data();
+    }
+    f.theta = theta_.data();
     return f;
   }
 
@@ -74,6 +86,7 @@ class TfmModel final : public ModelRun {
       f.write("tfm/" + a.name, a.values);
       f.set_attribute("tfm/" + a.name, "nx", static_cast<std::int64_t>(a.nx));
       f.set_attribute("tfm/" + a.name, "ny", static_cast<std::int64_t>(a.ny));
+      if (Dim == 3) f.set_attribute("tfm/" + a.name, "nz", static_cast<std::int64_t>(a.nz));
     }
     f.set_attribute("tfm", "last_dt", last_dt_);
   }
@@ -88,6 +101,7 @@ class TfmModel final : public ModelRun {
       a.values = f.read_double("tfm/" + a.name);
       a.nx = static_cast<int>(f.attribute_int64("tfm/" + a.name, "nx"));
       a.ny = static_cast<int>(f.attribute_int64("tfm/" + a.name, "ny"));
+      a.nz = Dim == 3 ? static_cast<int>(f.attribute_int64("tfm/" + a.name, "nz")) : 1;
     }
     solver_.restore_state(arrays);
     last_dt_ = f.attribute_double("tfm", "last_dt");
@@ -99,24 +113,40 @@ class TfmModel final : public ModelRun {
     const char* rheology = config_.tfm.rheology == tfm::SolidsRheology::KineticTheory   ? "kinetic theory"
                            : config_.tfm.rheology == tfm::SolidsRheology::Inviscid        ? "inviscid solids"
                                                                                            : "constant solids viscosity";
-    return fmt::format("TFM ({}), {} x {} cells, adaptive dt <= {:g} s", rheology, solver_.grid().nx,
-                       solver_.grid().ny, config_.tfm.dt_max);
+    const Grid<Dim>& g = solver_.grid();
+    const std::string cells = Dim == 2 ? fmt::format("{} x {}", g.n(0), g.n(1))
+                                       : fmt::format("{} x {} x {}", g.n(0), g.n(1), g.n(Dim - 1));
+    return fmt::format("TFM ({}), {} cells, adaptive dt <= {:g} s", rheology, cells, config_.tfm.dt_max);
   }
 
  private:
+  // The observers read contiguous cell arrays (axis 0 fastest), the solver's fields carry ghost layers.
   void refresh() {
-    solver_.gas_velocity_cells(ug_, vg_);
-    solver_.solids_velocity_cells(us_, vs_);
+    const tfm::TfmState<Dim>& s = solver_.state();
+    eps_ = s.eps.interior();
+    p_ = s.p.interior();
+    theta_ = s.theta.interior();
+    solver_.gas_velocity_cells(ug_cells_);
+    solver_.solids_velocity_cells(us_cells_);
+    for (int a = 0; a < Dim; ++a) {
+      ug_[a] = ug_cells_[a].interior();
+      us_[a] = us_cells_[a].interior();
+    }
   }
 
   CaseConfig config_;
-  tfm::TfmSolver solver_;
-  Field2 ug_, vg_, us_, vs_;
+  tfm::TfmSolver<Dim> solver_;
+  tfm::CellVectorField<Dim> ug_cells_, us_cells_;
+  std::vector<double> eps_, p_, theta_;
+  std::array<std::vector<double>, Dim> ug_, us_;
   double last_dt_ = 0.0;
 };
 
 }  // namespace
 
-std::unique_ptr<ModelRun> make_tfm_model(const CaseConfig& config) { return std::make_unique<TfmModel>(config); }
+std::unique_ptr<ModelRun> make_tfm_model(const CaseConfig& config) {
+  if (config.domain.dimension == 3) return std::make_unique<TfmModel<3>>(config);
+  return std::make_unique<TfmModel<2>>(config);
+}
 
 }  // namespace fluidbed

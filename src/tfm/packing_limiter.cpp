@@ -15,24 +15,29 @@ constexpr double kLandingMargin = 1e-14;
 
 }  // namespace
 
-PackingLimitResult limit_packing(const Grid2& g, const Field2& phi_old, double dt, double phi_max, FaceFluxes& f,
-                                 int max_sweeps) {
-  const int nx = g.nx, ny = g.ny;
-  const double cx = dt / g.dx, cy = dt / g.dy;
+template <int Dim>
+PackingLimitResult limit_packing(const Grid<Dim>& g, const Field<Dim>& phi_old, double dt, double phi_max,
+                                 FaceFluxes<Dim>& f, int max_sweeps) {
+  const IndexBox<Dim>& box = g.domain;
+  std::array<double, Dim> courant{};
+  for (int a = 0; a < Dim; ++a) courant[a] = dt / g.h[a];
   PackingLimitResult res;
   // Factor of every cell's inflow faces in this sweep (1: the cell is within its bound).
-  Field2 factor(nx, ny);
+  Field<Dim> factor(box, 0);
   // Every cell reads the fluxes as the previous sweep left them, so the factors do not depend on the order the
   // cells are visited in (a Jacobi sweep: it can run on sub-domains with a halo exchange between sweeps).
-  auto cell_factor = [&](int i, int j) {
+  auto cell_factor = [&](const Index<Dim>& c) {
     // Same expression as conservative_update, so the bound checked is the bound the update will meet.
-    const double fe = f.x(i + 1, j), fw = f.x(i, j), fn = f.y(i, j + 1), fs = f.y(i, j);
-    const double value = conservative_cell_update(phi_old(i, j), fe, fw, fn, fs, dt, g.dx, g.dy);
-    const double bound = std::max(phi_max, phi_old(i, j));
+    const double value = conservative_cell_update(g, phi_old, f, c, dt);
+    const double bound = std::max(phi_max, phi_old[c]);
     if (!(value > bound)) return 1.0;
     const double excess = value - bound + kLandingMargin;
     // Inflow through each face, in units of phi.
-    const double in = cx * (std::max(-fe, 0.0) + std::max(fw, 0.0)) + cy * (std::max(-fn, 0.0) + std::max(fs, 0.0));
+    double in = 0.0;
+    for (int a = 0; a < Dim; ++a) {
+      const double term = courant[a] * (std::max(-f[a][shifted<Dim>(c, a, 1)], 0.0) + std::max(f[a][c], 0.0));
+      in = a == 0 ? term : in + term;
+    }
     if (!(in > 0.0)) return 1.0;  // cannot happen: without inflow the value cannot rise above phi_old
     // All inflow faces take the same factor: the cell lands on the bound, the outflows stay.
     // (r is kept below 1, so that every cut makes progress.)
@@ -47,32 +52,33 @@ PackingLimitResult limit_packing(const Grid2& g, const Field2& phi_old, double d
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     res.sweeps = sweep + 1;
     bool over = false;
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        factor(i, j) = cell_factor(i, j);
-        over = over || factor(i, j) != 1.0;
-      }
+    for_each(box, [&](const Index<Dim>& c) {
+      factor[c] = cell_factor(c);
+      over = over || factor[c] != 1.0;
+    });
     if (!over) return res;
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i <= nx; ++i) {
-        double& face = f.x(i, j);
-        if (face > 0.0 && i < nx) cut(face, factor(i, j));
-        if (face < 0.0 && i > 0) cut(face, factor(i - 1, j));
-      }
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        double& face = f.y(i, j);
-        if (face > 0.0 && j < ny) cut(face, factor(i, j));
-        if (face < 0.0 && j > 0) cut(face, factor(i, j - 1));
-      }
+    for (int a = 0; a < Dim; ++a) {
+      for_each(box.faces(a), [&](const Index<Dim>& face_index) {
+        double& face = f[a][face_index];
+        if (face > 0.0 && face_index[a] < box.hi[a]) cut(face, factor[face_index]);
+        if (face < 0.0 && face_index[a] > box.lo[a]) cut(face, factor[shifted<Dim>(face_index, a, -1)]);
+      });
+    }
   }
   throw_simulation_error("tfm: packing limiter did not bound the solids fraction by " + std::to_string(phi_max) +
                          " within " + std::to_string(max_sweeps) + " sweeps");
 }
 
-void transfer_to_gas(const FaceFluxes& solids_before, const FaceFluxes& solids_after, FaceFluxes& gas) {
-  for (std::size_t k = 0; k < gas.x.size(); ++k) gas.x.v[k] += solids_before.x.v[k] - solids_after.x.v[k];
-  for (std::size_t k = 0; k < gas.y.size(); ++k) gas.y.v[k] += solids_before.y.v[k] - solids_after.y.v[k];
+template <int Dim>
+void transfer_to_gas(const FaceFluxes<Dim>& solids_before, const FaceFluxes<Dim>& solids_after,
+                     FaceFluxes<Dim>& gas) {
+  for (int a = 0; a < Dim; ++a)
+    for_each(gas[a].box(), [&](const Index<Dim>& f) { gas[a][f] += solids_before[a][f] - solids_after[a][f]; });
 }
+
+template PackingLimitResult limit_packing<2>(const Grid<2>&, const Field<2>&, double, double, FaceFluxes<2>&, int);
+template PackingLimitResult limit_packing<3>(const Grid<3>&, const Field<3>&, double, double, FaceFluxes<3>&, int);
+template void transfer_to_gas<2>(const FaceFluxes<2>&, const FaceFluxes<2>&, FaceFluxes<2>&);
+template void transfer_to_gas<3>(const FaceFluxes<3>&, const FaceFluxes<3>&, FaceFluxes<3>&);
 
 }  // namespace fluidbed::tfm

@@ -4,8 +4,8 @@
 // cell lands on the bound. Only magnitudes shrink, never signs, so the update stays conservative and a zero
 // flux is always feasible. Two-fluid codes bound the phase fraction at its packing limit the same way
 // (e.g. OpenFOAM's MULES limiter with alphaMax).
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "tfm/tvd_convection.hpp"
 
 namespace fluidbed::tfm {
@@ -24,12 +24,14 @@ struct PackingLimitResult {
 /// cell is over its bound at all (the check has no tolerance, and uses the very expression of
 /// conservative_update); after max_sweeps the run fails (simulation error). Where cut cells form a loop of flow,
 /// each cut returns to the cell that started it, so the sweeps converge geometrically; the default cap leaves a
-/// wide margin. Non-periodic grids only (face 0 and face nx are distinct faces).
-PackingLimitResult limit_packing(const Grid2& grid, const Field2& phi_old, double dt, double phi_max,
-                                 FaceFluxes& flux, int max_sweeps = 1000);
+/// wide margin. Non-periodic grids only (face 0 and face n of an axis are distinct faces).
+template <int Dim>
+PackingLimitResult limit_packing(const Grid<Dim>& grid, const Field<Dim>& phi_old, double dt, double phi_max,
+                                 FaceFluxes<Dim>& flux, int max_sweeps = 1000);
 
 /// Keeps the mixture volume flux F_g + F_s of every face when the solids flux changes from `solids_before` to
 /// `solids_after`: F_g += solids_before - solids_after, face by face.
-void transfer_to_gas(const FaceFluxes& solids_before, const FaceFluxes& solids_after, FaceFluxes& gas);
+template <int Dim>
+void transfer_to_gas(const FaceFluxes<Dim>& solids_before, const FaceFluxes<Dim>& solids_after, FaceFluxes<Dim>& gas);
 
 }  // namespace fluidbed::tfm

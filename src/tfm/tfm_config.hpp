@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/domain.hpp"
 #include "core/tvd_limiter.hpp"
-#include "core/vec2.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_config.hpp"
 #include "tfm/solids_stress.hpp"
@@ -39,10 +39,9 @@ decltype(auto) with_rheology(SolidsRheology r, F&& f) {
 }
 
 struct TfmConfig {
-  // Domain and grid (Table 1: 0.6 x 1.0 m, 0.02 x 0.02 m cells).
-  double width = 0.6;          ///< [m]
-  double height = 1.0;         ///< [m]
-  double cell_size = 0.02;     ///< [m], square cells
+  /// Dimension, box and gravity, shared with the DEM and the gas ([case] and [domain]; Table 1: 0.6 x 1.0 m).
+  DomainConfig domain{};
+  double cell_size = 0.02;     ///< [m], cubic (square in 2D) cells (Table 1: 0.02 m)
   // Particles and gas (Table 1).
   double d_p = 0.004;          ///< [m]
   double rho_s = 2700.0;       ///< [kg/m^3]
@@ -50,8 +49,7 @@ struct TfmConfig {
   double phi_deg = 40.0;       ///< angle of internal friction [deg]
   double rho_g = 1.205;        ///< [kg/m^3], constant (incompressible gas)
   double mu_g = 1.8e-5;        ///< [Pa s]
-  Vec2 gravity{0.0, -9.81};    ///< [m/s^2]
-  DragLaw drag_law = DragLaw::ErgunWenYu;
+  DragLaw drag_law = DragLaw::ErgunWenYu;  ///< the shared drag library (src/fluid/drag.hpp)
   DragSwitch drag_switch = DragSwitch::Sharp;
   // Initial bed (Table 1): uniform voidage up to the packed height, gas above.
   double eps_initial = 0.431;
@@ -89,7 +87,14 @@ struct TfmConfig {
   /// BiCGSTAB iterations of the solids-fraction correction and the implicit continuity at most; 0: Eigen's
   /// default (twice the cell count). A solve that stops short falls back to a sparse LU (tests cap it).
   int linear_max_iterations = 0;
+  /// Backend of the gas-pressure correction (the case's gas.pressure_solver): Eigen's sparse Cholesky (the 2D
+  /// default), incomplete-Cholesky CG or hypre PFMG. The iterative ones solve to kPressureTolerance, since the
+  /// mixture volume constraint closes Eq. 15 to rounding; in 3D the Cholesky factorisation dominates the cost.
+  PressureBackend pressure_solver = PressureBackend::Eigen;
 };
+
+/// Relative residual to which an iterative pressure backend solves the TFM's P' equation.
+inline constexpr double kPressureTolerance = 1e-12;
 
 /// The limiter is a backstop below the working range of the solids pressure, not a substitute for it (it stops
 /// solids but transmits no force): its default bound lies just below the voidage at which the rheology's solids

@@ -5,12 +5,13 @@
 #include <cstdint>
 #include <fmt/format.h>
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_boundary.hpp"
+#include "fluid/structured_solver_hypre.hpp"
 #include "tfm/packing_limiter.hpp"
-#include "tfm/tvd_convection.hpp"
 
 namespace fluidbed::tfm {
 namespace {
@@ -23,8 +24,6 @@ constexpr double kEpsSTrace = 1e-4;
 // Below this solids fraction the constant solids viscosity is ramped to zero ("constant in the bed").
 constexpr double kEpsSBed = 0.05;
 
-int clampi(int k, int lo, int hi) { return std::min(std::max(k, lo), hi); }
-
 // Uniform number in [0, 1) from (seed, stream, index) by the splitmix64 finaliser (Steele et al. 2014): the same
 // on every platform and independent of the order in which cells ask, so the perturbations are reproducible.
 double seeded_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
@@ -35,38 +34,41 @@ double seeded_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t in
   return static_cast<double>(z >> 11) * 0x1.0p-53;
 }
 
-// Advective term (U . grad) u of the x-velocity at u-face (i, j), TVD face values, advective form
-// div(U u) - u div(U) so that it vanishes for a uniform field.
-template <class Law>
-double advect_u(const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
-  const int nx = u.nx - 1, ny = u.ny;
-  auto U = [&](int a, int b) { return u(clampi(a, 0, nx), clampi(b, 0, ny - 1)); };
-  const double ue_vel = 0.5 * (U(i, j) + U(i + 1, j));
-  const double uw_vel = 0.5 * (U(i - 1, j) + U(i, j));
-  const double vn_vel = 0.5 * (v(i - 1, j + 1) + v(i, j + 1));
-  const double vs_vel = 0.5 * (v(i - 1, j) + v(i, j));
-  const double fe = ue_vel * tvd::face_value<Law>(ue_vel, U(i - 1, j), U(i, j), U(i + 1, j), U(i + 2, j));
-  const double fw = uw_vel * tvd::face_value<Law>(uw_vel, U(i - 2, j), U(i - 1, j), U(i, j), U(i + 1, j));
-  const double fn = vn_vel * tvd::face_value<Law>(vn_vel, U(i, j - 1), U(i, j), U(i, j + 1), U(i, j + 2));
-  const double fs = vs_vel * tvd::face_value<Law>(vs_vel, U(i, j - 2), U(i, j - 1), U(i, j), U(i, j + 1));
-  return (fe - fw) / dx + (fn - fs) / dy - U(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
+template <int Dim>
+Index<Dim> with(Index<Dim> c, int a, int value) {
+  c[a] = value;
+  return c;
 }
 
-// Same for the y-velocity at v-face (i, j).
-template <class Law>
-double advect_v(const Field2& u, const Field2& v, int i, int j, double dx, double dy) {
-  const int nx = v.nx, ny = v.ny - 1;
-  auto V = [&](int a, int b) { return v(clampi(a, 0, nx - 1), clampi(b, 0, ny)); };
-  const int jl = clampi(j - 1, 0, ny - 1), jh = clampi(j, 0, ny - 1);
-  const double vn_vel = 0.5 * (V(i, j) + V(i, j + 1));
-  const double vs_vel = 0.5 * (V(i, j - 1) + V(i, j));
-  const double ue_vel = 0.5 * (u(i + 1, jl) + u(i + 1, jh));
-  const double uw_vel = 0.5 * (u(i, jl) + u(i, jh));
-  const double fn = vn_vel * tvd::face_value<Law>(vn_vel, V(i, j - 1), V(i, j), V(i, j + 1), V(i, j + 2));
-  const double fs = vs_vel * tvd::face_value<Law>(vs_vel, V(i, j - 2), V(i, j - 1), V(i, j), V(i, j + 1));
-  const double fe = ue_vel * tvd::face_value<Law>(ue_vel, V(i - 1, j), V(i, j), V(i + 1, j), V(i + 2, j));
-  const double fw = uw_vel * tvd::face_value<Law>(uw_vel, V(i - 2, j), V(i - 1, j), V(i, j), V(i + 1, j));
-  return (fe - fw) / dx + (fn - fs) / dy - V(i, j) * ((ue_vel - uw_vel) / dx + (vn_vel - vs_vel) / dy);
+// Advective term (U . grad) u_d of velocity component d at its face f, TVD face values, in the advective form
+// div(U u_d) - u_d div(U) so that it vanishes for a uniform field; the transport velocity of each face of the
+// momentum cell is the mean of the two faces it joins. Ghost layers stand in for the clamped stencil.
+template <int Dim, int d, class Law>
+double advect(const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& f) {
+  // Offsets from the face's storage slot (the hottest stencil of the momentum predictor).
+  const Field<Dim>& u = vel[d];
+  const double* pu = u.data().data() + u.index(f);
+  double flux = 0.0, div = 0.0;
+  for (int a = 0; a < Dim; ++a) {
+    const auto su = static_cast<std::ptrdiff_t>(u.stride(a));
+    double v_hi, v_lo;
+    if (a == d) {
+      v_hi = 0.5 * (pu[0] + pu[su]);
+      v_lo = 0.5 * (pu[-su] + pu[0]);
+    } else {
+      const Field<Dim>& v = vel[a];
+      const double* pv = v.data().data() + v.index(f);
+      const auto sd = static_cast<std::ptrdiff_t>(v.stride(d)), sa = static_cast<std::ptrdiff_t>(v.stride(a));
+      v_hi = 0.5 * (pv[sa - sd] + pv[sa]);
+      v_lo = 0.5 * (pv[-sd] + pv[0]);
+    }
+    const double f_hi = v_hi * tvd::face_value<Law>(v_hi, pu[-su], pu[0], pu[su], pu[2 * su]);
+    const double f_lo = v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
+    const double t_flux = (f_hi - f_lo) / g.h[a], t_div = (v_hi - v_lo) / g.h[a];
+    flux = a == 0 ? t_flux : flux + t_flux;
+    div = a == 0 ? t_div : div + t_div;
+  }
+  return flux - pu[0] * div;
 }
 
 // Partial elimination of the interphase drag (Syamlal 1998, MFIX): the gas and solids momentum equations of
@@ -101,17 +103,31 @@ double solids_pressure_law(const TfmConfig& c, const GranularMaterial& m, double
   }
 }
 
+template <int Dim>
+std::string index_name(const Index<Dim>& c) {
+  std::string s = "(";
+  for (int a = 0; a < Dim; ++a) s += fmt::format("{}{}", a > 0 ? ", " : "", c[a]);
+  return s + ")";
+}
+
 }  // namespace
 
 void validate(const TfmConfig& c) {
   auto need = [](bool ok, const char* what) {
     if (!ok) throw_input_error(std::string("tfm: ") + what);
   };
-  need(c.width > 0.0 && c.height > 0.0, "width and height must be positive");
-  need(c.cell_size > 0.0 && c.cell_size <= std::min(c.width, c.height), "cell_size must be positive and fit the domain");
-  const double nx = c.width / c.cell_size, ny = c.height / c.cell_size;
-  need(std::abs(nx - std::round(nx)) < 1e-6 && std::abs(ny - std::round(ny)) < 1e-6,
-       "width and height must be whole multiples of cell_size");
+  const DomainConfig& d = c.domain;
+  need(d.dimension == 2 || d.dimension == 3, "the dimension must be 2 or 3");
+  const bool three_d = d.dimension == 3;
+  need(d.width > 0.0 && d.height > 0.0 && (!three_d || d.depth > 0.0), "width, height (and depth in 3D) must be positive");
+  const double smallest = three_d ? std::min({d.width, d.height, d.depth}) : std::min(d.width, d.height);
+  need(c.cell_size > 0.0 && c.cell_size <= smallest, "cell_size must be positive and fit the domain");
+  auto whole = [&](double length) {
+    const double n = length / c.cell_size;
+    return std::abs(n - std::round(n)) < 1e-6;
+  };
+  need(whole(d.width) && whole(d.height) && (!three_d || whole(d.depth)),
+       "width, height (and depth in 3D) must be whole multiples of cell_size");
   need(c.d_p > 0.0, "d_p must be positive");
   need(c.rho_s > c.rho_g && c.rho_g > 0.0, "need rho_s > rho_g > 0");
   need(c.mu_g > 0.0, "mu_g must be positive");
@@ -125,7 +141,7 @@ void validate(const TfmConfig& c) {
   need(c.phi_deg > 0.0 && c.phi_deg < 90.0, "phi_deg must lie in (0, 90)");
   need(c.eps_star > 0.0 && c.eps_star < 1.0, "eps_star must lie in (0, 1)");
   need(c.eps_initial >= c.eps_star && c.eps_initial <= 1.0, "eps_initial must lie in [eps_star, 1]");
-  need(c.packed_height >= 0.0 && c.packed_height <= c.height, "packed_height must lie in [0, height]");
+  need(c.packed_height >= 0.0 && c.packed_height <= d.height, "packed_height must lie in [0, height]");
   need(c.mu_s_constant >= 0.0 && c.mu_s_max > 0.0, "solids viscosities must be non-negative (mu_s_max positive)");
   need(c.modulus.a > 0.0 && c.modulus.b > 0.0, "modulus a and b must be positive");
   need(c.cfl > 0.0 && c.cfl <= 1.0, "cfl must lie in (0, 1]");
@@ -140,577 +156,760 @@ void validate(const TfmConfig& c) {
        "a moving lid (boundary lid_velocity) is not supported by the two-fluid model");
 }
 
+template <int Dim>
+struct TfmSolver<Dim>::Work {
+  FaceFields<Dim> g0, s0;          // velocities entering the step (gas interstitial on the distributor), ghosts filled
+  FaceFields<Dim> dg, ds;          // velocity response to a unit P' gradient (gas, solids)
+  FaceFields<Dim> gs, ss;          // velocity response to a unit (K E') gradient (gas, solids)
+  FaceFields<Dim> eg, es;          // TVD face fractions of the step
+  FaceFields<Dim> a;               // face coefficients of the P' equation
+  Field<Dim> eps_s, eps_s_new;     // solids fraction before and after the continuity
+  Field<Dim> rhs_p, p_corr;
+  FaceFluxes<Dim> fs, fs_unlimited, fs_corr, fg_shift;
+  CellVectorField<Dim> usc;        // solids velocity at cell centres (strain rate)
+  Eigen::VectorXd out_g, out_s;
+  std::vector<double> inlet;
+  double dense_change = 0.0;
+  std::unique_ptr<StructuredSolver<Dim>> pressure;  // shared with the gas solver (src/fluid)
+  StencilMatrix e_matrix;  // solids-fraction correction, (2 Dim + 1)-point pattern fixed at construction
+  CheckedSparseSolver solids_solver;
+};
+
 namespace {
-Grid2 validated_grid(const TfmConfig& c) {
+template <int Dim>
+Grid<Dim> validated_grid(const TfmConfig& c) {
   validate(c);
-  return Grid2::uniform(c.width, c.height, static_cast<int>(std::lround(c.width / c.cell_size)),
-                        static_cast<int>(std::lround(c.height / c.cell_size)));
+  if (c.domain.dimension != Dim) {
+    throw_input_error(fmt::format("tfm: a {}D solver cannot run a case of dimension {}", Dim, c.domain.dimension));
+  }
+  const Vec<Dim> extent = c.domain.extent<Dim>();
+  Index<Dim> n{};
+  for (int a = 0; a < Dim; ++a) n[a] = static_cast<int>(std::lround(extent[a] / c.cell_size));
+  return Grid<Dim>::uniform(extent, n, kGhost);
 }
 }  // namespace
 
-TfmSolver::TfmSolver(const TfmConfig& config)
-    : config_(config), grid_(validated_grid(config)), pressure_solver_(grid_) {
-  const int nx = grid_.nx, ny = grid_.ny;
-  e_matrix_.build_cells(nx, ny);
-  s_.eps = Field2(nx, ny, 1.0);
-  for (int j = 0; j < ny; ++j) {
-    // Partly filled cells get the volume-weighted voidage, so the initial mass matches packed_height exactly.
-    const double filled = std::clamp((config_.packed_height - j * grid_.dy) / grid_.dy, 0.0, 1.0);
-    for (int i = 0; i < nx; ++i) s_.eps(i, j) = 1.0 - filled * (1.0 - config_.eps_initial);
+template <int Dim>
+TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
+    : config_(config), grid_(validated_grid<Dim>(config)), w_(std::make_unique<Work>()) {
+  beta_of_ = drag_beta_function(DragModel{config_.drag_law, config_.drag_switch});
+  const IndexBox<Dim>& cells = grid_.domain;
+  Work& w = *w_;
+  {
+    // Rows numbered axis 0 fastest; neighbours low and high along each axis in turn (W, E, S, N[, B, F]).
+    std::vector<std::array<int, 2 * Dim>> nb(cells.count());
+    for_each(cells, [&](const Index<Dim>& c) {
+      std::array<int, 2 * Dim> r{};
+      for (int a = 0; a < Dim; ++a) {
+        r[2 * a] = c[a] > cells.lo[a] ? cell_row(cells, shifted<Dim>(c, a, -1)) : -1;
+        r[2 * a + 1] = c[a] < cells.hi[a] - 1 ? cell_row(cells, shifted<Dim>(c, a, 1)) : -1;
+      }
+      nb[static_cast<std::size_t>(cell_row(cells, c))] = r;
+    });
+    w.e_matrix.build(static_cast<int>(cells.count()), nb);
   }
+  switch (config_.pressure_solver) {
+    case PressureBackend::HyprePfmg: w.pressure = make_hypre_structured_solver<Dim>(grid_, kPressureTolerance); break;
+    case PressureBackend::EigenCg:
+      w.pressure = make_eigen_structured_solver<Dim>(grid_, PressureSolverKind::ConjugateGradient, kPressureTolerance);
+      break;
+    case PressureBackend::Eigen: w.pressure = make_eigen_structured_solver<Dim>(grid_); break;
+  }
+  for (FaceFields<Dim>* f : {&w.g0, &w.s0, &w.dg, &w.ds, &w.gs, &w.ss, &w.eg, &w.es, &w.a, &w.fs, &w.fs_unlimited,
+                             &w.fs_corr, &w.fg_shift}) {
+    *f = FaceFields<Dim>(cells, kGhost);
+  }
+  for (Field<Dim>* f : {&w.eps_s, &w.rhs_p, &w.p_corr, &p_s_, &mu_s_, &lambda_s_, &beta_c_, &dps_deps_, &s_.p,
+                        &s_.theta}) {
+    *f = Field<Dim>(cells, kGhost);
+  }
+  for (int a = 0; a < Dim; ++a) w.usc[a] = Field<Dim>(cells, 0);
+  s_.ug = FaceFields<Dim>(cells, kGhost);
+  s_.us = FaceFields<Dim>(cells, kGhost);
+
+  s_.eps = Field<Dim>(cells, kGhost, 1.0);
+  const double dy = grid_.h[kUp];
+  for_each(cells, [&](const Index<Dim>& c) {
+    // Partly filled cells get the volume-weighted voidage, so the initial mass matches packed_height exactly.
+    const double filled = std::clamp((config_.packed_height - c[kUp] * dy) / dy, 0.0, 1.0);
+    s_.eps[c] = 1.0 - filled * (1.0 - config_.eps_initial);
+  });
   if (config_.eps_noise > 0.0) {
     // Kept at or above eps*: a cell starting compacted would start on the frictional pressure (Eq. 21).
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        if (s_.eps(i, j) >= 1.0) continue;
-        const double u = seeded_uniform(config_.seed, 1, grid_.index(i, j));
-        s_.eps(i, j) = std::clamp(s_.eps(i, j) + config_.eps_noise * (2.0 * u - 1.0), config_.eps_star, 1.0);
-      }
-    }
+    for_each(cells, [&](const Index<Dim>& c) {
+      if (s_.eps[c] >= 1.0) return;
+      const double u = seeded_uniform(config_.seed, 1, static_cast<std::uint64_t>(cell_row(cells, c)));
+      s_.eps[c] = std::clamp(s_.eps[c] + config_.eps_noise * (2.0 * u - 1.0), config_.eps_star, 1.0);
+    });
   }
-  s_.ug = Field2(nx + 1, ny);
-  s_.us = Field2(nx + 1, ny);
-  s_.vg = Field2(nx, ny + 1);
-  s_.vs = Field2(nx, ny + 1);
-  s_.theta = Field2(nx, ny);
-  s_.p = Field2(nx, ny);
-  // Gas carries the background inflow: superficial velocity over the face voidage the continuity equation uses,
-  // so the initial volume flux is divergence-free.
-  // The background inflow at t = 0 (the start of an inlet ramp, src/fluid/gas_boundary.hpp).
+  fill_cell_ghosts(s_.eps);
+  // Gas carries the background inflow at t = 0 (the start of an inlet ramp, src/fluid/gas_boundary.hpp):
+  // superficial velocity over the face voidage the continuity equation uses, so the initial volume flux is
+  // divergence-free.
   const double u_in = background_inlet_velocity(config_.boundary, 0.0);
+  const bool top_open = config_.boundary.top == TopBoundary::PressureOutlet;
   {
-    Field2 up(nx + 1, ny, 0.0), vp(nx, ny + 1, 1.0), eg_x, eg_y;
-    tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity{up, vp, false}, eg_x, eg_y);
-    for (int j = 0; j <= ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        const bool closed = j == ny && !(config_.boundary.top == TopBoundary::PressureOutlet);
-        s_.vg(i, j) = closed ? 0.0 : u_in / (j == 0 ? 1.0 : eg_y(i, j));
-      }
-    }
+    FaceFields<Dim> up(cells, kGhost);
+    up[kUp].fill(1.0);
+    tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{up}, w.eg);
+    for_each(cells.faces(kUp), [&](const Index<Dim>& f) {
+      const bool closed = f[kUp] == cells.hi[kUp] && !top_open;
+      s_.ug[kUp][f] = closed ? 0.0 : u_in / (f[kUp] == cells.lo[kUp] ? 1.0 : w.eg[kUp][f]);
+    });
   }
   // Pressure from the steady gas momentum balance of every face (Eq. 17 without inertia), integrated down
   // from the top: in a bed at rest the drag then carries exactly what the gas flow can carry.
-  const double g = std::abs(config_.gravity.y);
-  const DragBetaFn beta_of = drag_beta_function(DragModel{config_.drag_law, config_.drag_switch});
-  auto drop_across = [&](int i, int j) {  // P(below) - P(above) across horizontal face j
-    const double eg = j == ny ? s_.eps(i, ny - 1) : 0.5 * (s_.eps(i, j - 1) + s_.eps(i, j));
-    auto beta_at = [&](int jc) {
-      DragInput in{std::min(s_.eps(i, jc), 1.0 - kEpsSFloor), config_.d_p, config_.rho_g, config_.mu_g,
-                   0.5 * (vg_interstitial(i, jc) + s_.vg(i, jc + 1))};
-      return beta_of(in);
+  const double g = std::abs(config_.domain.gravity.y);
+  const int ny = grid_.n(kUp);
+  for_each_bottom([&](const Index<Dim>& bottom) {
+    auto cell = [&](int j) { return with<Dim>(bottom, kUp, j); };
+    auto drop_across = [&](int j) {  // P(below) - P(above) across the face j
+      const double eg = j == ny ? s_.eps[cell(ny - 1)] : 0.5 * (s_.eps[cell(j - 1)] + s_.eps[cell(j)]);
+      auto beta_at = [&](int jc) {
+        DragInput in{std::min(s_.eps[cell(jc)], 1.0 - kEpsSFloor), config_.d_p, config_.rho_g, config_.mu_g,
+                     0.5 * (vg_interstitial(cell(jc)) + s_.ug[kUp][cell(jc + 1)])};
+        return drag(in);
+      };
+      const double beta = j == ny ? beta_at(ny - 1) : 0.5 * (beta_at(j - 1) + beta_at(j));
+      return config_.rho_g * g * dy + beta * s_.ug[kUp][cell(j)] * dy / eg;
     };
-    const double beta = j == ny ? beta_at(ny - 1) : 0.5 * (beta_at(j - 1) + beta_at(j));
-    return config_.rho_g * g * grid_.dy + beta * s_.vg(i, j) * grid_.dy / eg;
-  };
-  for (int i = 0; i < nx; ++i) {
-    s_.p(i, ny - 1) = config_.boundary.top_pressure + ((config_.boundary.top == TopBoundary::PressureOutlet) ? 0.5 * drop_across(i, ny) : 0.0);
-    for (int j = ny - 1; j > 0; --j) s_.p(i, j - 1) = s_.p(i, j) + drop_across(i, j);
-  }
-  p_s_ = Field2(nx, ny);
-  mu_s_ = Field2(nx, ny);
-  lambda_s_ = Field2(nx, ny);
-  beta_c_ = Field2(nx, ny);
-  dps_deps_ = Field2(nx, ny);
-}
-
-double TfmSolver::vg_interstitial(int i, int j) const {
-  // The distributor face stores the superficial inflow; inside the bottom cell the gas moves at U / eps.
-  return j == 0 ? s_.vg(i, 0) / s_.eps(i, 0) : s_.vg(i, j);
-}
-
-void TfmSolver::mask_trace_solids_velocity() {
-  const int nx = grid_.nx, ny = grid_.ny;
-  auto has = [&](int i, int j) { return 1.0 - s_.eps(i, j) > kEpsSTrace; };
-  const Field2 u0 = s_.us, v0 = s_.vs;
-  // A face with (almost) no solids on one side has no meaningful solids velocity; it takes the velocity of the
-  // next face into the solids (zero gradient), so stresses and convection at a bed surface see the bed only.
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 1; i < nx; ++i) {
-      const bool l = has(i - 1, j), r = has(i, j);
-      if (l && r) continue;
-      double val = 0.0;
-      if (l && i - 1 > 0 && has(i - 2, j)) val = u0(i - 1, j);
-      if (r && i + 1 < nx && has(i + 1, j)) val = u0(i + 1, j);
-      s_.us(i, j) = val;
-    }
-  }
-  for (int j = 1; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const bool b = has(i, j - 1), t = has(i, j);
-      if (b && t) continue;
-      double val = 0.0;
-      if (b && j - 1 > 0 && has(i, j - 2)) val = v0(i, j - 1);
-      if (t && j + 1 < ny && has(i, j + 1)) val = v0(i, j + 1);
-      s_.vs(i, j) = val;
-    }
-  }
-}
-
-void TfmSolver::compute_cell_closures() {
-  with_rheology(config_.rheology, [this](auto r) { compute_cell_closures_of<decltype(r)::value>(); });
-}
-
-template <SolidsRheology R>
-void TfmSolver::compute_cell_closures_of() {
-  const TfmConfig& c = config_;
-  const GranularMaterial mat{c.d_p, c.rho_s, c.e};
-  const double phi = c.phi_deg * 3.14159265358979323846 / 180.0;
-  const int nx = grid_.nx, ny = grid_.ny;
-  const double dx = grid_.dx, dy = grid_.dy;
-  Field2 usc(nx, ny), vsc(nx, ny);
-  solids_velocity_cells(usc, vsc);
-  const DragBetaFn beta_of = drag_beta_function(DragModel{c.drag_law, c.drag_switch});  // chosen once
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double eps = s_.eps(i, j);
-      const double eps_s = 1.0 - eps;
-      const double ugc = 0.5 * (s_.ug(i, j) + s_.ug(i + 1, j)), vgc = 0.5 * (vg_interstitial(i, j) + s_.vg(i, j + 1));
-      const double slip = std::hypot(usc(i, j) - ugc, vsc(i, j) - vgc);
-      // Eq. 13 with the shared drag law; the floor keeps beta / (eps_s rho_s) finite in empty cells.
-      DragInput in{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip};
-      beta_c_(i, j) = beta_of(in);
-
-      double mu = 0.0, lambda = 0.0, theta = 0.0;
-      if constexpr (R == SolidsRheology::ConstantViscosity) {
-        mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
-      } else if constexpr (R == SolidsRheology::KineticTheory) {
-        StrainRate<2> d;
-        d(0, 0) = (s_.us(i + 1, j) - s_.us(i, j)) / dx;
-        d(1, 1) = (s_.vs(i, j + 1) - s_.vs(i, j)) / dy;
-        const int il = std::max(i - 1, 0), ih = std::min(i + 1, nx - 1);
-        const int jl = std::max(j - 1, 0), jh = std::min(j + 1, ny - 1);
-        const double dudy = jh > jl ? (usc(i, jh) - usc(i, jl)) / ((jh - jl) * dy) : 0.0;
-        const double dvdx = ih > il ? (vsc(ih, j) - vsc(il, j)) / ((ih - il) * dx) : 0.0;
-        d(0, 1) = 0.5 * (dudy + dvdx);
-        if (eps <= c.eps_star) {
-          mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
-        } else if (eps_s > 0.0) {
-          theta = algebraic_granular_temperature(mat, eps, d);
-          mu = std::min(kt_shear_viscosity(mat, eps, theta), c.mu_s_max);
-          lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
-        }
-      }
-      mu_s_(i, j) = mu;
-      lambda_s_(i, j) = lambda;
-      s_.theta(i, j) = theta;
-      p_s_(i, j) = solids_pressure_law<R>(c, mat, eps, theta);
-      // dP_s/d eps_s sets the speed of compaction waves that the explicit solids pressure must resolve.
-      const double h = 1e-7;
-      const double p_lo = solids_pressure_law<R>(c, mat, eps - h, theta);
-      const double p_hi = solids_pressure_law<R>(c, mat, eps + h, theta);
-      dps_deps_(i, j) = std::max(0.0, (p_lo - p_hi) / (2 * h));
-    }
-  }
-}
-
-double TfmSolver::choose_dt(double t_stop) const {
-  double vmax = 0.0;
-  const Field2& e = s_.eps;
-  const int nx = grid_.nx, ny = grid_.ny;
-  for (double x : s_.ug.v) vmax = std::max(vmax, std::abs(x));
-  for (double x : s_.vg.v) vmax = std::max(vmax, std::abs(x));
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i <= nx; ++i) {
-      const double es = 1.0 - e(clampi(i - 1, 0, nx - 1), j), es2 = 1.0 - e(clampi(i, 0, nx - 1), j);
-      if (std::min(es, es2) > kEpsSTrace) vmax = std::max(vmax, std::abs(s_.us(i, j)));
-    }
-  }
-  for (int j = 0; j <= ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double es = 1.0 - e(i, clampi(j - 1, 0, ny - 1)), es2 = 1.0 - e(i, clampi(j, 0, ny - 1));
-      if (std::min(es, es2) > kEpsSTrace) vmax = std::max(vmax, std::abs(s_.vs(i, j)));
-    }
-  }
-  // Paper Table 3 item 5: dt < dy / V_max. The solids pressure is implicit through the coupled correction,
-  // so its compaction-wave speed does not enter.
-  const double speed = vmax;
-  double dt = config_.dt_max;
-  if (speed > 0.0) dt = std::min(dt, config_.cfl * std::min(grid_.dx, grid_.dy) / speed);
-  // Compaction rate of the last step, extrapolated: keeps cells from jumping deep past eps* in one step.
-  if (s_.dense_change > 0.0 && s_.dt > 0.0) dt = std::min(dt, s_.dt * config_.max_dense_change / s_.dense_change);
-  return std::min(dt, t_stop - s_.time);
-}
-
-double TfmSolver::step(double t_stop) {
-  const TfmConfig& c = config_;
-  const int nx = grid_.nx, ny = grid_.ny;
-  const double dx = grid_.dx, dy = grid_.dy;
-  const double rho_g = c.rho_g, rho_s = c.rho_s;
-  const double gx = c.gravity.x, gy = c.gravity.y;
-  const bool top_open = c.boundary.top == TopBoundary::PressureOutlet;
-
-  mask_trace_solids_velocity();
-  compute_cell_closures();
-  const double dt = choose_dt(t_stop);
-  if (!(dt >= c.dt_min) && t_stop - s_.time > c.dt_min) {
-    throw_simulation_error(fmt::format(
-        "tfm at t = {:.6g} s (step {}): the time step {:.3g} s fell below tfm.dt_min = {:.3g} s (largest solids "
-        "speed {:.4g} m/s, last compaction per step {:.3g}). Likely cause: the solids are running away (speed) or a "
-        "cell is being compacted ever faster past eps*. Remedy: {}",
-        s_.time, s_.steps, dt, c.dt_min, max_solids_speed(), s_.dense_change, remedy()));
-  }
-  std::vector<double> inlet;
-  // Jets, the start-up ramp and the distributor non-uniformity, as for the CFD-DEM gas (src/fluid/gas_boundary).
-  inlet_superficial_profile(config_.boundary, grid_, s_.time + dt, inlet);
-  linear_fallbacks_ = 0;
-
-  const Field2& eps = s_.eps;
-  const Field2& p = s_.p;
-  const Field2 ug0 = s_.ug, us0 = s_.us, vs0 = s_.vs;
-  // Gas enters the bed through the distributor at its interstitial speed: the convection sees U / eps there.
-  Field2 vg0 = s_.vg;
-  for (int i = 0; i < nx; ++i) vg0(i, 0) = s_.vg(i, 0) / eps(i, 0);
-  Field2 dgu(nx + 1, ny), dsu(nx + 1, ny), dgv(nx, ny + 1), dsv(nx, ny + 1);
-  Field2 gsu(nx + 1, ny), ssu(nx + 1, ny), gsv(nx, ny + 1), ssv(nx, ny + 1);
-  const double mu_wall = c.solids_no_slip_walls ? 1.0 : 0.0;
-  auto mu_corner = [&](int i, int j) {  // corner at (x_i, y_j), interior only
-    // Harmonic mean of the four cells: a corner touching an empty cell carries no shear, so a dilute face is
-    // never driven by the viscosity of a dense diagonal neighbour (which the explicit cross terms cannot bear).
-    const double m[4] = {mu_s_(i - 1, j - 1), mu_s_(i, j - 1), mu_s_(i - 1, j), mu_s_(i, j)};
-    double inv = 0.0;
-    for (double x : m) {
-      if (x <= 0.0) return 0.0;
-      inv += 1.0 / x;
-    }
-    return 4.0 / inv;
-  };
-  auto bearing = [&](int i0, int j0, int i1, int j1) {
-    return std::min(1.0 - eps(i0, j0), 1.0 - eps(i1, j1)) > kEpsSTrace;
-  };
-  auto div_s = [&](int i, int j) { return (us0(i + 1, j) - us0(i, j)) / dx + (vs0(i, j + 1) - vs0(i, j)) / dy; };
-
-  // The momentum loops are compiled once per limiter law; the law is chosen here, once per step.
-  tvd::with_limiter(c.limiter, [&](auto law) {
-    using Law = decltype(law);
-    // x-momentum on interior vertical faces (Eqs. 17-18).
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 1; i < nx; ++i) {
-        const double eg = 0.5 * (eps(i - 1, j) + eps(i, j));
-        const double es = std::max(1.0 - eg, kEpsSFloor);
-        const double beta = 0.5 * (beta_c_(i - 1, j) + beta_c_(i, j));
-        const double dpdx = (p(i, j) - p(i - 1, j)) / dx;
-        const double adv_g = advect_u<Law>(ug0, vg0, i, j, dx, dy);
-        const double a_g = eg * rho_g / dt;
-        const double rhs_g = a_g * ug0(i, j) - eg * rho_g * adv_g + eg * rho_g * gx - eg * dpdx;
-        if (!bearing(i - 1, j, i, j)) {
-          // No solids on one side: the solids velocity stays as extrapolated from the bed, the gas feels its drag.
-          s_.ug(i, j) = (rhs_g + beta * us0(i, j)) / (a_g + beta);
-          dgu(i, j) = eg / (a_g + beta);
-          dsu(i, j) = 0.0;
-          continue;
-        }
-        const double dpsdx = (p_s_(i, j) - p_s_(i - 1, j)) / dx;
-        // Eq. 19 stress divergence; the Laplacian diagonal is taken implicitly (point-implicit) for stability.
-        auto sxx = [&](int ci) {
-          return 2.0 * mu_s_(ci, j) * (us0(ci + 1, j) - us0(ci, j)) / dx + lambda_s_(ci, j) * div_s(ci, j);
-        };
-        auto sxy = [&](int jc) {  // corner (i, jc); bottom and top are free-slip for the solids
-          if (jc == 0 || jc == ny) return 0.0;
-          return mu_corner(i, jc) * ((us0(i, jc) - us0(i, jc - 1)) / dy + (vs0(i, jc) - vs0(i - 1, jc)) / dx);
-        };
-        double diag = 2.0 * (mu_s_(i, j) + mu_s_(i - 1, j)) / (dx * dx);
-        if (j > 0) diag += mu_corner(i, j) / (dy * dy);
-        if (j < ny - 1) diag += mu_corner(i, j + 1) / (dy * dy);
-        const double visc = (sxx(i) - sxx(i - 1)) / dx + (sxy(j + 1) - sxy(j)) / dy + diag * us0(i, j);
-        const double adv_s = advect_u<Law>(us0, vs0, i, j, dx, dy);
-        const double a_s = es * rho_s / dt;
-        const double rhs_s = a_s * us0(i, j) - es * rho_s * adv_s + es * rho_s * gx - es * dpdx - dpsdx + visc;
-        const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
-        s_.ug(i, j) = f.ug;
-        s_.us(i, j) = f.us;
-        dgu(i, j) = f.dg;
-        dsu(i, j) = f.ds;
-        gsu(i, j) = f.gs;
-        ssu(i, j) = f.ss;
-      }
-    }
-    // y-momentum on interior horizontal faces and, when open, the top face (ghost pressure keeps P = P_top there).
-    for (int j = 1; j <= ny; ++j) {
-      const bool top = j == ny;
-      if (top && !top_open) break;
-      for (int i = 0; i < nx; ++i) {
-        const double eg = top ? eps(i, ny - 1) : 0.5 * (eps(i, j - 1) + eps(i, j));
-        const double es = std::max(1.0 - eg, kEpsSFloor);
-        const double beta = top ? beta_c_(i, ny - 1) : 0.5 * (beta_c_(i, j - 1) + beta_c_(i, j));
-        const double p_above = top ? 2.0 * c.boundary.top_pressure - p(i, ny - 1) : p(i, j);
-        const double dpdy = (p_above - p(i, j - 1)) / dy;
-        const double adv_g = advect_v<Law>(ug0, vg0, i, j, dx, dy);
-        const double a_g = eg * rho_g / dt;
-        const double rhs_g = a_g * vg0(i, j) - eg * rho_g * adv_g + eg * rho_g * gy - eg * dpdy;
-        if (top || !bearing(i, j - 1, i, j)) {
-          // Solids cannot leave through the top; on a face with no solids on one side the solids velocity stays
-          // as extrapolated from the bed. Only the gas row remains, with the drag of those solids.
-          const double v_s = top ? 0.0 : vs0(i, j);
-          s_.vg(i, j) = (rhs_g + beta * v_s) / (a_g + beta);
-          dgv(i, j) = eg / (a_g + beta);
-          s_.vs(i, j) = v_s;
-          dsv(i, j) = 0.0;
-          continue;
-        }
-        const double dpsdy = (p_s_(i, j) - p_s_(i, j - 1)) / dy;
-        auto syy = [&](int cj) {
-          return 2.0 * mu_s_(i, cj) * (vs0(i, cj + 1) - vs0(i, cj)) / dy + lambda_s_(i, cj) * div_s(i, cj);
-        };
-        double diag = 2.0 * (mu_s_(i, j) + mu_s_(i, j - 1)) / (dy * dy);
-        auto sxy = [&](int ic) {  // corner (ic, j); side walls slip, or no-slip with the wall at dx/2
-          if (ic == 0 || ic == nx) {
-            const double mu_w = mu_wall * 0.5 * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j));
-            const double v_in = vs0(ic == 0 ? 0 : nx - 1, j);
-            return (ic == 0 ? 2.0 : -2.0) * mu_w * v_in / dx;
-          }
-          return mu_corner(ic, j) * ((us0(ic, j) - us0(ic, j - 1)) / dy + (vs0(ic, j) - vs0(ic - 1, j)) / dx);
-        };
-        for (int ic : {i, i + 1}) {
-          if (ic == 0 || ic == nx) {
-            diag += mu_wall * (mu_s_(ic == 0 ? 0 : nx - 1, j - 1) + mu_s_(ic == 0 ? 0 : nx - 1, j)) / (dx * dx);
-          } else {
-            diag += mu_corner(ic, j) / (dx * dx);
-          }
-        }
-        const double visc = (syy(j) - syy(j - 1)) / dy + (sxy(i + 1) - sxy(i)) / dx + diag * vs0(i, j);
-        const double adv_s = advect_v<Law>(us0, vs0, i, j, dx, dy);
-        const double a_s = es * rho_s / dt;
-        const double rhs_s = a_s * vs0(i, j) - es * rho_s * adv_s + es * rho_s * gy - es * dpdy - dpsdy + visc;
-        const FaceSolve f = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
-        s_.vg(i, j) = f.ug;
-        s_.vs(i, j) = f.us;
-        dgv(i, j) = f.dg;
-        dsv(i, j) = f.ds;
-        gsv(i, j) = f.gs;
-        ssv(i, j) = f.ss;
-      }
-    }
+    s_.p[cell(ny - 1)] = config_.boundary.top_pressure + (top_open ? 0.5 * drop_across(ny) : 0.0);
+    for (int j = ny - 1; j > 0; --j) s_.p[cell(j - 1)] = s_.p[cell(j)] + drop_across(j);
   });
-  // Boundary faces: walls, inflow through the distributor, closed lid.
-  for (int j = 0; j < ny; ++j) {
-    s_.ug(0, j) = s_.ug(nx, j) = s_.us(0, j) = s_.us(nx, j) = 0.0;
-  }
-  for (int i = 0; i < nx; ++i) {
-    s_.vg(i, 0) = inlet[static_cast<std::size_t>(i)];
-    s_.vs(i, 0) = 0.0;
-    s_.vs(i, ny) = 0.0;
-    if (!top_open) s_.vg(i, ny) = 0.0;
-  }
+}
 
-  // Correction step. Both phases are incompressible, so the mixture volume flux must be divergence-free
-  // (Eqs. 15 + 16); that fixes the gas-pressure correction P'. The solids pressure is then made implicit by a
-  // solids volume fraction correction E' (as in MFIX): the solids continuity (Eq. 16) must hold with
-  // P_s + K E', K = dP_s/d eps_s, so the stiff compaction limit does not limit dt. A second P' solve (same
-  // matrix) restores the mixture constraint after the E' correction. Face volume fractions are the TVD values
-  // the continuity uses.
-  Field2 eps_s(nx, ny), eg_x, eg_y, es_x, es_y;
-  for (std::size_t k = 0; k < eps_s.size(); ++k) eps_s.v[k] = 1.0 - eps.v[k];
-  tvd_face_values(grid_, c.limiter, eps, FaceVelocity{s_.ug, s_.vg, false}, eg_x, eg_y);
-  tvd_face_values(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, es_x, es_y);
-  for (int i = 0; i < nx; ++i) eg_y(i, 0) = 1.0;  // gas enters through the distributor undiluted
-  const int n = nx * ny;
-  auto id = [&](int i, int j) { return static_cast<int>(grid_.index(i, j)); };
-  // Net outflow of gas and of solids volume from every cell with the current face velocities.
-  auto outflow = [&](Eigen::VectorXd& out_g, Eigen::VectorXd& out_s) {
-    out_g.resize(n);
-    out_s.resize(n);
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        out_g[id(i, j)] = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
-                          dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j));
-        out_s[id(i, j)] = dy * (es_x(i + 1, j) * s_.us(i + 1, j) - es_x(i, j) * s_.us(i, j)) +
-                          dx * (es_y(i, j + 1) * s_.vs(i, j + 1) - es_y(i, j) * s_.vs(i, j));
-      }
-    }
-  };
-  // Face coefficients of the P' equation for the shared pressure-correction solver (src/fluid): interior faces
-  // couple neighbours; the open top couples to P' = 0 on the outlet face, half a cell above the centre.
-  Field2 a_x(nx + 1, ny), a_y(nx, ny + 1), rhs_p(nx, ny), p_corr(nx, ny);
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 1; i < nx; ++i) a_x(i, j) = dy / dx * (eg_x(i, j) * dgu(i, j) + es_x(i, j) * dsu(i, j));
-  }
-  for (int j = 1; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) a_y(i, j) = dx / dy * (eg_y(i, j) * dgv(i, j) + es_y(i, j) * dsv(i, j));
-  }
-  if (top_open) {
-    for (int i = 0; i < nx; ++i) a_y(i, ny) = 2.0 * dx * eg_y(i, ny) * dgv(i, ny) / dy;
-  }
-  Eigen::VectorXd out_g, out_s;
-  // The second call has the same coefficients: it reuses the first call's factorisation (one preconditioned CG
-  // iteration with the exact factors) instead of factorising the same matrix again.
-  auto correct_pressure = [&](bool same_matrix) {
-    outflow(out_g, out_s);
-    for (int k = 0; k < n; ++k) rhs_p.v[static_cast<std::size_t>(k)] = -(out_g[k] + out_s[k]);
-    p_corr.fill(0.0);
-    try {
-      pressure_solver_.solve(a_x, a_y, rhs_p, p_corr, same_matrix);
-    } catch (const Error& e) {
-      throw_simulation_error(fmt::format(
-          "tfm at t = {:.6g} s (step {}, dt = {:.3g} s): {} (mixture volume constraint, Eqs. 15 + 16). Likely cause: "
-          "face velocities that are no longer finite (a solids stress or drag that overflowed). Remedy: {}",
-          s_.time, s_.steps, dt, e.what(), remedy()));
-    }
-    const std::vector<double>& pc = p_corr.v;
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 1; i < nx; ++i) {
-        const double g = (pc[static_cast<std::size_t>(id(i, j))] - pc[static_cast<std::size_t>(id(i - 1, j))]) / dx;
-        s_.ug(i, j) -= dgu(i, j) * g;
-        s_.us(i, j) -= dsu(i, j) * g;
-      }
-    }
-    for (int j = 1; j <= ny; ++j) {
-      if (j == ny && !top_open) break;
-      for (int i = 0; i < nx; ++i) {
-        const double above = j == ny ? -p_corr(i, ny - 1) : p_corr(i, j);
-        const double g = (above - p_corr(i, j - 1)) / dy;
-        s_.vg(i, j) -= dgv(i, j) * g;
-        s_.vs(i, j) -= dsv(i, j) * g;
-      }
-    }
-    for (std::size_t k = 0; k < pc.size(); ++k) s_.p.v[k] += pc[k];
-  };
-  correct_pressure(false);
+template <int Dim>
+TfmSolver<Dim>::~TfmSolver() = default;
+template <int Dim>
+TfmSolver<Dim>::TfmSolver(TfmSolver&&) noexcept = default;
 
-  // Solids volume fraction correction: (V/dt) E' - sum_faces es ss K grad E' = -(solids outflow). The matrix
-  // is the Laplacian of the solids-pressure response times diag(K), plus V/dt; solved for W = K E' would be
-  // symmetric, but K vanishes in dilute cells, so E' is the unknown.
-  // Row of cell P: (V/dt + K_P sum_f a_f) E'_P - sum_f a_f K_nb E'_nb, with a_f the face's area / distance times
-  // its solids flux response; written in place into the fixed five-point pattern.
-  const double vol = dx * dy;
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double aw = i > 0 ? dy / dx * es_x(i, j) * ssu(i, j) : 0.0;
-      const double ae = i + 1 < nx ? dy / dx * es_x(i + 1, j) * ssu(i + 1, j) : 0.0;
-      const double as = j > 0 ? dx / dy * es_y(i, j) * ssv(i, j) : 0.0;
-      const double an = j + 1 < ny ? dx / dy * es_y(i, j + 1) * ssv(i, j + 1) : 0.0;
-      const double kw = i > 0 ? dps_deps_(i - 1, j) : 0.0, ke = i + 1 < nx ? dps_deps_(i + 1, j) : 0.0;
-      const double ks = j > 0 ? dps_deps_(i, j - 1) : 0.0, kn = j + 1 < ny ? dps_deps_(i, j + 1) : 0.0;
-      e_matrix_.set_row(id(i, j), vol / dt + dps_deps_(i, j) * (aw + ae + as + an),
-                        {-aw * kw, -ae * ke, -as * ks, -an * kn});
-    }
-  }
-  outflow(out_g, out_s);
-  solids_solver_.set_tolerance(1e-12);
-  solids_solver_.set_max_iterations(c.linear_max_iterations);
-  Eigen::VectorXd e_corr;
-  const LinearSolveOutcome e_res = solids_solver_.solve(e_matrix_.matrix(), -out_s, e_corr);
-  if (e_res.fell_back) ++linear_fallbacks_;
-  if (!e_res.ok) {
-    // Name the cell: the row that is not finite, else the stiffest cell (largest dP_s/d eps_s).
-    int r = e_res.bad_row;
-    if (r < 0) {
-      r = static_cast<int>(std::max_element(dps_deps_.v.begin(), dps_deps_.v.end()) - dps_deps_.v.begin());
-    }
-    const int ci = r % nx, cj = r / nx;
-    throw_simulation_error(fmt::format(
-        "tfm at t = {:.6g} s (step {}, dt = {:.3g} s): the solids-fraction correction (implicit solids pressure, "
-        "E' equation) failed: {}. At {}: voidage {:.4g}, solids pressure {:.4g} Pa, dP_s/d eps_s {:.4g} Pa, "
-        "granular temperature {:.4g} m^2/s^2. Likely cause: a solids pressure that is not finite or too stiff for "
-        "the step (a voidage far below eps*, or a runaway granular temperature). Remedy: {}",
-        s_.time, s_.steps, dt, e_res.why, where(ci, cj), s_.eps(ci, cj), p_s_(ci, cj), dps_deps_(ci, cj),
-        s_.theta(ci, cj), remedy()));
-  }
-  auto w = [&](int i, int j) { return dps_deps_(i, j) * e_corr[id(i, j)]; };
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 1; i < nx; ++i) {
-      const double g = (w(i, j) - w(i - 1, j)) / dx;
-      s_.ug(i, j) -= gsu(i, j) * g;
-      s_.us(i, j) -= ssu(i, j) * g;
-    }
-  }
-  for (int j = 1; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double g = (w(i, j) - w(i, j - 1)) / dy;
-      s_.vg(i, j) -= gsv(i, j) * g;
-      s_.vs(i, j) -= ssv(i, j) * g;
-    }
-  }
-  correct_pressure(true);
+template <int Dim>
+template <class F>
+void TfmSolver<Dim>::for_each_bottom(F&& f) const {
+  for_each(grid_.domain.inside(kUp, false), f);
+}
 
-  // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
-  FaceFluxes fs;
-  try {
-    advance_scalar_implicit(grid_, c.limiter, eps_s, FaceVelocity{s_.us, s_.vs, false}, dt, c.mass_corrections, fs,
-                            c.linear_max_iterations, &linear_fallbacks_);
-  } catch (const Error& e) {
-    throw_simulation_error(fmt::format("tfm at t = {:.6g} s (step {}, dt = {:.3g} s): {}. Remedy: {}", s_.time,
-                                       s_.steps, dt, e.what(), remedy()));
-  }
-  const FaceFluxes fs_unlimited = fs;
-  // Packing limit (docs/model-tfm.md): eps >= eps* - max_compaction exactly. The solids pressure stiffens the bed
-  // only through a linearisation, so the bound is kept on the fluxes: inflows into a cell that would pass it are
-  // scaled down (Zalesak-type one-sided limiter).
-  packing_sweeps_ = limit_packing(grid_, eps_s, dt, 1.0 - (c.eps_star - packing_allowance(c)), fs).sweeps;
-  const Field2 eps_s_new = conservative_update(grid_, eps_s, fs, dt);
-  // Face velocities follow the fluxes the continuity used, so momentum sees what the continuity did: a limited
-  // solids face is slowed by its factor; the gas carries the mixture flux that the pressure correction made
-  // divergence-free (with its face fractions eg, es) minus the solids flux actually moved, so Eq. 15 with
-  // eps = 1 - eps_s closes on every cell (the gas takes up the difference between the face fractions of the
-  // correction and of the implicit continuity as well as the volume the limiter held back).
-  FaceFluxes fs_corr{Field2(nx + 1, ny), Field2(nx, ny + 1)}, fg_shift{Field2(nx + 1, ny), Field2(nx, ny + 1)};
-  for (std::size_t k = 0; k < fs.x.size(); ++k) fs_corr.x.v[k] = es_x.v[k] * s_.us.v[k];
-  for (std::size_t k = 0; k < fs.y.size(); ++k) fs_corr.y.v[k] = es_y.v[k] * s_.vs.v[k];
-  transfer_to_gas(fs_corr, fs, fg_shift);
-  auto follow = [](double& us, double& ug, double f_old, double f_new, double shift, double eg) {
-    if (f_new != f_old && f_old != 0.0) us *= f_new / f_old;
-    if (shift != 0.0) ug += shift / eg;
-  };
-  for (std::size_t k = 0; k < fs.x.size(); ++k) {
-    follow(s_.us.v[k], s_.ug.v[k], fs_unlimited.x.v[k], fs.x.v[k], fg_shift.x.v[k], eg_x.v[k]);
-  }
-  for (std::size_t k = 0; k < fs.y.size(); ++k) {
-    follow(s_.vs.v[k], s_.vg.v[k], fs_unlimited.y.v[k], fs.y.v[k], fg_shift.y.v[k], eg_y.v[k]);
-  }
+template <int Dim>
+double TfmSolver<Dim>::drag(const DragInput& in) const {
+  // Eq. 13 with the shared drag law: the one place the TFM evaluates beta.
+  return beta_of_(in);
+}
 
-  // Gas continuity residual of this step (Eq. 15 with the face voidages of the step), before eps is replaced.
-  {
-    double sum = 0.0;
-    for (int j = 0; j < ny; ++j) {
-      for (int i = 0; i < nx; ++i) {
-        const double accumulation = dx * dy * ((1.0 - eps_s_new(i, j)) - eps(i, j)) / dt;
-        const double out = dy * (eg_x(i + 1, j) * s_.ug(i + 1, j) - eg_x(i, j) * s_.ug(i, j)) +
-                           dx * (eg_y(i, j + 1) * s_.vg(i, j + 1) - eg_y(i, j) * s_.vg(i, j));
-        sum += std::abs(accumulation + out);
-      }
-    }
-    // Normalised as the gas solver's mass residual (src/fluid/gas_solver.cpp), in volume rather than mass:
-    // by the largest of the inlet flow, the largest gas face speed times the width, and a round-off floor.
-    double inflow = 0.0, speed = 0.0;
-    for (int i = 0; i < nx; ++i) inflow += dx * s_.vg(i, 0);
-    for (double x : s_.ug.v) speed = std::max(speed, std::abs(x));
-    for (double x : s_.vg.v) speed = std::max(speed, std::abs(x));
-    const double width = grid_.width();
-    const double v_floor = std::max(1e-12, 1e-6 * std::sqrt(std::hypot(gx, gy) * grid_.height()));
-    s_.gas_residual = sum / std::max({std::abs(inflow), speed * width, v_floor * width});
-  }
+template <int Dim>
+double TfmSolver<Dim>::vg_interstitial(const Index<Dim>& c) const {
+  // The distributor face stores the superficial inflow; inside the bottom cell the gas moves at U / eps.
+  return c[kUp] == grid_.domain.lo[kUp] ? s_.ug[kUp][c] / s_.eps[c] : s_.ug[kUp][c];
+}
 
-  // eps = 1 - eps_s closes Eq. 15.
-  double dense_change = 0.0;
-  for (std::size_t k = 0; k < eps_s_new.size(); ++k) {
-    const double eps_new = 1.0 - eps_s_new.v[k];
-    // Only compaction below eps* matters: that is where the solids pressure stiffens exponentially.
-    if (eps_new < c.eps_star) dense_change = std::max(dense_change, s_.eps.v[k] - eps_new);
-    s_.eps.v[k] = eps_new;
+template <int Dim>
+double TfmSolver<Dim>::gravity_norm() const {
+  const Vec3& g = config_.domain.gravity;
+  if constexpr (Dim == 2) {
+    return std::hypot(g.x, g.y);
+  } else {
+    return std::hypot(g.x, g.y, g.z);
   }
+}
 
+template <int Dim>
+double TfmSolver<Dim>::bottom_area() const {
+  double m = grid_.length(0);
+  for (int a = 2; a < Dim; ++a) m *= grid_.length(a);
+  return m;
+}
+
+// ---- The step: the paper's algorithm (section 2.2), one named stage per line.
+
+template <int Dim>
+double TfmSolver<Dim>::advance(double t_stop) {
+  mask_trace_solids_velocity();    // a face without solids on one side takes the bed's velocity
+  compute_closures();              // Eqs. 13, 19-26: beta, P_s, mu_s, lambda_s, Theta per cell
+  const double dt = choose_dt(t_stop);  // Table 3 item 5: dt < cell / V_max, and the compaction rate
+  linear_fallbacks_ = 0;
+  predict_momentum(dt);            // Eqs. 17-18 per face, drag by partial elimination
+  set_boundary_faces(s_.time + dt);  // walls, distributor inflow and jets, lid
+  face_fractions();                // section 2.2.1: TVD face voidages of the step
+  correct_pressure(dt, false);     // Eqs. 15 + 16: mixture volume flux divergence-free (P')
+  correct_solids_fraction(dt);     // Eq. 16 with P_s implicit (E'), then P' once more
+  solids_continuity(dt);           // Eq. 16 implicit, packing limiter eps >= eps* - max_compaction
+  close_gas_continuity(dt);        // Eq. 15: the gas takes the rest of the mixture flux; eps = 1 - eps_s
   s_.time += dt;
   // A step clipped to reach t_stop says little about the natural step; keep the rate of a full one.
   if (dt >= 0.5 * s_.dt || s_.steps == 0) {
     s_.dt = dt;
-    s_.dense_change = dense_change;
+    s_.dense_change = w_->dense_change;
   }
   ++s_.steps;
   check_health(dt);
   return dt;
 }
 
-double TfmSolver::reference_speed() const {
+template <int Dim>
+void TfmSolver<Dim>::mask_trace_solids_velocity() {
+  const IndexBox<Dim>& cells = grid_.domain;
+  // A face with (almost) no solids on one side has no meaningful solids velocity; it takes the velocity of the
+  // next face into the solids (zero gradient), so stresses and convection at a bed surface see the bed only.
+  for (int d = 0; d < Dim; ++d) {
+    Field<Dim>& u0 = w_->s0[d];  // the velocities before masking (s0 is rewritten by the predictor later)
+    u0.data() = s_.us[d].data();
+    const int n = grid_.n(d);
+    IndexBox<Dim> faces = cells.faces(d);
+    faces.lo[d] += 1;
+    faces.hi[d] -= 1;
+    const auto se = static_cast<std::ptrdiff_t>(s_.eps.stride(d)), su = static_cast<std::ptrdiff_t>(u0.stride(d));
+    IndexBox<Dim> lines = faces;
+    lines.hi[0] = lines.lo[0] + 1;
+    for_each(lines, [&](Index<Dim> f) {
+      const double* pe = s_.eps.data().data() + s_.eps.index(f);  // the cell above the face; pe[-se] below
+      const double* pu = u0.data().data() + u0.index(f);
+      double* out = s_.us[d].data().data() + s_.us[d].index(f);
+      auto has = [](double eps) { return 1.0 - eps > kEpsSTrace; };
+      for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++pe, ++pu, ++out) {
+        f[0] = i;
+        const bool l = has(pe[-se]), r = has(pe[0]);
+        if (l && r) continue;
+        double val = 0.0;
+        if (l && f[d] - 1 > 0 && has(pe[-2 * se])) val = pu[-su];
+        if (r && f[d] + 1 < n && has(pe[se])) val = pu[su];
+        *out = val;
+      }
+    });
+  }
+}
+
+template <int Dim>
+void TfmSolver<Dim>::compute_closures() {
+  with_rheology(config_.rheology, [this](auto r) { compute_closures_of<decltype(r)::value>(); });
+}
+
+template <int Dim>
+template <SolidsRheology R>
+void TfmSolver<Dim>::compute_closures_of() {
+  const TfmConfig& c = config_;
+  const GranularMaterial mat{c.d_p, c.rho_s, c.e};
+  const double phi = c.phi_deg * 3.14159265358979323846 / 180.0;
+  const IndexBox<Dim>& cells = grid_.domain;
+  CellVectorField<Dim>& usc = w_->usc;
+  solids_velocity_cells(usc);
+  // Velocity gradient of component `comp` along axis `along` from the cell centres: central inside, one-sided in
+  // the outer layers (the strain rate's off-diagonal part).
+  auto gradient = [&](const Index<Dim>& cell, int comp, int along) {
+    const int lo = std::max(cell[along] - 1, cells.lo[along]);
+    const int hi = std::min(cell[along] + 1, cells.hi[along] - 1);
+    if (!(hi > lo)) return 0.0;
+    return (usc[comp][with<Dim>(cell, along, hi)] - usc[comp][with<Dim>(cell, along, lo)]) / ((hi - lo) * grid_.h[along]);
+  };
+  for_each(cells, [&](const Index<Dim>& cell) {
+    const double eps = s_.eps[cell];
+    const double eps_s = 1.0 - eps;
+    std::array<double, Dim> rel{};
+    for (int a = 0; a < Dim; ++a) {
+      const double low = a == kUp ? vg_interstitial(cell) : s_.ug[a][cell];
+      rel[a] = usc[a][cell] - 0.5 * (low + s_.ug[a][shifted<Dim>(cell, a, 1)]);
+    }
+    double slip;
+    if constexpr (Dim == 2) {
+      slip = std::hypot(rel[0], rel[1]);
+    } else {
+      slip = std::hypot(rel[0], rel[1], rel[2]);
+    }
+    // The floor keeps beta / (eps_s rho_s) finite in empty cells.
+    beta_c_[cell] = drag(DragInput{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip});
+
+    double mu = 0.0, lambda = 0.0, theta = 0.0;
+    if constexpr (R == SolidsRheology::ConstantViscosity) {
+      mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
+    } else if constexpr (R == SolidsRheology::KineticTheory) {
+      StrainRate<Dim> d;
+      for (int a = 0; a < Dim; ++a) d(a, a) = (s_.us[a][shifted<Dim>(cell, a, 1)] - s_.us[a][cell]) / grid_.h[a];
+      for (int a = 0; a < Dim; ++a)
+        for (int b = a + 1; b < Dim; ++b) d(a, b) = 0.5 * (gradient(cell, a, b) + gradient(cell, b, a));
+      if (eps <= c.eps_star) {
+        mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
+      } else if (eps_s > 0.0) {
+        theta = algebraic_granular_temperature(mat, eps, d);
+        mu = std::min(kt_shear_viscosity(mat, eps, theta), c.mu_s_max);
+        lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
+      }
+    }
+    mu_s_[cell] = mu;
+    lambda_s_[cell] = lambda;
+    s_.theta[cell] = theta;
+    p_s_[cell] = solids_pressure_law<R>(c, mat, eps, theta);
+    // dP_s/d eps_s sets the speed of compaction waves that the explicit solids pressure must resolve.
+    const double h = 1e-7;
+    const double p_lo = solids_pressure_law<R>(c, mat, eps - h, theta);
+    const double p_hi = solids_pressure_law<R>(c, mat, eps + h, theta);
+    dps_deps_[cell] = std::max(0.0, (p_lo - p_hi) / (2 * h));
+  });
+}
+
+template <int Dim>
+double TfmSolver<Dim>::choose_dt(double t_stop) const {
+  double vmax = 0.0;
+  for (int a = 0; a < Dim; ++a)
+    for_each(grid_.domain.faces(a), [&](const Index<Dim>& f) { vmax = std::max(vmax, std::abs(s_.ug[a][f])); });
+  for (int a = 0; a < Dim; ++a)
+    for_each(grid_.domain.faces(a), [&](const Index<Dim>& f) {
+      // The ghost cell repeats the boundary cell, so a boundary face looks at its one cell twice.
+      const double es = 1.0 - s_.eps[shifted<Dim>(f, a, -1)], es2 = 1.0 - s_.eps[f];
+      if (std::min(es, es2) > kEpsSTrace) vmax = std::max(vmax, std::abs(s_.us[a][f]));
+    });
+  // Paper Table 3 item 5: dt < dy / V_max. The solids pressure is implicit through the coupled correction,
+  // so its compaction-wave speed does not enter.
+  double h_min = grid_.h[0];
+  for (int a = 1; a < Dim; ++a) h_min = std::min(h_min, grid_.h[a]);
+  double dt = config_.dt_max;
+  if (vmax > 0.0) dt = std::min(dt, config_.cfl * h_min / vmax);
+  // Compaction rate of the last step, extrapolated: keeps cells from jumping deep past eps* in one step.
+  if (s_.dense_change > 0.0 && s_.dt > 0.0) dt = std::min(dt, s_.dt * config_.max_dense_change / s_.dense_change);
+  dt = std::min(dt, t_stop - s_.time);
+  if (!(dt >= config_.dt_min) && t_stop - s_.time > config_.dt_min) {
+    throw_simulation_error(fmt::format(
+        "tfm at t = {:.6g} s (step {}): the time step {:.3g} s fell below tfm.dt_min = {:.3g} s (largest solids "
+        "speed {:.4g} m/s, last compaction per step {:.3g}). Likely cause: the solids are running away (speed) or a "
+        "cell is being compacted ever faster past eps*. Remedy: {}",
+        s_.time, s_.steps, dt, config_.dt_min, max_solids_speed(), s_.dense_change, remedy()));
+  }
+  return dt;
+}
+
+template <int Dim>
+void TfmSolver<Dim>::predict_momentum(double dt) {
+  Work& w = *w_;
+  // The velocities entering the step, with zero-gradient ghosts for the convection stencils. Gas enters the bed
+  // through the distributor at its interstitial speed: the convection sees U / eps there.
+  for (int a = 0; a < Dim; ++a) {
+    w.g0[a].data() = s_.ug[a].data();
+    w.s0[a].data() = s_.us[a].data();
+  }
+  for_each_bottom([&](const Index<Dim>& c) { w.g0[kUp][c] = s_.ug[kUp][c] / s_.eps[c]; });
+  for (int a = 0; a < Dim; ++a) {
+    fill_face_ghosts(w.g0[a]);
+    fill_face_ghosts(w.s0[a]);
+    for (FaceFields<Dim>* f : {&w.dg, &w.ds, &w.gs, &w.ss}) (*f)[a].fill(0.0);
+  }
+  // The momentum loops are compiled once per limiter law; the law is chosen here, once per step.
+  tvd::with_limiter(config_.limiter, [&](auto law) {
+    using Law = decltype(law);
+    predict_momentum_along<0, Law>(dt);
+    predict_momentum_along<1, Law>(dt);
+    if constexpr (Dim == 3) predict_momentum_along<2, Law>(dt);
+  });
+}
+
+template <int Dim>
+double TfmSolver<Dim>::mu_corner(const Index<Dim>& k, int p, int q) const {
+  // Harmonic mean of the four cells around the cell edge k in the (p, q) plane: an edge touching an empty cell
+  // carries no shear, so a dilute face is never driven by the viscosity of a dense diagonal neighbour (which the
+  // explicit cross terms cannot bear).
+  const Index<Dim> kq = shifted<Dim>(k, q, -1);
+  const double m[4] = {mu_s_[shifted<Dim>(kq, p, -1)], mu_s_[kq], mu_s_[shifted<Dim>(k, p, -1)], mu_s_[k]};
+  double inv = 0.0;
+  for (double x : m) {
+    if (x <= 0.0) return 0.0;
+    inv += 1.0 / x;
+  }
+  return 4.0 / inv;
+}
+
+template <int Dim>
+template <int d, class Law>
+void TfmSolver<Dim>::predict_momentum_along(double dt) {
+  const TfmConfig& c = config_;
+  Work& w = *w_;
+  const IndexBox<Dim>& cells = grid_.domain;
+  const Vec<Dim> h = grid_.h;
+  const double rho_g = c.rho_g, rho_s = c.rho_s;
+  const double grav = c.domain.gravity_vector<Dim>()[d];
+  const bool top_open = c.boundary.top == TopBoundary::PressureOutlet;
+  const double mu_wall = c.solids_no_slip_walls ? 1.0 : 0.0;
+  const Field<Dim>& eps = s_.eps;
+  const Field<Dim>& p = s_.p;
+  const FaceFields<Dim>& s0 = w.s0;
+  auto div_s = [&](const Index<Dim>& cell) {
+    double div = (s0[0][shifted<Dim>(cell, 0, 1)] - s0[0][cell]) / h[0];
+    for (int a = 1; a < Dim; ++a) div += (s0[a][shifted<Dim>(cell, a, 1)] - s0[a][cell]) / h[a];
+    return div;
+  };
+  // Eq. 19 normal stress of the momentum cell centred on `cell`.
+  auto normal = [&](const Index<Dim>& cell) {
+    return 2.0 * mu_s_[cell] * (s0[d][shifted<Dim>(cell, d, 1)] - s0[d][cell]) / h[d] + lambda_s_[cell] * div_s(cell);
+  };
+  // Interior faces of component d and, along the vertical when open, the top face (a ghost pressure keeps P =
+  // P_top there).
+  IndexBox<Dim> faces = cells.faces(d);
+  faces.lo[d] += 1;
+  faces.hi[d] -= (d == kUp && top_open) ? 0 : 1;
+  for_each(faces, [&](const Index<Dim>& f) {
+    const bool top = d == kUp && f[d] == cells.hi[d];
+    const Index<Dim> lo = shifted<Dim>(f, d, -1);  // the cell below the face; f names the one above
+    const double eg = top ? eps[lo] : 0.5 * (eps[lo] + eps[f]);
+    const double es = std::max(1.0 - eg, kEpsSFloor);
+    const double beta = top ? beta_c_[lo] : 0.5 * (beta_c_[lo] + beta_c_[f]);
+    const double p_above = top ? 2.0 * c.boundary.top_pressure - p[lo] : p[f];
+    const double dpdx = (p_above - p[lo]) / h[d];
+    const double adv_g = advect<Dim, d, Law>(w.g0, grid_, f);
+    const double a_g = eg * rho_g / dt;
+    const double rhs_g = a_g * w.g0[d][f] - eg * rho_g * adv_g + eg * rho_g * grav - eg * dpdx;
+    if (top || !(std::min(1.0 - eps[lo], 1.0 - eps[f]) > kEpsSTrace)) {
+      // Solids cannot leave through the top; on a face with no solids on one side the solids velocity stays
+      // as extrapolated from the bed. Only the gas row remains, with the drag of those solids.
+      const double v_s = top ? 0.0 : s0[d][f];
+      s_.ug[d][f] = (rhs_g + beta * v_s) / (a_g + beta);
+      w.dg[d][f] = eg / (a_g + beta);
+      s_.us[d][f] = v_s;
+      w.ds[d][f] = 0.0;
+      return;
+    }
+    const double dpsdx = (p_s_[f] - p_s_[lo]) / h[d];
+    // Eq. 19 stress divergence; the Laplacian diagonal is taken implicitly (point-implicit) for stability.
+    double diag = 2.0 * (mu_s_[f] + mu_s_[lo]) / (h[d] * h[d]);
+    double visc = (normal(f) - normal(lo)) / h[d];
+    for (int b = 0; b < Dim; ++b) {
+      if (b == d) continue;
+      const int pa = std::min(d, b), qa = std::max(d, b);
+      double shear[2];
+      for (int high = 0; high < 2; ++high) {
+        const Index<Dim> k = high ? shifted<Dim>(f, b, 1) : f;  // the cell edge on this side
+        if (k[b] == cells.lo[b] || k[b] == cells.hi[b]) {
+          if (b == kUp) {
+            shear[high] = 0.0;  // bottom and top are free-slip for the solids
+          } else {
+            // Side walls slip, or no-slip with the wall half a cell from the face.
+            const double mu_w = mu_wall * 0.5 * (mu_s_[lo] + mu_s_[f]);
+            shear[high] = (high ? -2.0 : 2.0) * mu_w * s0[d][f] / h[b];
+            diag += mu_wall * (mu_s_[lo] + mu_s_[f]) / (h[b] * h[b]);
+          }
+          continue;
+        }
+        const double mc = mu_corner(k, pa, qa);
+        shear[high] = mc * ((s0[pa][k] - s0[pa][shifted<Dim>(k, qa, -1)]) / h[qa] +
+                            (s0[qa][k] - s0[qa][shifted<Dim>(k, pa, -1)]) / h[pa]);
+        diag += mc / (h[b] * h[b]);
+      }
+      visc += (shear[1] - shear[0]) / h[b];
+    }
+    visc += diag * s0[d][f];
+    const double adv_s = advect<Dim, d, Law>(s0, grid_, f);
+    const double a_s = es * rho_s / dt;
+    const double rhs_s = a_s * s0[d][f] - es * rho_s * adv_s + es * rho_s * grav - es * dpdx - dpsdx + visc;
+    const FaceSolve fsol = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
+    s_.ug[d][f] = fsol.ug;
+    s_.us[d][f] = fsol.us;
+    w.dg[d][f] = fsol.dg;
+    w.ds[d][f] = fsol.ds;
+    w.gs[d][f] = fsol.gs;
+    w.ss[d][f] = fsol.ss;
+  });
+}
+
+template <int Dim>
+void TfmSolver<Dim>::set_boundary_faces(double t) {
+  const IndexBox<Dim>& cells = grid_.domain;
+  const bool top_open = config_.boundary.top == TopBoundary::PressureOutlet;
+  // Jets, the start-up ramp and the distributor non-uniformity, as for the CFD-DEM gas (src/fluid/gas_boundary).
+  std::vector<double>& inlet = w_->inlet;
+  inlet_superficial_profile<Dim>(config_.boundary, grid_, t, inlet);
+  for (int a = 0; a < Dim; ++a)
+    for (bool high : {false, true}) {
+      IndexBox<Dim> side = cells.faces(a);
+      side.lo[a] = high ? cells.hi[a] : cells.lo[a];
+      side.hi[a] = side.lo[a] + 1;
+      std::size_t k = 0;
+      for_each(side, [&](const Index<Dim>& f) {
+        if (a != kUp) {
+          s_.ug[a][f] = s_.us[a][f] = 0.0;  // walls
+        } else if (!high) {
+          s_.ug[a][f] = inlet[k++];  // the distributor
+          s_.us[a][f] = 0.0;
+        } else {
+          s_.us[a][f] = 0.0;
+          if (!top_open) s_.ug[a][f] = 0.0;  // the lid
+        }
+      });
+    }
+}
+
+template <int Dim>
+void TfmSolver<Dim>::face_fractions() {
+  // Face volume fractions are the TVD values the continuity uses.
+  Work& w = *w_;
+  std::vector<double>& es = w.eps_s.data();
+  const std::vector<double>& e = s_.eps.data();
+  for (std::size_t k = 0; k < es.size(); ++k) es[k] = 1.0 - e[k];  // the ghosts too: they repeat the boundary
+  tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{s_.ug}, w.eg);
+  tvd_face_values(grid_, config_.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, w.es);
+  for_each_bottom([&](const Index<Dim>& c) { w.eg[kUp][c] = 1.0; });  // gas enters through the distributor undiluted
+}
+
+template <int Dim>
+void TfmSolver<Dim>::outflow(Eigen::VectorXd& out_g, Eigen::VectorXd& out_s) const {
+  // Net outflow of gas and of solids volume from every cell with the current face velocities.
+  const Work& w = *w_;
+  const IndexBox<Dim>& cells = grid_.domain;
+  const int n = static_cast<int>(cells.count());
+  out_g.resize(n);
+  out_s.resize(n);
+  std::array<double, Dim> area{};
+  for (int a = 0; a < Dim; ++a) area[a] = face_area(grid_, a);
+  for_each(cells, [&](const Index<Dim>& c) {
+    double og = 0.0, os = 0.0;
+    for (int a = 0; a < Dim; ++a) {
+      const Index<Dim> hi = shifted<Dim>(c, a, 1);
+      const double tg = area[a] * (w.eg[a][hi] * s_.ug[a][hi] - w.eg[a][c] * s_.ug[a][c]);
+      const double ts = area[a] * (w.es[a][hi] * s_.us[a][hi] - w.es[a][c] * s_.us[a][c]);
+      og = a == 0 ? tg : og + tg;
+      os = a == 0 ? ts : os + ts;
+    }
+    const int r = cell_row(cells, c);
+    out_g[r] = og;
+    out_s[r] = os;
+  });
+}
+
+template <int Dim>
+void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
+  // Both phases are incompressible, so the mixture volume flux must be divergence-free (Eqs. 15 + 16); that
+  // fixes the gas-pressure correction P'. The second call (after the E' correction) has the same coefficients:
+  // it reuses the first call's factorisation instead of factorising the same matrix again.
+  Work& w = *w_;
+  const IndexBox<Dim>& cells = grid_.domain;
+  const bool top_open = config_.boundary.top == TopBoundary::PressureOutlet;
+  auto top_faces = [&]() {
+    IndexBox<Dim> top = cells.faces(kUp);
+    top.lo[kUp] = cells.hi[kUp];
+    return top;
+  };
+  if (!same_matrix) {
+    // Interior faces couple neighbours; the open top couples to P' = 0 on the outlet face, half a cell above
+    // the centre.
+    for (int a = 0; a < Dim; ++a) {
+      w.a[a].fill(0.0);
+      const double ratio = face_area(grid_, a) / grid_.h[a];
+      IndexBox<Dim> inner = cells.faces(a);
+      inner.lo[a] += 1;
+      inner.hi[a] -= 1;
+      for_each(inner, [&](const Index<Dim>& f) {
+        w.a[a][f] = ratio * (w.eg[a][f] * w.dg[a][f] + w.es[a][f] * w.ds[a][f]);
+      });
+    }
+    if (top_open) {
+      const double area = face_area(grid_, kUp), dy = grid_.h[kUp];
+      for_each(top_faces(), [&](const Index<Dim>& f) { w.a[kUp][f] = 2.0 * area * w.eg[kUp][f] * w.dg[kUp][f] / dy; });
+    }
+  }
+  outflow(w.out_g, w.out_s);
+  for_each(cells, [&](const Index<Dim>& c) {
+    const int r = cell_row(cells, c);
+    w.rhs_p[c] = -(w.out_g[r] + w.out_s[r]);
+  });
+  w.p_corr.fill(0.0);
+  try {
+    w.pressure->solve(w.a, w.rhs_p, w.p_corr, same_matrix);
+  } catch (const Error& e) {
+    throw_simulation_error(fmt::format(
+        "{}: {} (mixture volume constraint, Eqs. 15 + 16). Likely cause: face velocities that are no longer finite "
+        "(a solids stress or drag that overflowed). Remedy: {}", step_label(dt), e.what(), remedy()));
+  }
+  const Field<Dim>& pc = w.p_corr;
+  for (int a = 0; a < Dim; ++a) {
+    IndexBox<Dim> inner = cells.faces(a);
+    inner.lo[a] += 1;
+    inner.hi[a] -= 1;
+    for_each(inner, [&](const Index<Dim>& f) {
+      const double g = (pc[f] - pc[shifted<Dim>(f, a, -1)]) / grid_.h[a];
+      s_.ug[a][f] -= w.dg[a][f] * g;
+      s_.us[a][f] -= w.ds[a][f] * g;
+    });
+  }
+  if (top_open) {
+    for_each(top_faces(), [&](const Index<Dim>& f) {
+      const Index<Dim> below = shifted<Dim>(f, kUp, -1);
+      const double g = (-pc[below] - pc[below]) / grid_.h[kUp];
+      s_.ug[kUp][f] -= w.dg[kUp][f] * g;
+      s_.us[kUp][f] -= w.ds[kUp][f] * g;
+    });
+  }
+  for_each(cells, [&](const Index<Dim>& c) { s_.p[c] += pc[c]; });
+}
+
+template <int Dim>
+void TfmSolver<Dim>::correct_solids_fraction(double dt) {
+  // The solids pressure is made implicit by a solids volume fraction correction E' (as in MFIX): the solids
+  // continuity (Eq. 16) must hold with P_s + K E', K = dP_s/d eps_s, so the stiff compaction limit does not limit
+  // dt: (V/dt) E' - sum_faces es ss K grad E' = -(solids outflow). Solved for W = K E' the matrix would be
+  // symmetric, but K vanishes in dilute cells, so E' is the unknown. Row of cell P:
+  // (V/dt + K_P sum_f a_f) E'_P - sum_f a_f K_nb E'_nb, a_f the face's area / distance times its solids flux
+  // response, written in place into the fixed pattern.
+  const TfmConfig& c = config_;
+  Work& w = *w_;
+  const IndexBox<Dim>& cells = grid_.domain;
+  const double vol = grid_.cell_measure();
+  std::array<double, Dim> ratio{};
+  for (int a = 0; a < Dim; ++a) ratio[a] = face_area(grid_, a) / grid_.h[a];
+  for_each(cells, [&](const Index<Dim>& cell) {
+    std::array<double, 2 * Dim> coef{}, k{};
+    for (int a = 0; a < Dim; ++a) {
+      const Index<Dim> hi = shifted<Dim>(cell, a, 1);
+      const bool has_lo = cell[a] > cells.lo[a], has_hi = cell[a] + 1 < cells.hi[a];
+      coef[2 * a] = has_lo ? ratio[a] * w.es[a][cell] * w.ss[a][cell] : 0.0;
+      coef[2 * a + 1] = has_hi ? ratio[a] * w.es[a][hi] * w.ss[a][hi] : 0.0;
+      k[2 * a] = has_lo ? dps_deps_[shifted<Dim>(cell, a, -1)] : 0.0;
+      k[2 * a + 1] = has_hi ? dps_deps_[hi] : 0.0;
+    }
+    double sum = coef[0];
+    for (int m = 1; m < 2 * Dim; ++m) sum += coef[m];
+    std::array<double, 2 * Dim> off{};
+    for (int m = 0; m < 2 * Dim; ++m) off[m] = -coef[m] * k[m];
+    w.e_matrix.set_row(cell_row(cells, cell), vol / dt + dps_deps_[cell] * sum, off);
+  });
+  outflow(w.out_g, w.out_s);
+  w.solids_solver.set_tolerance(1e-12);
+  w.solids_solver.set_max_iterations(c.linear_max_iterations);
+  Eigen::VectorXd e_corr;  // empty: a zero initial guess
+  const LinearSolveOutcome e_res = w.solids_solver.solve(w.e_matrix.matrix(), -w.out_s, e_corr);
+  if (e_res.fell_back) ++linear_fallbacks_;
+  if (!e_res.ok) {
+    // Name the cell: the row that is not finite, else the stiffest cell (largest dP_s/d eps_s).
+    Index<Dim> bad = cells.lo;
+    if (e_res.bad_row >= 0) {
+      for_each(cells, [&](const Index<Dim>& x) {
+        if (cell_row(cells, x) == e_res.bad_row) bad = x;
+      });
+    } else {
+      double worst = -1.0;
+      for_each(cells, [&](const Index<Dim>& x) {
+        if (dps_deps_[x] > worst) {
+          worst = dps_deps_[x];
+          bad = x;
+        }
+      });
+    }
+    throw_simulation_error(fmt::format(
+        "{}: the solids-fraction correction (implicit solids pressure, E' equation) failed: {}. At {}: voidage "
+        "{:.4g}, solids pressure {:.4g} Pa, dP_s/d eps_s {:.4g} Pa, granular temperature {:.4g} m^2/s^2. Likely "
+        "cause: a solids pressure that is not finite or too stiff for the step (a voidage far below eps*, or a "
+        "runaway granular temperature). Remedy: {}",
+        step_label(dt), e_res.why, where(bad), s_.eps[bad], p_s_[bad], dps_deps_[bad], s_.theta[bad], remedy()));
+  }
+  auto wk = [&](const Index<Dim>& x) { return dps_deps_[x] * e_corr[cell_row(cells, x)]; };
+  for (int a = 0; a < Dim; ++a) {
+    IndexBox<Dim> inner = cells.faces(a);
+    inner.lo[a] += 1;
+    inner.hi[a] -= 1;
+    for_each(inner, [&](const Index<Dim>& f) {
+      const double g = (wk(f) - wk(shifted<Dim>(f, a, -1))) / grid_.h[a];
+      s_.ug[a][f] -= w.gs[a][f] * g;
+      s_.us[a][f] -= w.ss[a][f] * g;
+    });
+  }
+  correct_pressure(dt, true);
+}
+
+template <int Dim>
+void TfmSolver<Dim>::solids_continuity(double dt) {
+  const TfmConfig& c = config_;
+  Work& w = *w_;
+  // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
+  try {
+    advance_scalar_implicit(grid_, c.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, dt, c.mass_corrections, w.fs,
+                            c.linear_max_iterations, &linear_fallbacks_);
+  } catch (const Error& e) {
+    throw_simulation_error(fmt::format("{}: {}. Remedy: {}", step_label(dt), e.what(), remedy()));
+  }
+  for (int a = 0; a < Dim; ++a) w.fs_unlimited[a].data() = w.fs[a].data();
+  // Packing limit (docs/model-tfm.md): eps >= eps* - max_compaction exactly. The solids pressure stiffens the bed
+  // only through a linearisation, so the bound is kept on the fluxes: inflows into a cell that would pass it are
+  // scaled down (Zalesak-type one-sided limiter, Jacobi sweeps: no dependence on a sweep order).
+  packing_sweeps_ = limit_packing(grid_, w.eps_s, dt, 1.0 - (c.eps_star - packing_allowance(c)), w.fs).sweeps;
+  w.eps_s_new = conservative_update(grid_, w.eps_s, w.fs, dt);
+}
+
+template <int Dim>
+void TfmSolver<Dim>::close_gas_continuity(double dt) {
+  // Face velocities follow the fluxes the continuity used, so momentum sees what the continuity did: a limited
+  // solids face is slowed by its factor; the gas carries the mixture flux that the pressure correction made
+  // divergence-free (with its face fractions eg, es) minus the solids flux actually moved, so Eq. 15 with
+  // eps = 1 - eps_s closes on every cell (the gas takes up the difference between the face fractions of the
+  // correction and of the implicit continuity as well as the volume the limiter held back).
+  const TfmConfig& c = config_;
+  Work& w = *w_;
+  const IndexBox<Dim>& cells = grid_.domain;
+  for (int a = 0; a < Dim; ++a) {
+    w.fg_shift[a].fill(0.0);
+    for_each(cells.faces(a), [&](const Index<Dim>& f) { w.fs_corr[a][f] = w.es[a][f] * s_.us[a][f]; });
+  }
+  transfer_to_gas(w.fs_corr, w.fs, w.fg_shift);
+  for (int a = 0; a < Dim; ++a)
+    for_each(cells.faces(a), [&](const Index<Dim>& f) {
+      const double f_old = w.fs_unlimited[a][f], f_new = w.fs[a][f], shift = w.fg_shift[a][f];
+      if (f_new != f_old && f_old != 0.0) s_.us[a][f] *= f_new / f_old;
+      if (shift != 0.0) s_.ug[a][f] += shift / w.eg[a][f];
+    });
+
+  // Gas continuity residual of this step (Eq. 15 with the face voidages of the step), before eps is replaced.
+  {
+    const double vol = grid_.cell_measure();
+    std::array<double, Dim> area{};
+    for (int a = 0; a < Dim; ++a) area[a] = face_area(grid_, a);
+    double sum = 0.0;
+    for_each(cells, [&](const Index<Dim>& x) {
+      const double accumulation = vol * ((1.0 - w.eps_s_new[x]) - s_.eps[x]) / dt;
+      double out = 0.0;
+      for (int a = 0; a < Dim; ++a) {
+        const Index<Dim> hi = shifted<Dim>(x, a, 1);
+        const double t = area[a] * (w.eg[a][hi] * s_.ug[a][hi] - w.eg[a][x] * s_.ug[a][x]);
+        out = a == 0 ? t : out + t;
+      }
+      sum += std::abs(accumulation + out);
+    });
+    // Normalised as the gas solver's mass residual (src/fluid/gas_solver.cpp), in volume rather than mass:
+    // by the largest of the inlet flow, the largest gas face speed times the bottom area, and a round-off floor.
+    double inflow = 0.0, speed = 0.0;
+    for_each_bottom([&](const Index<Dim>& f) { inflow += area[kUp] * s_.ug[kUp][f]; });
+    for (int a = 0; a < Dim; ++a)
+      for_each(cells.faces(a), [&](const Index<Dim>& f) { speed = std::max(speed, std::abs(s_.ug[a][f])); });
+    const double bottom = bottom_area();
+    const double v_floor = std::max(1e-12, 1e-6 * std::sqrt(gravity_norm() * grid_.length(kUp)));
+    s_.gas_residual = sum / std::max({std::abs(inflow), speed * bottom, v_floor * bottom});
+  }
+
+  // eps = 1 - eps_s closes Eq. 15.
+  double dense_change = 0.0;
+  for_each(cells, [&](const Index<Dim>& x) {
+    const double eps_new = 1.0 - w.eps_s_new[x];
+    // Only compaction below eps* matters: that is where the solids pressure stiffens exponentially.
+    if (eps_new < c.eps_star) dense_change = std::max(dense_change, s_.eps[x] - eps_new);
+    s_.eps[x] = eps_new;
+  });
+  fill_cell_ghosts(s_.eps);
+  w.dense_change = dense_change;
+}
+
+template <int Dim>
+double TfmSolver<Dim>::reference_speed() const {
   const GasBoundaryConfig& b = config_.boundary;
   double u_in = std::max(std::abs(b.inlet_velocity), std::abs(b.ramp_from)) * (1.0 + b.inlet_noise);
   for (const InletJet& j : b.jets) u_in = std::max(u_in, std::abs(j.velocity));
-  return u_in / config_.eps_star + std::sqrt(2.0 * std::hypot(config_.gravity.x, config_.gravity.y) * grid_.height());
+  return u_in / config_.eps_star + std::sqrt(2.0 * gravity_norm() * grid_.length(kUp));
 }
 
-std::string TfmSolver::where(int i, int j) const {
-  return fmt::format("cell ({}, {}) at x = {:.3f} m, y = {:.3f} m", i, j, (i + 0.5) * grid_.dx, (j + 0.5) * grid_.dy);
+template <int Dim>
+std::string TfmSolver<Dim>::step_label(double dt) const {
+  return fmt::format("tfm at t = {:.6g} s (step {}, dt = {:.3g} s)", s_.time, s_.steps, dt);
 }
 
-std::string TfmSolver::remedy() const {
+template <int Dim>
+std::string TfmSolver<Dim>::where(const Index<Dim>& c) const {
+  std::string s = fmt::format("cell {} at x = {:.3f} m, y = {:.3f} m", index_name<Dim>(c), (c[0] + 0.5) * grid_.h[0],
+                              (c[1] + 0.5) * grid_.h[1]);
+  if constexpr (Dim == 3) s += fmt::format(", z = {:.3f} m", (c[2] + 0.5) * grid_.h[2]);
+  return s;
+}
+
+template <int Dim>
+std::string TfmSolver<Dim>::remedy() const {
   std::string r;
   if (config_.rheology == SolidsRheology::KineticTheory && config_.e > 0.95) {
     r = fmt::format("lower tfm.restitution (now {:g}; the paper: 0.9): nearly elastic particles dissipate almost no "
@@ -721,205 +920,233 @@ std::string TfmSolver::remedy() const {
                          "against the bed's minimum fluidization velocity", config_.cfl, config_.dt_max);
 }
 
-void TfmSolver::check_health(double dt) const {
-  const int nx = grid_.nx, ny = grid_.ny;
+template <int Dim>
+void TfmSolver<Dim>::check_health(double dt) const {
+  const IndexBox<Dim>& cells = grid_.domain;
   const double t = s_.time;
-  auto fail = [&](const std::string& what, int i, int j, const std::string& cause) {
+  auto fail = [&](const std::string& what, const Index<Dim>& c, const std::string& cause) {
     throw_simulation_error(fmt::format("tfm: the run went bad at t = {:.6g} s (step {}, dt = {:.3g} s): {} in {}. "
                                        "Likely cause: {}. Remedy: {}",
-                                       t, s_.steps, dt, what, where(i, j), cause, remedy()));
+                                       t, s_.steps, dt, what, where(c), cause, remedy()));
   };
   const char* overflow = "a solids pressure or viscosity that overflowed, or a linear solve fed with such values";
   // The deferred TVD correction of the implicit continuity undershoots a little at the bed surface (solids
   // fractions down to -1e-5 in the paper's case); below the trace level that carries no momentum it is a defect.
   constexpr double kVoidageSlack = kEpsSTrace;
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double e = s_.eps(i, j);
-      if (!std::isfinite(e) || !std::isfinite(s_.p(i, j)) || !std::isfinite(s_.theta(i, j))) {
-        fail(fmt::format("a non-finite value (voidage {}, pressure {}, granular temperature {})", e, s_.p(i, j),
-                         s_.theta(i, j)), i, j, overflow);
-      }
-      if (e < -kVoidageSlack || e > 1.0 + kVoidageSlack) {
-        fail(fmt::format("the voidage is {:.9g}, outside [0, 1]", e), i, j,
-             "a solids flux out of a cell larger than its content: the time step outran the solids velocity");
-      }
+  for_each(cells, [&](const Index<Dim>& c) {
+    const double e = s_.eps[c];
+    if (!std::isfinite(e) || !std::isfinite(s_.p[c]) || !std::isfinite(s_.theta[c])) {
+      fail(fmt::format("a non-finite value (voidage {}, pressure {}, granular temperature {})", e, s_.p[c],
+                       s_.theta[c]), c, overflow);
     }
-  }
+    if (e < -kVoidageSlack || e > 1.0 + kVoidageSlack) {
+      fail(fmt::format("the voidage is {:.9g}, outside [0, 1]", e), c,
+           "a solids flux out of a cell larger than its content: the time step outran the solids velocity");
+    }
+  });
   const double v_ref = reference_speed();
   const double v_gas_max = 10.0 * v_ref;
-  auto faces = [&](const Field2& g, const Field2& sol, bool vertical) {
-    for (int j = 0; j < g.ny; ++j) {
-      for (int i = 0; i < g.nx; ++i) {
-        const double ug = g(i, j), us = sol(i, j);
-        // The cell on the inner side of the face (clamped at the boundaries).
-        const int ci = vertical ? std::min(i, nx - 1) : i, cj = vertical ? j : std::min(j, ny - 1);
-        if (!std::isfinite(ug) || !std::isfinite(us)) {
-          fail(fmt::format("a non-finite face velocity (gas {}, solids {} m/s)", ug, us), ci, cj, overflow);
-        }
-        const int i0 = vertical ? clampi(i - 1, 0, nx - 1) : i, j0 = vertical ? j : clampi(j - 1, 0, ny - 1);
-        const bool carries = std::min(1.0 - s_.eps(i0, j0), 1.0 - s_.eps(ci, cj)) > kEpsSTrace;
-        if (carries && std::abs(us) > v_ref) {
-          fail(fmt::format("the solids move at {:.4g} m/s, faster than anything that drives them ({:.3g} m/s: the "
-                           "fastest interstitial inflow plus free fall over the domain height)", std::abs(us), v_ref),
-               ci, cj, "an instability of the solids momentum");
-        }
-        if (std::abs(ug) > v_gas_max) {
-          fail(fmt::format("the gas moves at {:.4g} m/s, ten times the fastest interstitial inflow plus free fall "
-                           "({:.3g} m/s)", std::abs(ug), v_ref), ci, cj,
-               "an instability of the coupled gas-solids momentum");
-        }
+  for (int a = 0; a < Dim; ++a)
+    for_each(cells.faces(a), [&](const Index<Dim>& f) {
+      const double ug = s_.ug[a][f], us = s_.us[a][f];
+      // The common case first: finite and slower than both limits (no cell needs to be looked at).
+      if (std::abs(us) <= v_ref && std::abs(ug) <= v_gas_max) return;
+      // The cell on the inner side of the face (the last cell for the high boundary face).
+      const Index<Dim> ci = with<Dim>(f, a, std::min(f[a], cells.hi[a] - 1));
+      if (!std::isfinite(ug) || !std::isfinite(us)) {
+        fail(fmt::format("a non-finite face velocity (gas {}, solids {} m/s)", ug, us), ci, overflow);
       }
-    }
-  };
-  faces(s_.ug, s_.us, true);
-  faces(s_.vg, s_.vs, false);
+      // The ghost cell repeats the boundary cell, so a boundary face looks at its one cell twice.
+      const bool carries = std::min(1.0 - s_.eps[shifted<Dim>(f, a, -1)], 1.0 - s_.eps[f]) > kEpsSTrace;
+      if (carries && std::abs(us) > v_ref) {
+        fail(fmt::format("the solids move at {:.4g} m/s, faster than anything that drives them ({:.3g} m/s: the "
+                         "fastest interstitial inflow plus free fall over the domain height)", std::abs(us), v_ref),
+             ci, "an instability of the solids momentum");
+      }
+      if (std::abs(ug) > v_gas_max) {
+        fail(fmt::format("the gas moves at {:.4g} m/s, ten times the fastest interstitial inflow plus free fall "
+                         "({:.3g} m/s)", std::abs(ug), v_ref), ci,
+             "an instability of the coupled gas-solids momentum");
+      }
+    });
   // Theta is the mean square fluctuation velocity per direction: its root cannot exceed the speed scale either.
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      if (1.0 - s_.eps(i, j) < kBedSolidsFraction) continue;
-      if (s_.theta(i, j) > v_ref * v_ref) {
-        fail(fmt::format("the granular temperature is {:.4g} m^2/s^2 (fluctuation speed {:.4g} m/s, above the {:.3g} "
-                         "m/s that drives the bed) at solids fraction {:.3g}",
-                         s_.theta(i, j), std::sqrt(s_.theta(i, j)), v_ref, 1.0 - s_.eps(i, j)),
-             i, j, "a runaway granular temperature: production by shear outgrows the collisional dissipation");
-      }
+  for_each(cells, [&](const Index<Dim>& c) {
+    if (1.0 - s_.eps[c] < kBedSolidsFraction) return;
+    if (s_.theta[c] > v_ref * v_ref) {
+      fail(fmt::format("the granular temperature is {:.4g} m^2/s^2 (fluctuation speed {:.4g} m/s, above the {:.3g} "
+                       "m/s that drives the bed) at solids fraction {:.3g}",
+                       s_.theta[c], std::sqrt(s_.theta[c]), v_ref, 1.0 - s_.eps[c]),
+           c, "a runaway granular temperature: production by shear outgrows the collisional dissipation");
     }
-  }
+  });
 }
 
-double TfmSolver::bed_granular_temperature_max() const {
+template <int Dim>
+double TfmSolver<Dim>::bed_granular_temperature_max() const {
   double m = 0.0;
-  for (std::size_t k = 0; k < s_.eps.size(); ++k) {
-    if (1.0 - s_.eps.v[k] >= kBedSolidsFraction) m = std::max(m, s_.theta.v[k]);
-  }
+  for_each(grid_.domain, [&](const Index<Dim>& c) {
+    if (1.0 - s_.eps[c] >= kBedSolidsFraction) m = std::max(m, s_.theta[c]);
+  });
   return m;
 }
 
-double TfmSolver::solids_mean_granular_temperature() const {
+template <int Dim>
+double TfmSolver<Dim>::solids_mean_granular_temperature() const {
   double num = 0.0, den = 0.0;
-  for (std::size_t k = 0; k < s_.eps.size(); ++k) {
-    const double es = 1.0 - s_.eps.v[k];
-    num += es * s_.theta.v[k];
+  for_each(grid_.domain, [&](const Index<Dim>& c) {
+    const double es = 1.0 - s_.eps[c];
+    num += es * s_.theta[c];
     den += es;
-  }
+  });
   return den > 0.0 ? num / den : 0.0;
 }
 
-void TfmSolver::advance_to(double t) {
+template <int Dim>
+void TfmSolver<Dim>::advance_to(double t) {
   // Stop within a rounding distance of t instead of taking a vanishing last step.
-  while (t - s_.time > 1e-12 * std::max(1.0, std::abs(t))) step(t);
+  while (t - s_.time > 1e-12 * std::max(1.0, std::abs(t))) advance(t);
 }
 
-double TfmSolver::solids_mass() const {
+template <int Dim>
+double TfmSolver<Dim>::solids_mass() const {
   double sum = 0.0;
-  for (double e : s_.eps.v) sum += 1.0 - e;
-  return sum * config_.rho_s * grid_.dx * grid_.dy;
+  for_each(grid_.domain, [&](const Index<Dim>& c) { sum += 1.0 - s_.eps[c]; });
+  double m = sum * config_.rho_s;
+  for (int a = 0; a < Dim; ++a) m *= grid_.h[a];
+  return m;
 }
 
-double TfmSolver::pressure_drop() const {
+template <int Dim>
+double TfmSolver<Dim>::pressure_drop() const {
   double sum = 0.0;
-  const int ny = grid_.ny;
-  for (int i = 0; i < grid_.nx; ++i) {
-    sum += ny > 1 ? 1.5 * s_.p(i, 0) - 0.5 * s_.p(i, 1) : s_.p(i, 0);
-  }
+  const int ny = grid_.n(kUp);
+  double count = 0.0;
+  for_each_bottom([&](const Index<Dim>& c) {
+    sum += ny > 1 ? 1.5 * s_.p[c] - 0.5 * s_.p[shifted<Dim>(c, kUp, 1)] : s_.p[c];
+    count += 1.0;
+  });
   const double top = (config_.boundary.top == TopBoundary::PressureOutlet) ? config_.boundary.top_pressure : 0.0;
-  return sum / grid_.nx - top;
+  return sum / count - top;
 }
 
-double TfmSolver::contents_weight_per_area() const {
+template <int Dim>
+double TfmSolver<Dim>::contents_weight_per_area() const {
   double sum = 0.0;
-  for (double e : s_.eps.v) sum += e * config_.rho_g + (1.0 - e) * config_.rho_s;
-  return sum * grid_.dx * grid_.dy * std::abs(config_.gravity.y) / grid_.width();
+  for_each(grid_.domain, [&](const Index<Dim>& c) {
+    const double e = s_.eps[c];
+    sum += e * config_.rho_g + (1.0 - e) * config_.rho_s;
+  });
+  double m = sum;
+  for (int a = 0; a < Dim; ++a) m *= grid_.h[a];
+  return m * std::abs(config_.domain.gravity.y) / bottom_area();
 }
 
-double TfmSolver::max_solids_speed() const {
-  const int nx = grid_.nx, ny = grid_.ny;
+template <int Dim>
+double TfmSolver<Dim>::max_solids_speed() const {
   double vmax = 0.0;
-  const Field2& e = s_.eps;
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 1; i < nx; ++i) {
-      if (std::min(1.0 - e(i - 1, j), 1.0 - e(i, j)) > 1e-6) vmax = std::max(vmax, std::abs(s_.us(i, j)));
-    }
-  }
-  for (int j = 1; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      if (std::min(1.0 - e(i, j - 1), 1.0 - e(i, j)) > 1e-6) vmax = std::max(vmax, std::abs(s_.vs(i, j)));
-    }
+  for (int a = 0; a < Dim; ++a) {
+    IndexBox<Dim> inner = grid_.domain.faces(a);
+    inner.lo[a] += 1;
+    inner.hi[a] -= 1;
+    for_each(inner, [&](const Index<Dim>& f) {
+      if (std::min(1.0 - s_.eps[shifted<Dim>(f, a, -1)], 1.0 - s_.eps[f]) > 1e-6) {
+        vmax = std::max(vmax, std::abs(s_.us[a][f]));
+      }
+    });
   }
   return vmax;
 }
 
-double TfmSolver::min_voidage() const { return *std::min_element(s_.eps.v.begin(), s_.eps.v.end()); }
+template <int Dim>
+double TfmSolver<Dim>::min_voidage() const {
+  double m = s_.eps[grid_.domain.lo];
+  for_each(grid_.domain, [&](const Index<Dim>& c) { m = std::min(m, s_.eps[c]); });
+  return m;
+}
 
-void TfmSolver::gas_velocity_cells(Field2& u, Field2& v) const {
-  u = Field2(grid_.nx, grid_.ny);
-  v = Field2(grid_.nx, grid_.ny);
-  for (int j = 0; j < grid_.ny; ++j) {
-    for (int i = 0; i < grid_.nx; ++i) {
-      u(i, j) = 0.5 * (s_.ug(i, j) + s_.ug(i + 1, j));
-      v(i, j) = 0.5 * (vg_interstitial(i, j) + s_.vg(i, j + 1));
-    }
+template <int Dim>
+void TfmSolver<Dim>::gas_velocity_cells(CellVectorField<Dim>& u) const {
+  for (int a = 0; a < Dim; ++a) {
+    if (!(u[a].box() == grid_.domain)) u[a] = Field<Dim>(grid_.domain, 0);
+    for_each(grid_.domain, [&](const Index<Dim>& c) {
+      const double low = a == kUp ? vg_interstitial(c) : s_.ug[a][c];
+      u[a][c] = 0.5 * (low + s_.ug[a][shifted<Dim>(c, a, 1)]);
+    });
   }
 }
 
-void TfmSolver::solids_velocity_cells(Field2& u, Field2& v) const {
-  u = Field2(grid_.nx, grid_.ny);
-  v = Field2(grid_.nx, grid_.ny);
-  for (int j = 0; j < grid_.ny; ++j) {
-    for (int i = 0; i < grid_.nx; ++i) {
-      u(i, j) = 0.5 * (s_.us(i, j) + s_.us(i + 1, j));
-      v(i, j) = 0.5 * (s_.vs(i, j) + s_.vs(i, j + 1));
-    }
+template <int Dim>
+void TfmSolver<Dim>::solids_velocity_cells(CellVectorField<Dim>& u) const {
+  for (int a = 0; a < Dim; ++a) {
+    if (!(u[a].box() == grid_.domain)) u[a] = Field<Dim>(grid_.domain, 0);
+    for_each(grid_.domain, [&](const Index<Dim>& c) { u[a][c] = 0.5 * (s_.us[a][c] + s_.us[a][shifted<Dim>(c, a, 1)]); });
   }
 }
 
-std::vector<NamedArray> TfmSolver::save_state() const {
-  auto arr = [](const char* name, const Field2& f) { return NamedArray{name, f.nx, f.ny, f.v}; };
-  return {arr("eps", s_.eps),
-          arr("p", s_.p),
-          arr("ug", s_.ug),
-          arr("vg", s_.vg),
-          arr("us", s_.us),
-          arr("vs", s_.vs),
-          arr("theta", s_.theta),
-          NamedArray{"time", 1, 1, {s_.time}},
-          NamedArray{"dt", 1, 1, {s_.dt}},
-          NamedArray{"steps", 1, 1, {static_cast<double>(s_.steps)}},
-          NamedArray{"dense_change", 1, 1, {s_.dense_change}},
-          NamedArray{"gas_residual", 1, 1, {s_.gas_residual}}};
+namespace {
+constexpr const char* kGasNames[3] = {"ug", "vg", "wg"};
+constexpr const char* kSolidsNames[3] = {"us", "vs", "ws"};
+
+template <int Dim>
+NamedArray named(const char* name, const Field<Dim>& f) {
+  NamedArray a{name, f.box().extent(0), f.box().extent(1), f.interior(), 1};
+  if constexpr (Dim == 3) a.nz = f.box().extent(2);
+  return a;
+}
+NamedArray scalar(const char* name, double v) { return NamedArray{name, 1, 1, {v}, 1}; }
+}  // namespace
+
+template <int Dim>
+std::vector<NamedArray> TfmSolver<Dim>::save_state() const {
+  std::vector<NamedArray> out{named("eps", s_.eps), named("p", s_.p)};
+  for (int a = 0; a < Dim; ++a) out.push_back(named(kGasNames[a], s_.ug[a]));
+  for (int a = 0; a < Dim; ++a) out.push_back(named(kSolidsNames[a], s_.us[a]));
+  out.push_back(named("theta", s_.theta));
+  out.push_back(scalar("time", s_.time));
+  out.push_back(scalar("dt", s_.dt));
+  out.push_back(scalar("steps", static_cast<double>(s_.steps)));
+  out.push_back(scalar("dense_change", s_.dense_change));
+  out.push_back(scalar("gas_residual", s_.gas_residual));
+  return out;
 }
 
-void TfmSolver::restore_state(const std::vector<NamedArray>& arrays) {
-  TfmState next = s_;
-  auto find = [&](const char* name, int nx, int ny) -> const NamedArray& {
+template <int Dim>
+void TfmSolver<Dim>::restore_state(const std::vector<NamedArray>& arrays) {
+  TfmState<Dim> next = s_;
+  auto find = [&](const char* name, int nx, int ny, int nz) -> const NamedArray& {
     for (const NamedArray& a : arrays) {
       if (a.name != name) continue;
-      if (a.nx != nx || a.ny != ny || a.values.size() != static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny)) {
+      const std::size_t size = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+      if (a.nx != nx || a.ny != ny || a.nz != nz || a.values.size() != size) {
         throw_input_error(std::string("tfm restart: array '") + name + "' does not match the grid");
       }
       return a;
     }
     throw_input_error(std::string("tfm restart: array '") + name + "' is missing");
   };
-  auto load = [&](const char* name, Field2& f) { f.v = find(name, f.nx, f.ny).values; };
+  auto load = [&](const char* name, Field<Dim>& f) {
+    const IndexBox<Dim>& b = f.box();
+    f.set_interior(find(name, b.extent(0), b.extent(1), Dim == 3 ? b.extent(Dim - 1) : 1).values);
+  };
   load("eps", next.eps);
   load("p", next.p);
-  load("ug", next.ug);
-  load("vg", next.vg);
-  load("us", next.us);
-  load("vs", next.vs);
+  for (int a = 0; a < Dim; ++a) load(kGasNames[a], next.ug[a]);
+  for (int a = 0; a < Dim; ++a) load(kSolidsNames[a], next.us[a]);
   load("theta", next.theta);
-  next.time = find("time", 1, 1).values[0];
-  next.dt = find("dt", 1, 1).values[0];
-  next.steps = static_cast<long>(find("steps", 1, 1).values[0]);
-  next.dense_change = find("dense_change", 1, 1).values[0];
+  next.time = find("time", 1, 1, 1).values[0];
+  next.dt = find("dt", 1, 1, 1).values[0];
+  next.steps = static_cast<long>(find("steps", 1, 1, 1).values[0]);
+  next.dense_change = find("dense_change", 1, 1, 1).values[0];
   // Monitor only, and absent from checkpoints written before it existed: optional.
   next.gas_residual = 0.0;
   for (const NamedArray& a : arrays) {
     if (a.name == "gas_residual" && a.values.size() == 1) next.gas_residual = a.values[0];
   }
+  fill_cell_ghosts(next.eps);
   s_ = std::move(next);
 }
+
+template class TfmSolver<2>;
+template class TfmSolver<3>;
 
 }  // namespace fluidbed::tfm

@@ -1,34 +1,41 @@
 #pragma once
-// Two-fluid model solver (paper Eqs. 15-26) on the staggered MAC grid: P, eps, Theta at cell centres,
-// u on vertical faces ((nx+1) x ny), v on horizontal faces (nx x (ny+1)).
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCore>
+// Two-fluid model solver (paper Eqs. 15-26) on the staggered MAC grid in Dim = 2 or 3 dimensions: P, eps, Theta
+// at cell centres, the velocity component along axis a of each phase on the faces normal to a. Axis 1 is
+// vertical (distributor at its low side, outlet or lid at its high side); axis 0 and, in 3D, axis 2 end at walls.
+// Every field carries kGhost ghost layers, filled by the boundary conditions, so no stencil clamps an index.
+#include <Eigen/Core>
+#include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "fluid/pressure_correction.hpp"
 #include "fluid/stencil_matrix.hpp"
 #include "tfm/tfm_config.hpp"
+#include "tfm/tvd_convection.hpp"
 
 namespace fluidbed::tfm {
 
-/// One named array of the solver state (restart files store these as they are).
+/// One named array of the solver state (restart files store these as they are): the values of a field's box,
+/// axis 0 fastest, and the box's extent per axis (nz = 1 in 2D).
 struct NamedArray {
   std::string name;
   int nx = 0;
   int ny = 0;
   std::vector<double> values;
+  int nz = 1;
 };
 
 /// The complete state: fields plus time, last time step and step count.
+template <int Dim>
 struct TfmState {
-  Field2 eps;     ///< voidage (gas volume fraction), cells
-  Field2 p;       ///< gas pressure [Pa], cells
-  Field2 ug, vg;  ///< gas velocity [m/s], faces
-  Field2 us, vs;  ///< solids velocity [m/s], faces
-  Field2 theta;   ///< granular temperature [m^2/s^2], cells (zero unless kinetic theory)
+  Field<Dim> eps;        ///< voidage (gas volume fraction), cells
+  Field<Dim> p;          ///< gas pressure [Pa], cells
+  FaceFields<Dim> ug;    ///< gas velocity [m/s], faces (superficial on the distributor face, interstitial elsewhere)
+  FaceFields<Dim> us;    ///< solids velocity [m/s], faces
+  Field<Dim> theta;      ///< granular temperature [m^2/s^2], cells (zero unless kinetic theory)
   double time = 0.0;
   double dt = 0.0;
   long steps = 0;
@@ -38,35 +45,49 @@ struct TfmState {
   double gas_residual = 0.0;
 };
 
+/// Cell-centred vector: one cell field per axis.
+template <int Dim>
+using CellVectorField = std::array<Field<Dim>, Dim>;
+
+template <int Dim>
 class TfmSolver {
  public:
-  /// Validates the config, sets up the grid and the initial bed: uniform eps_initial below packed_height, gas
-  /// above, gas at the background inflow, P from the steady gas momentum balance. Throws an input error.
-  explicit TfmSolver(const TfmConfig& config);
+  /// The vertical axis (gravity, distributor at its low side).
+  static constexpr int kUp = 1;
 
-  /// Advances one adaptive time step (never past t_stop); returns the step taken.
-  double step(double t_stop);
+  /// Validates the config (its domain must have this Dim), sets up the grid and the initial bed: uniform
+  /// eps_initial below packed_height, gas above, gas at the background inflow, P from the steady gas momentum
+  /// balance. Throws an input error.
+  explicit TfmSolver(const TfmConfig& config);
+  ~TfmSolver();
+  TfmSolver(TfmSolver&&) noexcept;
+
+  /// Advances one adaptive time step (never past t_stop) through the stages of the paper's algorithm; returns the
+  /// step taken.
+  double advance(double t_stop);
+  /// The same as advance (the name the drivers and tests use).
+  double step(double t_stop) { return advance(t_stop); }
   /// Steps until the time reaches t.
   void advance_to(double t);
 
   const TfmConfig& config() const { return config_; }
-  const Grid2& grid() const { return grid_; }
-  const TfmState& state() const { return s_; }
+  const Grid<Dim>& grid() const { return grid_; }
+  const TfmState<Dim>& state() const { return s_; }
   double time() const { return s_.time; }
 
-  /// Solids mass per unit depth [kg/m].
+  /// Solids mass [kg per metre of depth in 2D, kg in 3D].
   double solids_mass() const;
-  /// Gas pressure on the bottom face (linear extrapolation, width-averaged) minus the top pressure [Pa].
+  /// Gas pressure on the bottom face (linear extrapolation, averaged over the bottom) minus the top pressure [Pa].
   double pressure_drop() const;
-  /// Weight of the contents per unit area (solids and gas, width-averaged) [Pa]: the static pressure drop.
+  /// Weight of the contents per unit bottom area (solids and gas) [Pa]: the static pressure drop.
   double contents_weight_per_area() const;
-  /// Largest solids speed over faces carrying solids (eps_s > 1e-6 on both sides) [m/s].
+  /// Largest solids speed over interior faces carrying solids (eps_s > 1e-6 on both sides) [m/s].
   double max_solids_speed() const;
   /// Smallest voidage in the domain.
   double min_voidage() const;
   /// Gas continuity residual (Eq. 15) of the last step: sum over cells of |V (eps_new - eps_old)/dt + net gas
   /// volume outflow| with the face voidages of the step, over the largest of the inlet volume flow, the largest
-  /// gas face speed times the width and a round-off floor (the gas solver's normalisation); 0 before a step.
+  /// gas face speed times the bottom area and a round-off floor (the gas solver's normalisation); 0 before a step.
   double gas_volume_residual() const { return s_.gas_residual; }
 
   /// Sweeps the packing limiter needed in the last step (1: nothing to limit); diagnostics, not state.
@@ -88,12 +109,12 @@ class TfmSolver {
   static constexpr double kBedSolidsFraction = 0.05;
 
   /// Solids pressure [Pa] and solids shear viscosity [Pa s] of the last step, cells.
-  const Field2& solids_pressure() const { return p_s_; }
-  const Field2& solids_viscosity() const { return mu_s_; }
+  const Field<Dim>& solids_pressure() const { return p_s_; }
+  const Field<Dim>& solids_viscosity() const { return mu_s_; }
 
-  /// Cell-centred velocities (mean of the two faces of each cell).
-  void gas_velocity_cells(Field2& u, Field2& v) const;
-  void solids_velocity_cells(Field2& u, Field2& v) const;
+  /// Cell-centred velocities (mean of the two faces of each cell; the gas interstitial), fields on the domain.
+  void gas_velocity_cells(CellVectorField<Dim>& u) const;
+  void solids_velocity_cells(CellVectorField<Dim>& u) const;
 
   /// The complete state as named arrays, for checkpoints; restoring it gives a bit-identical continuation.
   std::vector<NamedArray> save_state() const;
@@ -101,29 +122,53 @@ class TfmSolver {
   void restore_state(const std::vector<NamedArray>& arrays);
 
  private:
-  double vg_interstitial(int i, int j) const;
+  struct Work;
+
+  // The stages of advance(), in order.
   void mask_trace_solids_velocity();
-  void compute_cell_closures();
-  /// compute_cell_closures for one rheology (chosen once, outside the cell loop).
+  void compute_closures();
   template <SolidsRheology R>
-  void compute_cell_closures_of();
+  void compute_closures_of();
   double choose_dt(double t_stop) const;
+  void predict_momentum(double dt);
+  template <int d, class Law>
+  void predict_momentum_along(double dt);
+  void set_boundary_faces(double t);
+  void face_fractions();
+  void correct_pressure(double dt, bool same_matrix);
+  void correct_solids_fraction(double dt);
+  void solids_continuity(double dt);
+  void close_gas_continuity(double dt);
+
+  // Pieces the stages share.
+  double drag(const DragInput& in) const;
+  /// The case's drag law, chosen once at construction (never switched per cell).
+  DragBetaFn beta_of_ = nullptr;
+  double vg_interstitial(const Index<Dim>& c) const;
+  double mu_corner(const Index<Dim>& k, int p, int q) const;
+  void outflow(Eigen::VectorXd& out_g, Eigen::VectorXd& out_s) const;
   /// Throws a simulation error with a diagnosis (time, cell, what, likely cause, remedy) when the state just
   /// reached is not physical: non-finite values, voidage outside [0, 1], speeds above reference_speed().
   void check_health(double dt) const;
-  std::string where(int i, int j) const;
+  std::string where(const Index<Dim>& c) const;
   std::string remedy() const;
+  std::string step_label(double dt) const;
+  double gravity_norm() const;
+  double bottom_area() const;
+  template <class F>
+  void for_each_bottom(F&& f) const;
 
   TfmConfig config_;
-  Grid2 grid_;
-  TfmState s_;
-  // Work arrays (derived each step, not state).
-  Field2 p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
+  Grid<Dim> grid_;
+  TfmState<Dim> s_;
+  // Closures of the step (derived each step, not state).
+  Field<Dim> p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;
   int packing_sweeps_ = 0;
   int linear_fallbacks_ = 0;
-  PressureCorrectionSolver pressure_solver_;  // shared with the gas solver (src/fluid)
-  StencilMatrix e_matrix_;  ///< solids-fraction correction, five-point pattern fixed at construction
-  CheckedSparseSolver solids_solver_;
+  std::unique_ptr<Work> w_;
 };
+
+extern template class TfmSolver<2>;
+extern template class TfmSolver<3>;
 
 }  // namespace fluidbed::tfm

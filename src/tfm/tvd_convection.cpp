@@ -1,211 +1,292 @@
 #include "tfm/tvd_convection.hpp"
 
-#include <algorithm>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#include <string>
 #include <vector>
 
 #include "core/error.hpp"
 #include "fluid/stencil_matrix.hpp"
 
 namespace fluidbed::tfm {
+
+template <int Dim>
+void fill_cell_ghosts(Field<Dim>& phi, const std::type_identity_t<std::array<bool, Dim>>& periodic) {
+  const IndexBox<Dim>& b = phi.box();
+  const int g = phi.ghost();
+  // Axis by axis over the layers already filled along the earlier axes, so that edges and corners are filled too.
+  IndexBox<Dim> span = b;
+  for (int a = 0; a < Dim; ++a) {
+    const int n = b.extent(a);
+    for (bool high : {false, true}) {
+      for_each(span.outside(a, high, g), [&](const Index<Dim>& c) {
+        Index<Dim> src = c;
+        if (periodic[a]) {
+          src[a] = b.lo[a] + ((c[a] - b.lo[a]) % n + n) % n;
+        } else {
+          src[a] = high ? b.hi[a] - 1 : b.lo[a];
+        }
+        phi[c] = phi[src];
+      });
+    }
+    span = span.grown(a, g);
+  }
+}
+
+template <int Dim>
+void fill_face_ghosts(Field<Dim>& f) {
+  fill_cell_ghosts<Dim>(f);
+}
+
 namespace {
 
-// Cell value with periodic wrap in x or zero-gradient ghosts (clamped indices).
-double cell(const Field2& phi, int i, int j, bool periodic_x) {
-  if (periodic_x) {
-    i = (i % phi.nx + phi.nx) % phi.nx;
-  } else {
-    i = std::clamp(i, 0, phi.nx - 1);
-  }
-  j = std::clamp(j, 0, phi.ny - 1);
-  return phi(i, j);
-}
-
-double face_u(const FaceVelocity& vel, int i, int j) {
-  if (vel.periodic_x && i == vel.u.nx - 1) return vel.u(0, j);
-  return vel.u(i, j);
-}
-
-// Net outward volumetric flux difference div(U phi) from face values.
-void divergence_from_faces(const Grid2& g, const FaceVelocity& vel, const Field2& phi_x, const Field2& phi_y,
-                           Field2& out) {
-  out = Field2(g.nx, g.ny);
-  for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      const double fe = face_u(vel, i + 1, j) * phi_x(i + 1, j);
-      const double fw = face_u(vel, i, j) * phi_x(i, j);
-      const double fn = vel.v(i, j + 1) * phi_y(i, j + 1);
-      const double fs = vel.v(i, j) * phi_y(i, j);
-      out(i, j) = (fe - fw) / g.dx + (fn - fs) / g.dy;
+// Net outward flux difference div(U phi) from face values.
+template <int Dim>
+void divergence_from_faces(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, const FaceFields<Dim>& phi_f,
+                           Field<Dim>& out) {
+  bool periodic = false;
+  for (int a = 0; a < Dim; ++a) periodic = periodic || vel.periodic[a];
+  IndexBox<Dim> lines = g.domain;
+  lines.hi[0] = lines.lo[0] + 1;
+  for_each(lines, [&](Index<Dim> c) {
+    std::array<const double*, Dim> pu{}, pf{};
+    std::array<std::ptrdiff_t, Dim> su{}, sf{};
+    for (int a = 0; a < Dim; ++a) {
+      pu[a] = vel.u[a].data().data() + vel.u[a].index(c);
+      pf[a] = phi_f[a].data().data() + phi_f[a].index(c);
+      su[a] = static_cast<std::ptrdiff_t>(vel.u[a].stride(a));
+      sf[a] = static_cast<std::ptrdiff_t>(phi_f[a].stride(a));
     }
+    double* o = out.data().data() + out.index(c);
+    for (int i = g.domain.lo[0]; i < g.domain.hi[0]; ++i, ++o) {
+      c[0] = i;
+      double div = 0.0;
+      for (int a = 0; a < Dim; ++a) {
+        const std::ptrdiff_t k = i - g.domain.lo[0];
+        const double u_lo = pu[a][k], u_hi = periodic ? vel.at(a, shifted<Dim>(c, a, 1)) : pu[a][k + su[a]];
+        const double term = (u_hi * pf[a][k + sf[a]] - u_lo * pf[a][k]) / g.h[a];
+        div = a == 0 ? term : div + term;
+      }
+      *o = div;
+    }
+  });
+}
+
+// The face loops, compiled once per limiter law; each line along axis 0 walks its cells, faces and results with
+// pointers (axis 0 has unit stride in every field), since this is the most frequent stencil of a step.
+template <int Dim, class Law>
+void tvd_face_values_of(const Grid<Dim>& g, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
+                        FaceFields<Dim>& phi_f) {
+  for (int a = 0; a < Dim; ++a) {
+    const bool per = vel.periodic[a];
+    const int lo = g.domain.lo[a], hi = g.domain.hi[a];
+    const IndexBox<Dim> faces = g.domain.faces(a);
+    const Field<Dim>& u = vel.u[a];
+    const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
+    // A periodic axis reads face n's velocity from face 0.
+    const auto wrap = static_cast<std::ptrdiff_t>(u.stride(a)) * (hi - lo);
+    IndexBox<Dim> lines = faces;
+    lines.hi[0] = lines.lo[0] + 1;
+    for_each(lines, [&](Index<Dim> f) {
+      const double* p = phi.data().data() + phi.index(f);
+      const double* v = u.data().data() + u.index(f);
+      double* out = phi_f[a].data().data() + phi_f[a].index(f);
+      for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++p, ++v, ++out) {
+        f[0] = i;
+        if (!per && (f[a] == lo || f[a] == hi)) {
+          *out = f[a] == lo ? p[0] : p[-sp];
+          continue;
+        }
+        const double vf = (per && f[a] == hi) ? v[-wrap] : v[0];
+        *out = tvd::face_value<Law>(vf, p[-2 * sp], p[-sp], p[0], p[sp]);
+      }
+    });
   }
+}
+
+template <int Dim>
+void ensure_faces(const IndexBox<Dim>& cells, FaceFields<Dim>& f) {
+  if (!(f[0].box() == cells.faces(0)) || f[0].ghost() != kGhost) f = FaceFields<Dim>(cells, kGhost);
 }
 
 }  // namespace
 
-namespace {
-
-// The face loops, compiled once per limiter law.
-template <class Law>
-void tvd_face_values_of(const Grid2& g, const Field2& phi, const FaceVelocity& vel, Field2& phi_x, Field2& phi_y) {
-  const bool per = vel.periodic_x;
-  phi_x = Field2(g.nx + 1, g.ny);
-  phi_y = Field2(g.nx, g.ny + 1);
-  for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i <= g.nx; ++i) {
-      if (!per && (i == 0 || i == g.nx)) {
-        phi_x(i, j) = phi(i == 0 ? 0 : g.nx - 1, j);
-        continue;
-      }
-      phi_x(i, j) = tvd::face_value<Law>(face_u(vel, i, j), cell(phi, i - 2, j, per), cell(phi, i - 1, j, per),
-                                         cell(phi, i, j, per), cell(phi, i + 1, j, per));
-    }
-  }
-  for (int j = 0; j <= g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      if (j == 0 || j == g.ny) {
-        phi_y(i, j) = phi(i, j == 0 ? 0 : g.ny - 1);
-        continue;
-      }
-      phi_y(i, j) = tvd::face_value<Law>(vel.v(i, j), cell(phi, i, j - 2, per), cell(phi, i, j - 1, per),
-                                         cell(phi, i, j, per), cell(phi, i, j + 1, per));
-    }
-  }
+template <int Dim>
+void tvd_face_values(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
+                     FaceFields<Dim>& phi_f) {
+  ensure_faces(g.domain, phi_f);
+  tvd::with_limiter(limiter, [&](auto law) { tvd_face_values_of<Dim, decltype(law)>(g, phi, vel, phi_f); });
 }
 
-}  // namespace
-
-void tvd_face_values(const Grid2& g, Limiter limiter, const Field2& phi, const FaceVelocity& vel, Field2& phi_x,
-                     Field2& phi_y) {
-  tvd::with_limiter(limiter, [&](auto law) { tvd_face_values_of<decltype(law)>(g, phi, vel, phi_x, phi_y); });
+template <int Dim>
+void convective_divergence(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
+                           Field<Dim>& out) {
+  FaceFields<Dim> phi_f;
+  tvd_face_values(g, limiter, phi, vel, phi_f);
+  if (!(out.box() == g.domain)) out = Field<Dim>(g.domain, kGhost);
+  divergence_from_faces(g, vel, phi_f, out);
 }
 
-void convective_divergence(const Grid2& g, Limiter limiter, const Field2& phi, const FaceVelocity& vel,
-                           Field2& out) {
-  Field2 phi_x, phi_y;
-  tvd_face_values(g, limiter, phi, vel, phi_x, phi_y);
-  divergence_from_faces(g, vel, phi_x, phi_y, out);
-}
-
-Field2 conservative_update(const Grid2& g, const Field2& phi_old, const FaceFluxes& f, double dt) {
-  Field2 out(g.nx, g.ny);
-  for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      const double fe = f.x(i + 1, j), fw = f.x(i, j), fn = f.y(i, j + 1), fs = f.y(i, j);
-      out(i, j) = conservative_cell_update(phi_old(i, j), fe, fw, fn, fs, dt, g.dx, g.dy);
-    }
-  }
+template <int Dim>
+Field<Dim> conservative_update(const Grid<Dim>& g, const Field<Dim>& phi_old, const FaceFluxes<Dim>& f, double dt) {
+  Field<Dim> out(g.domain, kGhost);
+  for_each(g.domain, [&](const Index<Dim>& c) { out[c] = conservative_cell_update(g, phi_old, f, c, dt); });
   return out;
 }
 
-Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
-                               double dt, int corrections) {
-  FaceFluxes flux;
+template <int Dim>
+Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi_old,
+                                   const FaceVelocity<Dim>& vel, double dt, int corrections) {
+  FaceFluxes<Dim> flux;
   return advance_scalar_implicit(g, limiter, phi_old, vel, dt, corrections, flux);
 }
 
-Field2 advance_scalar_implicit(const Grid2& g, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
-                               double dt, int corrections, FaceFluxes& flux, int linear_max_iterations,
-                               int* fallbacks) {
-  const int n = g.nx * g.ny;
-  const bool per = vel.periodic_x;
-  auto id = [&](int i, int j) {
-    if (per) i = (i % g.nx + g.nx) % g.nx;
-    return static_cast<int>(g.index(i, j));
+template <int Dim>
+Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi_old,
+                                   const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
+                                   int linear_max_iterations, int* fallbacks) {
+  const IndexBox<Dim>& box = g.domain;
+  const int n = static_cast<int>(box.count());
+  // Row of the neighbour across the face on side `high` of axis a (wrapped when periodic), -1 beyond a boundary.
+  std::array<int, Dim> row_stride{};
+  for (int a = 0, st = 1; a < Dim; ++a) {
+    row_stride[a] = st;
+    st *= box.extent(a);
+  }
+  auto neighbour = [&](const Index<Dim>& c, int p, int a, bool high) {
+    const int m = box.extent(a);
+    const int k = c[a] - box.lo[a] + (high ? 1 : -1);
+    if (k >= 0 && k < m) return p + (high ? row_stride[a] : -row_stride[a]);
+    if (!vel.periodic[a]) return -1;
+    return p + (high ? -(m - 1) : (m - 1)) * row_stride[a];
   };
-  // Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb) / volume-normalised.
+  // Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume.
   std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(n) * 5);
+  trip.reserve(static_cast<std::size_t>(n) * (2 * Dim + 1));
   Eigen::VectorXd diag = Eigen::VectorXd::Constant(n, 1.0 / dt);
   auto add_face = [&](int p, int nb, double flux_out) {
-    // flux_out: velocity / length leaving cell p through this face.
-    // A boundary face takes the cell's own value (zero-gradient ghost), so it always lands on the diagonal.
+    // flux_out: velocity / length leaving cell p through this face. A boundary face takes the cell's own value
+    // (zero-gradient ghost), so it always lands on the diagonal.
     if (flux_out > 0.0 || nb < 0) {
       diag[p] += flux_out;
     } else {
       trip.emplace_back(p, nb, flux_out);
     }
   };
-  for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      const int p = id(i, j);
-      const bool west_bnd = !per && i == 0;
-      const bool east_bnd = !per && i == g.nx - 1;
-      add_face(p, east_bnd ? -1 : id(i + 1, j), face_u(vel, i + 1, j) / g.dx);
-      add_face(p, west_bnd ? -1 : id(i - 1, j), -face_u(vel, i, j) / g.dx);
-      add_face(p, j == g.ny - 1 ? -1 : id(i, j + 1), vel.v(i, j + 1) / g.dy);
-      add_face(p, j == 0 ? -1 : id(i, j - 1), -vel.v(i, j) / g.dy);
+  int row = 0;
+  for_each(box, [&](const Index<Dim>& c) {
+    const int p = row++;  // for_each runs in row order
+    for (int a = 0; a < Dim; ++a) {
+      add_face(p, neighbour(c, p, a, true), vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a]);
+      add_face(p, neighbour(c, p, a, false), -vel.at(a, c) / g.h[a]);
     }
-  }
+  });
   for (int p = 0; p < n; ++p) trip.emplace_back(p, p, diag[p]);
-  Eigen::SparseMatrix<double, Eigen::RowMajor> a(n, n);
-  a.setFromTriplets(trip.begin(), trip.end());
+  Eigen::SparseMatrix<double, Eigen::RowMajor> mat(n, n);
+  mat.setFromTriplets(trip.begin(), trip.end());
 
   CheckedSparseSolver solver;
   solver.set_tolerance(1e-12);
   solver.set_max_iterations(linear_max_iterations);
 
-  Field2 phi = phi_old;
+  Field<Dim> phi(box, kGhost);
+  for_each(box, [&](const Index<Dim>& c) { phi[c] = phi_old[c]; });
+  fill_cell_ghosts(phi, vel.periodic);
+  Field<Dim> corr_div(box, kGhost);
+  FaceFields<Dim> phi_f;
+  Eigen::VectorXd rhs(n), x(n);
   for (int pass = 0; pass <= corrections; ++pass) {
-    Eigen::VectorXd rhs(n);
     // Deferred correction: the limited part of the face flux, lagged, moves to the right-hand side.
-    Field2 corr_div(g.nx, g.ny);
+    corr_div.fill(0.0);
     if (limiter != Limiter::Upwind && pass > 0) {
       // Limited face values less their upwind part: only the limiter's correction remains on each face.
-      Field2 phi_x, phi_y;
-      tvd_face_values(g, limiter, phi, vel, phi_x, phi_y);
-      for (int j = 0; j < g.ny; ++j) {
-        for (int i = 0; i <= g.nx; ++i) {
-          if (!per && (i == 0 || i == g.nx)) {
-            phi_x(i, j) = 0.0;  // boundary faces carry the adjacent cell value in both schemes
-            continue;
+      tvd_face_values(g, limiter, phi, vel, phi_f);
+      for (int a = 0; a < Dim; ++a) {
+        const IndexBox<Dim> faces = box.faces(a);
+        const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
+        const auto wrap = static_cast<std::ptrdiff_t>(vel.u[a].stride(a)) * box.extent(a);
+        const bool per = vel.periodic[a];
+        IndexBox<Dim> lines = faces;
+        lines.hi[0] = lines.lo[0] + 1;
+        for_each(lines, [&](Index<Dim> f) {
+          const double* p = phi.data().data() + phi.index(f);
+          const double* v = vel.u[a].data().data() + vel.u[a].index(f);
+          double* out = phi_f[a].data().data() + phi_f[a].index(f);
+          for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++p, ++v, ++out) {
+            f[0] = i;
+            if (!per && (f[a] == box.lo[a] || f[a] == box.hi[a])) {
+              *out = 0.0;  // boundary faces carry the adjacent cell value in both schemes
+              continue;
+            }
+            const double vf = (per && f[a] == box.hi[a]) ? v[-wrap] : v[0];
+            *out -= vf >= 0.0 ? p[-sp] : p[0];
           }
-          phi_x(i, j) -= face_u(vel, i, j) >= 0.0 ? cell(phi, i - 1, j, per) : cell(phi, i, j, per);
-        }
+        });
       }
-      for (int j = 0; j <= g.ny; ++j) {
-        for (int i = 0; i < g.nx; ++i) {
-          if (j == 0 || j == g.ny) {
-            phi_y(i, j) = 0.0;
-            continue;
-          }
-          phi_y(i, j) -= vel.v(i, j) >= 0.0 ? cell(phi, i, j - 1, per) : cell(phi, i, j, per);
-        }
-      }
-      divergence_from_faces(g, vel, phi_x, phi_y, corr_div);
+      divergence_from_faces(g, vel, phi_f, corr_div);
     }
-    for (int j = 0; j < g.ny; ++j) {
-      for (int i = 0; i < g.nx; ++i) {
-        const int p = id(i, j);
-        rhs[p] = phi_old(i, j) / dt - corr_div(i, j);
-      }
-    }
-    Eigen::VectorXd x0(n);
-    for (int p = 0; p < n; ++p) x0[p] = phi.v[static_cast<std::size_t>(p)];
-    Eigen::VectorXd x = x0;
-    const LinearSolveOutcome res = solver.solve(a, rhs, x);
+    int r = 0;
+    for_each(box, [&](const Index<Dim>& c) {
+      rhs[r] = phi_old[c] / dt - corr_div[c];
+      x[r++] = phi[c];
+    });
+    const LinearSolveOutcome res = solver.solve(mat, rhs, x);
     if (res.fell_back && fallbacks) ++*fallbacks;
     if (!res.ok) {
-      const int r = res.bad_row;
-      throw_simulation_error(
-          "implicit transport of the solids fraction (Eq. 16), pass " + std::to_string(pass) + ": " + res.why +
-          (r >= 0 ? " (cell (" + std::to_string(r % g.nx) + ", " + std::to_string(r / g.nx) + "))" : std::string()) +
-          "; the face velocities or dt that build the matrix are not finite or not usable");
+      std::string cell;
+      if (res.bad_row >= 0) {
+        int r = res.bad_row;
+        cell = " (cell (";
+        for (int a = 0; a < Dim; ++a) {
+          cell += (a > 0 ? ", " : "") + std::to_string(box.lo[a] + r % box.extent(a));
+          r /= box.extent(a);
+        }
+        cell += "))";
+      }
+      throw_simulation_error("implicit transport of the solids fraction (Eq. 16), pass " + std::to_string(pass) +
+                             ": " + res.why + cell +
+                             "; the face velocities or dt that build the matrix are not finite or not usable");
     }
-    for (int p = 0; p < n; ++p) phi.v[static_cast<std::size_t>(p)] = x[p];
+    r = 0;
+    for_each(box, [&](const Index<Dim>& c) { phi[c] = x[r++]; });
+    fill_cell_ghosts(phi, vel.periodic);
     if (limiter == Limiter::Upwind && pass == 0) break;
   }
-  // Final face fluxes from the limited face values of the converged phi; with periodic_x face nx repeats face 0.
-  Field2 phi_x, phi_y;
-  tvd_face_values(g, limiter, phi, vel, phi_x, phi_y);
-  flux.x = Field2(g.nx + 1, g.ny);
-  flux.y = Field2(g.nx, g.ny + 1);
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i <= g.nx; ++i) flux.x(i, j) = face_u(vel, i, j) * phi_x(i, j);
-  for (int j = 0; j <= g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) flux.y(i, j) = vel.v(i, j) * phi_y(i, j);
+  // Final face fluxes from the limited face values of the converged phi; a periodic face n repeats face 0.
+  tvd_face_values(g, limiter, phi, vel, phi_f);
+  ensure_faces(box, flux);
+  for (int a = 0; a < Dim; ++a) {
+    if (vel.periodic[a]) {
+      for_each(box.faces(a), [&](const Index<Dim>& f) { flux[a][f] = vel.at(a, f) * phi_f[a][f]; });
+      continue;
+    }
+    // Same layout (faces of axis a, kGhost layers): one pass over the stored arrays, ghosts included.
+    std::vector<double>& out = flux[a].data();
+    const std::vector<double>& u = vel.u[a].data();
+    const std::vector<double>& v = phi_f[a].data();
+    if (vel.u[a].ghost() == kGhost && vel.u[a].box() == flux[a].box()) {
+      for (std::size_t k = 0; k < out.size(); ++k) out[k] = u[k] * v[k];
+    } else {
+      for_each(box.faces(a), [&](const Index<Dim>& f) { flux[a][f] = vel.u[a][f] * phi_f[a][f]; });
+    }
+  }
   return conservative_update(g, phi_old, flux, dt);
 }
+
+#define FLUIDBED_TVD_INSTANTIATE(D)                                                                                 \
+  template void fill_cell_ghosts<D>(Field<D>&, const std::array<bool, D>&);                                         \
+  template void fill_face_ghosts<D>(Field<D>&);                                                                     \
+  template void tvd_face_values<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,                \
+                                   FaceFields<D>&);                                                                 \
+  template void convective_divergence<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,          \
+                                         Field<D>&);                                                                \
+  template Field<D> conservative_update<D>(const Grid<D>&, const Field<D>&, const FaceFluxes<D>&, double);          \
+  template Field<D> advance_scalar_implicit<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,    \
+                                               double, int);                                                        \
+  template Field<D> advance_scalar_implicit<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,    \
+                                               double, int, FaceFluxes<D>&, int, int*);
+FLUIDBED_TVD_INSTANTIATE(2)
+FLUIDBED_TVD_INSTANTIATE(3)
+#undef FLUIDBED_TVD_INSTANTIATE
 
 }  // namespace fluidbed::tfm

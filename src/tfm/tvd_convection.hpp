@@ -1,8 +1,12 @@
 #pragma once
-// Convection of a cell-centred scalar by face velocities on the staggered grid, with a TVD limiter
-// (paper section 2.2.1: upwind flux plus a limited 0.5|U|(phi_i - phi_{i-1}) correction).
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
+// Convection of a cell-centred scalar by face velocities on the staggered grid in Dim = 2 or 3 dimensions, with the
+// shared TVD limiter family (paper section 2.2.1: upwind flux plus a limited 0.5|U|(phi_i - phi_{i-1}) correction).
+// Fields carry kGhost ghost layers; stencils read them and never clamp (fill_cell_ghosts writes them).
+#include <array>
+#include <type_traits>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "core/tvd_limiter.hpp"
 
 namespace fluidbed::tfm {
@@ -10,52 +14,95 @@ namespace fluidbed::tfm {
 /// The shared TVD limiter family (also the gas solver's).
 using Limiter = tvd::Limiter;
 
-/// Staggered velocities that carry the scalar: u on vertical faces ((nx+1) x ny), v on horizontal faces
-/// (nx x (ny+1)). With periodic_x, face 0 and face nx are the same face (u(0, j) is used for both).
+/// Ghost layers of the two-fluid model's cell and face fields: the TVD stencil reads two cells upwind of a face.
+inline constexpr int kGhost = 2;
+
+/// Staggered velocities that carry the scalar: u[a] on the faces normal to axis a. With periodic[a], face 0 and
+/// face n of axis a are the same face (u[a] at face 0 is used for both) and the cells wrap around.
+template <int Dim>
 struct FaceVelocity {
-  const Field2& u;
-  const Field2& v;
-  bool periodic_x = false;
+  const FaceFields<Dim>& u;
+  std::array<bool, Dim> periodic{};
+
+  /// Velocity on face f of axis a (face n of a periodic axis is face 0).
+  double at(int a, Index<Dim> f) const {
+    if (periodic[a] && f[a] == u[a].box().hi[a] - 1) f[a] = u[a].box().lo[a];
+    return u[a][f];
+  }
 };
 
-/// Limited face values of phi: phi_x on vertical faces, phi_y on horizontal faces. On a non-periodic
-/// boundary face the adjacent interior cell value is used (the wall flux is zero anyway; an inflow value
-/// is the caller's business).
-void tvd_face_values(const Grid2& grid, Limiter limiter, const Field2& phi, const FaceVelocity& vel,
-                     Field2& phi_x, Field2& phi_y);
+/// Conservative face fluxes of a scalar per unit face area (face value times face velocity), component a on the
+/// faces normal to axis a, positive along +a.
+template <int Dim>
+using FaceFluxes = FaceFields<Dim>;
 
-/// div(U phi) per unit volume in every cell, for explicit time stepping.
-void convective_divergence(const Grid2& grid, Limiter limiter, const Field2& phi, const FaceVelocity& vel,
-                           Field2& out);
+/// Ghost layers of a cell field: each layer repeats the boundary cell (zero gradient, what a wall, an inlet or an
+/// outlet leaves a convected scalar), or wraps around along a periodic axis.
+template <int Dim>
+void fill_cell_ghosts(Field<Dim>& phi, const std::type_identity_t<std::array<bool, Dim>>& periodic = {});
+/// Zero-gradient ghost layers of a face field along every axis (the convected velocities beyond the domain).
+template <int Dim>
+void fill_face_ghosts(Field<Dim>& f);
 
-/// Conservative face fluxes of a scalar per unit face area (face value times face velocity): x on vertical
-/// faces ((nx+1) x ny), y on horizontal faces (nx x (ny+1)), positive in +x / +y.
-struct FaceFluxes {
-  Field2 x, y;
-};
+/// Limited face values of phi (ghosts filled) on every face. On a non-periodic boundary face the adjacent cell's
+/// value is used (the wall flux is zero anyway; an inflow value is the caller's business).
+template <int Dim>
+void tvd_face_values(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
+                     FaceFields<Dim>& phi_f);
 
-/// One cell of conservative_update, from its east, west, north and south face fluxes.
-inline double conservative_cell_update(double phi_old, double fe, double fw, double fn, double fs, double dt, double dx,
-                                       double dy) {
-  return phi_old - dt * ((fe - fw) / dx + (fn - fs) / dy);
+/// div(U phi) per unit volume in every cell (phi with ghosts filled), for explicit time stepping.
+template <int Dim>
+void convective_divergence(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi,
+                           const FaceVelocity<Dim>& vel, Field<Dim>& out);
+
+/// phi_old - dt div(F) in cell c, div(F) = sum over axes of (F_high - F_low) / h, axes in order.
+template <int Dim>
+inline double conservative_cell_update(const Grid<Dim>& g, const Field<Dim>& phi_old, const FaceFluxes<Dim>& f,
+                                       const std::type_identity_t<Index<Dim>>& c, double dt) {
+  double div = (f[0][shifted<Dim>(c, 0, 1)] - f[0][c]) / g.h[0];
+  for (int a = 1; a < Dim; ++a) div += (f[a][shifted<Dim>(c, a, 1)] - f[a][c]) / g.h[a];
+  return phi_old[c] - dt * div;
 }
 
-/// phi_old - dt div(F) in every cell, div(F) = (F_e - F_w)/dx + (F_n - F_s)/dy: sum(phi * volume) changes only
-/// by the boundary fluxes (to rounding).
-Field2 conservative_update(const Grid2& grid, const Field2& phi_old, const FaceFluxes& flux, double dt);
+/// conservative_cell_update in every cell: sum(phi * volume) changes only by the boundary fluxes (to rounding).
+template <int Dim>
+Field<Dim> conservative_update(const Grid<Dim>& grid, const Field<Dim>& phi_old, const FaceFluxes<Dim>& flux,
+                               double dt);
 
-/// One backward-Euler step of d(phi)/dt + div(U phi) = 0. The upwind part is implicit; the limiter
-/// correction is deferred and refreshed `corrections` times. The result is finally formed from
-/// conservative face fluxes, so sum(phi * volume) is conserved to rounding whatever the solver tolerance.
-Field2 advance_scalar_implicit(const Grid2& grid, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
-                               double dt, int corrections = 2);
+/// One backward-Euler step of d(phi)/dt + div(U phi) = 0. The upwind part is implicit; the limiter correction is
+/// deferred and refreshed `corrections` times. The result is formed from conservative face fluxes (returned in
+/// `flux`), so sum(phi * volume) is conserved to rounding whatever the solver tolerance. Each linear solve is
+/// checked (CheckedSparseSolver: BiCGSTAB, a sparse LU when it stops short; at most `linear_max_iterations`
+/// BiCGSTAB iterations, 0 for Eigen's default); a solve neither answers is a simulation error. `fallbacks`, when
+/// given, counts the solves the LU answered. phi_old's ghosts are not read.
+template <int Dim>
+Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi_old,
+                                   const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
+                                   int linear_max_iterations = 0, int* fallbacks = nullptr);
+/// The same step without the fluxes.
+template <int Dim>
+Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi_old,
+                                   const FaceVelocity<Dim>& vel, double dt, int corrections = 2);
 
-/// The same step, returning the final face fluxes too: the result equals conservative_update(phi_old, flux, dt).
-/// Each linear solve is checked (CheckedSparseSolver: BiCGSTAB, a sparse LU when it stops short; at most
-/// `linear_max_iterations` BiCGSTAB iterations, 0 for Eigen's default); a solve neither answers is a simulation
-/// error. `fallbacks`, when given, counts the solves the LU answered.
-Field2 advance_scalar_implicit(const Grid2& grid, Limiter limiter, const Field2& phi_old, const FaceVelocity& vel,
-                               double dt, int corrections, FaceFluxes& flux, int linear_max_iterations = 0,
-                               int* fallbacks = nullptr);
+/// Row of cell c in a vector over the box's cells, axis 0 fastest (the numbering of every linear system here).
+template <int Dim>
+inline int cell_row(const IndexBox<Dim>& b, const std::type_identity_t<Index<Dim>>& c) {
+  int r = 0, stride = 1;
+  for (int a = 0; a < Dim; ++a) {
+    r += (c[a] - b.lo[a]) * stride;
+    stride *= b.extent(a);
+  }
+  return r;
+}
+
+/// Area of a face normal to axis a (a length per metre of depth in 2D): the other cell sizes multiplied in axis
+/// order, so that 2D keeps its single factor exactly.
+template <int Dim>
+inline double face_area(const Grid<Dim>& g, int a) {
+  double m = 1.0;
+  for (int b = 0; b < Dim; ++b)
+    if (b != a) m *= g.h[b];
+  return m;
+}
 
 }  // namespace fluidbed::tfm

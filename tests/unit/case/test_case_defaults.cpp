@@ -174,9 +174,9 @@ TEST(CaseDomain, GravityReachesEveryModelFromTheDomain) {
   EXPECT_DOUBLE_EQ(d.gas.gravity.y, -5.0);
   // Before: a two-fluid case could not set gravity at all (dem.gravity was an unknown key there).
   const CaseConfig t = load_case_text(kTfm + "domain.gravity = [0.0, -5.0]\ndomain.width = 0.4\n", "t.toml").config;
-  EXPECT_DOUBLE_EQ(t.tfm.gravity.y, -5.0);
+  EXPECT_DOUBLE_EQ(t.tfm.domain.gravity.y, -5.0);
   EXPECT_DOUBLE_EQ(t.gas.gravity.y, -5.0);
-  EXPECT_DOUBLE_EQ(t.tfm.width, 0.4);
+  EXPECT_DOUBLE_EQ(t.tfm.domain.width, 0.4);
   EXPECT_DOUBLE_EQ(t.domain.width, 0.4);
 }
 
@@ -185,7 +185,7 @@ TEST(CaseDomain, TheOldNameDemGravityIsReadAsDomainGravity) {
   EXPECT_DOUBLE_EQ(lc.config.dem.domain.gravity.y, -3.0);
   EXPECT_TRUE(contains(lc.resolved_toml, "[domain]")) << lc.resolved_toml;
   EXPECT_FALSE(contains(lc.resolved_toml, "[dem]\ngravity")) << lc.resolved_toml;
-  EXPECT_DOUBLE_EQ(load_case_text(kTfm, "t.toml", {"dem.gravity=[0.0, -2.0]"}).config.tfm.gravity.y, -2.0);
+  EXPECT_DOUBLE_EQ(load_case_text(kTfm, "t.toml", {"dem.gravity=[0.0, -2.0]"}).config.tfm.domain.gravity.y, -2.0);
   EXPECT_TRUE(contains(error_of(dem_case("dem.gravity = [0.0, -3.0]\ndomain.gravity = [0.0, -3.0]\n")),
                        "dem.gravity: is the old name of domain.gravity; give only domain.gravity"));
 }

@@ -17,7 +17,7 @@ namespace {
 // load a suddenly loaded elastic layer must carry): the limiter's default bound must lie below it, or the bed
 // rests on the limiter instead of the solids pressure (docs/model-tfm.md).
 double carrying_voidage(const TfmConfig& c) {
-  const double load = (1.0 - c.eps_initial) * c.packed_height * (c.rho_s - c.rho_g) * std::abs(c.gravity.y);
+  const double load = (1.0 - c.eps_initial) * c.packed_height * (c.rho_s - c.rho_g) * std::abs(c.domain.gravity.y);
   if (c.rheology == SolidsRheology::KineticTheory) {
     // Eqs. 21-22: (1 - eps) 1e24 (eps* - eps)^10 = 2 load, with 1 - eps taken at eps* (within 2% of the root).
     return c.eps_star - std::pow(2.0 * load / ((1.0 - c.eps_star) * 1e24), 0.1);
@@ -28,7 +28,7 @@ double carrying_voidage(const TfmConfig& c) {
 void run_paper_case(SolidsRheology rheology) {
   TfmConfig c;
   c.rheology = rheology;
-  TfmSolver solver(c);
+  TfmSolver<2> solver(c);
   const double m0 = solver.solids_mass();
   double eps_min = 1.0, residual_max = 0.0;
   int sweeps_max = 0;

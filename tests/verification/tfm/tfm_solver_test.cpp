@@ -18,8 +18,8 @@ TfmConfig small_bed(SolidsRheology rheology) {
   TfmConfig c;
   // The paper's 0.54 m bed (27 cells) in a 3-column slice: the discrete bed surface leaves about a fifth of the
   // top cell's weight to the averaged surface face (~60 Pa, 0.7% of this bed), inside the 1% criterion.
-  c.width = 0.06;
-  c.height = 0.7;
+  c.domain.width = 0.06;
+  c.domain.height = 0.7;
   c.packed_height = 0.54;
   c.rheology = rheology;
   c.boundary.jets.clear();
@@ -29,7 +29,7 @@ TfmConfig small_bed(SolidsRheology rheology) {
 }
 
 void expect_bed_at_rest(SolidsRheology rheology) {
-  TfmSolver solver(small_bed(rheology));
+  TfmSolver<2> solver(small_bed(rheology));
   const double m0 = solver.solids_mass();
   solver.advance_to(1.0);
   const double dp = solver.pressure_drop(), w = solver.contents_weight_per_area();
@@ -52,8 +52,8 @@ TEST(TfmSolver, BedAtMinimumFluidisationStaysAtRestInviscid) { expect_bed_at_res
 // (rho_s - rho_g) g, slip |v_s| / eps; a packed layer builds from the bottom.
 TfmConfig sedimentation_column() {
   TfmConfig c;
-  c.width = 0.01;
-  c.height = 1.0;
+  c.domain.width = 0.01;
+  c.domain.height = 1.0;
   c.cell_size = 0.01;
   c.d_p = 2e-4;
   c.eps_initial = 0.7;
@@ -66,7 +66,7 @@ TfmConfig sedimentation_column() {
 }
 
 double hindered_settling_velocity(const TfmConfig& c) {
-  const double eps = c.eps_initial, g = std::abs(c.gravity.y);
+  const double eps = c.eps_initial, g = std::abs(c.domain.gravity.y);
   const double weight = (1.0 - eps) * eps * (c.rho_s - c.rho_g) * g;
   double lo = 0.0, hi = 10.0;
   for (int it = 0; it < 200; ++it) {
@@ -79,18 +79,18 @@ double hindered_settling_velocity(const TfmConfig& c) {
 
 // Top of the suspension from the solids volume above y_low, which the smearing of the front cannot change:
 // h = y_low + integral(eps_s dy) / eps_s0, exact while the suspension between y_low and the front is uniform.
-double interface_height(const TfmSolver& s, double y_low) {
-  const Grid2& g = s.grid();
+double interface_height(const TfmSolver<2>& s, double y_low) {
+  const Grid<2>& g = s.grid();
   double vol = 0.0;
-  for (int j = 0; j < g.ny; ++j) {
-    if (g.y0 + j * g.dy >= y_low - 1e-12) vol += (1.0 - s.state().eps(0, j)) * g.dy;
+  for (int j = 0; j < g.n(1); ++j) {
+    if (g.face(1, j) >= y_low - 1e-12) vol += (1.0 - s.state().eps(0, j)) * g.h[1];
   }
   return y_low + vol / (1.0 - s.config().eps_initial);
 }
 
 TEST(TfmSolver, BatchSedimentationFollowsHinderedSettlingVelocity) {
   const TfmConfig c = sedimentation_column();
-  TfmSolver solver(c);
+  TfmSolver<2> solver(c);
   const double v_expected = hindered_settling_velocity(c);
   const double m0 = solver.solids_mass();
   const double y_low = 0.45;  // stays above the packed layer (front speed ~ v eps_s0 / (eps_s* - eps_s0)) until t2
@@ -128,15 +128,15 @@ TEST(TfmSolver, BatchSedimentationFollowsHinderedSettlingVelocity) {
 TEST(TfmSolver, RestartIsBitIdentical) {
   // A small bed with a jet, so that every field is non-trivial when the state is saved.
   TfmConfig c;
-  c.width = 0.2;
-  c.height = 0.4;
+  c.domain.width = 0.2;
+  c.domain.height = 0.4;
   c.packed_height = 0.2;
   c.boundary.jets = {InletJet{0.1, 0.02, 20.0, 0.0, 1.0}};
-  TfmSolver a(c);
+  TfmSolver<2> a(c);
   a.advance_to(0.02);
   const std::vector<NamedArray> saved = a.save_state();
   a.advance_to(0.04);
-  TfmSolver b(c);
+  TfmSolver<2> b(c);
   b.restore_state(saved);
   b.advance_to(0.04);
   const std::vector<NamedArray> sa = a.save_state(), sb = b.save_state();
@@ -152,11 +152,11 @@ TEST(TfmSolver, GasContinuityResidualIsRoundOff) {
   // A bubbling step: a jet into a small bed. The residual is Eq. 15 with the face voidages and fluxes of the
   // step, normalised by the inlet flow; only the rounding of the pressure solve and of the updates remains.
   TfmConfig c;
-  c.width = 0.2;
-  c.height = 0.4;
+  c.domain.width = 0.2;
+  c.domain.height = 0.4;
   c.packed_height = 0.2;
   c.boundary.jets = {InletJet{0.1, 0.02, 20.0, 0.0, 1.0}};
-  TfmSolver solver(c);
+  TfmSolver<2> solver(c);
   EXPECT_EQ(solver.gas_volume_residual(), 0.0);  // no step yet
   double largest = 0.0;
   while (solver.time() < 0.05 - 1e-12) {
@@ -171,10 +171,10 @@ TEST(TfmSolver, GasContinuityResidualIsRoundOff) {
 
 TEST(TfmSolver, RestoreRejectsMismatchedState) {
   TfmConfig c;
-  c.width = 0.2;
-  c.height = 0.4;
+  c.domain.width = 0.2;
+  c.domain.height = 0.4;
   c.packed_height = 0.2;
-  TfmSolver a(c);
+  TfmSolver<2> a(c);
   std::vector<NamedArray> st = a.save_state();
   st[0].values.pop_back();
   EXPECT_THROW(a.restore_state(st), Error);
