@@ -368,8 +368,10 @@ std::string describe_case(const CaseConfig& c) {
                                   j.z_centre + 0.5 * j.depth)
                     : fmt::format("a slot x in {} across the whole depth", where);
       }
-      line("jet", fmt::format("{} over {} for {} <= t < {} s", schedule_text(j.schedule, j.velocity), where, j.t_start,
-                              j.t_end));
+      // A plate's default end (1e9 s) reads as "from t_start on".
+      const std::string when = j.t_end >= 1e9 ? fmt::format("from t = {} s on", j.t_start)
+                                              : fmt::format("for {} <= t < {} s", j.t_start, j.t_end);
+      line("jet", fmt::format("{} over {} {}", schedule_text(j.schedule, j.velocity), where, when));
     }
     line("U_mf of the throughflow ratio (bubble.u_mf)", fmt::format("{:.3f} m/s", c.bubble.u_mf));
   }
