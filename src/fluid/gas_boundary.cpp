@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -273,24 +274,42 @@ void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocitie
     const std::vector<double> noise = inlet_noise_factors(bc, nx * nz);
     const double u_bg = v.background;
     const double area = grid.h[0] * grid.h[2];
-    std::vector<double> fraction(out.size());
-    for (int k = 0; k < nz; ++k)
-      for (int i = 0; i < nx; ++i) {
-        const double x_lo = grid.face(0, grid.domain.lo[0] + i);
-        const double z_lo = grid.face(2, grid.domain.lo[2] + k);
-        double flux = u_bg * area;
-        double covered = 0.0;
-        for (std::size_t j = 0; j < bc.jets.size(); ++j) {
-          if (!v.active[j]) continue;
-          const double a = jet_overlap_area(bc.jets[j], x_lo, x_lo + grid.h[0], z_lo, z_lo + grid.h[2]);
-          flux += (v.jet[j] - u_bg) * a;
-          covered += a;
+    std::vector<double> flux(out.size(), u_bg * area);
+    std::vector<double> covered(out.size(), 0.0);
+    const double x0 = grid.face(0, grid.domain.lo[0]);
+    const double z0 = grid.face(2, grid.domain.lo[2]);
+    // Each jet visits only the faces its bounding box touches (one face of margin), so a plate of many holes costs
+    // its holes' footprints, not holes x faces; a face's overlaps still add in jet order, and the faces skipped
+    // would add exactly zero, so the profile is the same bit for bit.
+    const auto first_last = [](double lo, double hi, double origin, double h, int n) {
+      const int a = std::max(0, static_cast<int>(std::floor((lo - origin) / h)) - 1);
+      const int b = std::min(n - 1, static_cast<int>(std::floor((hi - origin) / h)) + 1);
+      return std::pair<int, int>{a, b};
+    };
+    for (std::size_t j = 0; j < bc.jets.size(); ++j) {
+      if (!v.active[j]) continue;
+      const InletJet& jet = bc.jets[j];
+      const auto [i_a, i_b] = first_last(jet.x_centre - 0.5 * jet.width, jet.x_centre + 0.5 * jet.width, x0, grid.h[0], nx);
+      const double half_z = jet.shape == InletShape::Disc ? 0.5 * jet.width : 0.5 * jet.depth;
+      const auto [k_a, k_b] = jet.shape == InletShape::Slot
+                                  ? std::pair<int, int>{0, nz - 1}
+                                  : first_last(jet.z_centre - half_z, jet.z_centre + half_z, z0, grid.h[2], nz);
+      for (int k = k_a; k <= k_b; ++k)
+        for (int i = i_a; i <= i_b; ++i) {
+          const double x_lo = grid.face(0, grid.domain.lo[0] + i);
+          const double z_lo = grid.face(2, grid.domain.lo[2] + k);
+          const double a = jet_overlap_area(jet, x_lo, x_lo + grid.h[0], z_lo, z_lo + grid.h[2]);
+          const std::size_t f = static_cast<std::size_t>(k) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i);
+          flux[f] += (v.jet[j] - u_bg) * a;
+          covered[f] += a;
         }
-        const std::size_t f = static_cast<std::size_t>(k) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i);
-        // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
-        fraction[f] = std::max(0.0, 1.0 - covered / area);
-        out[f] = flux / area + (noise[f] - 1.0) * u_bg * fraction[f];
-      }
+    }
+    std::vector<double> fraction(out.size());
+    for (std::size_t f = 0; f < out.size(); ++f) {
+      // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
+      fraction[f] = std::max(0.0, 1.0 - covered[f] / area);
+      out[f] = flux[f] / area + (noise[f] - 1.0) * u_bg * fraction[f];
+    }
     keep_background_flow(noise, fraction, u_bg, out);
   }
 }
