@@ -2,25 +2,88 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
 
 namespace fluidbed {
 
+double schedule_velocity(const InletSchedule& s, double u0, double t) {
+  switch (s.kind) {
+    case ScheduleKind::Constant:
+      return u0;
+    case ScheduleKind::Ramp:
+      if (t <= s.ramp_start) return s.ramp_from;
+      if (t >= s.ramp_start + s.ramp_time) return u0;
+      return s.ramp_from + (t - s.ramp_start) / s.ramp_time * (u0 - s.ramp_from);
+    case ScheduleKind::Table: {
+      if (s.times.empty()) return u0;
+      if (t <= s.times.front()) return s.velocities.front();
+      if (t >= s.times.back()) return s.velocities.back();
+      const std::size_t k = static_cast<std::size_t>(std::upper_bound(s.times.begin(), s.times.end(), t) - s.times.begin());
+      const double f = (t - s.times[k - 1]) / (s.times[k] - s.times[k - 1]);
+      return s.velocities[k - 1] + f * (s.velocities[k] - s.velocities[k - 1]);
+    }
+    case ScheduleKind::Sine:
+      return u0 + s.amplitude * std::sin(2.0 * std::numbers::pi * s.frequency * t + s.phase);
+    case ScheduleKind::Square: {
+      const double cycle = s.frequency * t + s.phase / (2.0 * std::numbers::pi);
+      return cycle - std::floor(cycle) < s.duty ? u0 + s.amplitude : u0;
+    }
+  }
+  return u0;
+}
+
 double background_inlet_velocity(const GasBoundaryConfig& bc, double t) {
+  if (bc.schedule.kind != ScheduleKind::Constant) return schedule_velocity(bc.schedule, bc.inlet_velocity, t);
   if (bc.ramp_time <= 0.0 || t >= bc.ramp_time) return bc.inlet_velocity;
   const double f = std::max(t, 0.0) / bc.ramp_time;
   return bc.ramp_from + f * (bc.inlet_velocity - bc.ramp_from);
 }
 
-namespace {
-/// Fraction of the face [x_lo, x_hi] not covered by an active jet at time t.
-double background_fraction(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t) {
-  double covered = 0.0;
-  for (const InletJet& jet : bc.jets) {
+InletVelocities inlet_velocities(const GasBoundaryConfig& bc, double t) {
+  InletVelocities v;
+  v.background = background_inlet_velocity(bc, t);
+  v.jet.resize(bc.jets.size(), 0.0);
+  v.active.resize(bc.jets.size(), 0);
+  for (std::size_t k = 0; k < bc.jets.size(); ++k) {
+    const InletJet& jet = bc.jets[k];
     if (t < jet.t_start || t >= jet.t_end) continue;
+    v.active[k] = 1;
+    v.jet[k] = schedule_velocity(jet.schedule, jet.velocity, t);
+  }
+  return v;
+}
+
+namespace {
+double schedule_peak(const InletSchedule& s, double u0) {
+  switch (s.kind) {
+    case ScheduleKind::Constant:
+      return std::abs(u0);
+    case ScheduleKind::Ramp:
+      return std::max(std::abs(u0), std::abs(s.ramp_from));
+    case ScheduleKind::Table: {
+      double m = 0.0;
+      for (double u : s.velocities) m = std::max(m, std::abs(u));
+      return m;
+    }
+    case ScheduleKind::Sine:
+      return std::abs(u0) + std::abs(s.amplitude);
+    case ScheduleKind::Square:
+      return std::max(std::abs(u0), std::abs(u0 + s.amplitude));
+  }
+  return std::abs(u0);
+}
+
+/// Fraction of the face [x_lo, x_hi] not covered by an active jet.
+double background_fraction(const GasBoundaryConfig& bc, const InletVelocities& v, double x_lo, double x_hi) {
+  double covered = 0.0;
+  for (std::size_t k = 0; k < bc.jets.size(); ++k) {
+    if (!v.active[k]) continue;
+    const InletJet& jet = bc.jets[k];
     const double lo = std::max(x_lo, jet.x_centre - 0.5 * jet.width);
     const double hi = std::min(x_hi, jet.x_centre + 0.5 * jet.width);
     if (hi > lo) covered += hi - lo;
@@ -29,17 +92,50 @@ double background_fraction(const GasBoundaryConfig& bc, double x_lo, double x_hi
 }
 }  // namespace
 
-double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t) {
+namespace {
+// The distributor factors average to 1 over all faces, but jets cover some faces: what the noise added to the
+// background over the uncovered parts is taken back in proportion to them, so that the total inflow stays
+// exactly that of the schedules (nothing to do, bit for bit, without noise or without a covered face).
+void keep_background_flow(const std::vector<double>& noise, const std::vector<double>& fraction, double u_bg,
+                          std::vector<double>& out) {
+  bool covered = false;
+  for (double f : fraction) covered = covered || f < 1.0;
+  bool perturbed = false;
+  for (double f : noise) perturbed = perturbed || f != 1.0;
+  if (!covered || !perturbed) return;
+  double added = 0.0, open = 0.0;
+  for (std::size_t f = 0; f < out.size(); ++f) {
+    added += (noise[f] - 1.0) * u_bg * fraction[f];
+    open += fraction[f];
+  }
+  if (!(open > 0.0)) return;
+  for (std::size_t f = 0; f < out.size(); ++f) out[f] -= added * fraction[f] / open;
+}
+}  // namespace
+
+double inlet_peak_velocity(const GasBoundaryConfig& bc) {
+  double u = bc.schedule.kind == ScheduleKind::Constant ? std::max(std::abs(bc.inlet_velocity), std::abs(bc.ramp_from))
+                                                        : schedule_peak(bc.schedule, bc.inlet_velocity);
+  for (const InletJet& jet : bc.jets) u = std::max(u, schedule_peak(jet.schedule, jet.velocity));
+  return u;
+}
+
+double inlet_superficial_velocity(const GasBoundaryConfig& bc, const InletVelocities& v, double x_lo, double x_hi) {
   const double width = x_hi - x_lo;
-  const double u_bg = background_inlet_velocity(bc, t);
+  const double u_bg = v.background;
   double flux = u_bg * width;
-  for (const InletJet& jet : bc.jets) {
-    if (t < jet.t_start || t >= jet.t_end) continue;
+  for (std::size_t k = 0; k < bc.jets.size(); ++k) {
+    if (!v.active[k]) continue;
+    const InletJet& jet = bc.jets[k];
     const double lo = std::max(x_lo, jet.x_centre - 0.5 * jet.width);
     const double hi = std::min(x_hi, jet.x_centre + 0.5 * jet.width);
-    if (hi > lo) flux += (jet.velocity - u_bg) * (hi - lo);
+    if (hi > lo) flux += (v.jet[k] - u_bg) * (hi - lo);
   }
   return flux / width;
+}
+
+double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t) {
+  return inlet_superficial_velocity(bc, inlet_velocities(bc, t), x_lo, x_hi);
 }
 
 std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx) {
@@ -60,19 +156,54 @@ std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx) {
   return f;
 }
 
-void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out) {
-  out.resize(static_cast<std::size_t>(grid.nx));
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid2& grid,
+                               std::vector<double>& out) {
+  const std::size_t n = static_cast<std::size_t>(grid.nx);
+  out.resize(n);
   const std::vector<double> noise = inlet_noise_factors(bc, grid.nx);
-  const double u_bg = background_inlet_velocity(bc, t);
+  const double u_bg = v.background;
+  std::vector<double> fraction(n);
   for (int i = 0; i < grid.nx; ++i) {
     const double x_lo = grid.x0 + i * grid.dx;
+    const std::size_t f = static_cast<std::size_t>(i);
     // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
-    const double u = inlet_superficial_velocity(bc, x_lo, x_lo + grid.dx, t);
-    out[static_cast<std::size_t>(i)] = u + (noise[static_cast<std::size_t>(i)] - 1.0) * u_bg *
-                                               background_fraction(bc, x_lo, x_lo + grid.dx, t);
+    const double u = inlet_superficial_velocity(bc, v, x_lo, x_lo + grid.dx);
+    fraction[f] = background_fraction(bc, v, x_lo, x_lo + grid.dx);
+    out[f] = u + (noise[f] - 1.0) * u_bg * fraction[f];
   }
+  keep_background_flow(noise, fraction, u_bg, out);
 }
 
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out) {
+  inlet_superficial_profile(bc, inlet_velocities(bc, t), grid, out);
+}
+
+std::vector<InletJet> perforated_plate_holes(const PerforatedPlate& plate, int dimension) {
+  std::vector<InletJet> holes;
+  const int rows = dimension == 3 ? plate.n_z : 1;
+  const bool tri = dimension == 3 && plate.layout == HolePitch::Triangular && rows > 1;
+  const double row_pitch = tri ? 0.5 * std::sqrt(3.0) * plate.pitch : plate.pitch;
+  // Centred block: a triangular block's odd rows reach half a pitch further in x.
+  const double x_first = plate.x_centre - 0.5 * ((plate.n_x - 1) + (tri ? 0.5 : 0.0)) * plate.pitch;
+  const double z_first = plate.z_centre - 0.5 * (rows - 1) * row_pitch;
+  for (int k = 0; k < rows; ++k)
+    for (int i = 0; i < plate.n_x; ++i) {
+      InletJet h;
+      h.x_centre = x_first + (i + (tri && k % 2 == 1 ? 0.5 : 0.0)) * plate.pitch;
+      h.width = plate.hole;
+      h.velocity = plate.velocity;
+      h.t_start = plate.t_start;
+      h.t_end = plate.t_end;
+      h.schedule = plate.schedule;
+      if (dimension == 3) {
+        h.shape = InletShape::Disc;
+        h.z_centre = z_first + k * row_pitch;
+        h.depth = plate.hole;
+      }
+      holes.push_back(h);
+    }
+  return holes;
+}
 
 namespace {
 
@@ -132,36 +263,92 @@ double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_
 }
 
 template <int Dim>
-void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out) {
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<Dim>& grid,
+                               std::vector<double>& out) {
   if constexpr (Dim == 2) {
-    inlet_superficial_profile(bc, to_grid2(grid), t, out);
+    inlet_superficial_profile(bc, v, to_grid2(grid), out);
   } else {
     const int nx = grid.n(0);
     const int nz = grid.n(2);
     out.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz));
     const std::vector<double> noise = inlet_noise_factors(bc, nx * nz);
-    const double u_bg = background_inlet_velocity(bc, t);
+    const double u_bg = v.background;
     const double area = grid.h[0] * grid.h[2];
-    for (int k = 0; k < nz; ++k)
-      for (int i = 0; i < nx; ++i) {
-        const double x_lo = grid.face(0, grid.domain.lo[0] + i);
-        const double z_lo = grid.face(2, grid.domain.lo[2] + k);
-        double flux = u_bg * area;
-        double covered = 0.0;
-        for (const InletJet& jet : bc.jets) {
-          if (t < jet.t_start || t >= jet.t_end) continue;
+    std::vector<double> flux(out.size(), u_bg * area);
+    std::vector<double> covered(out.size(), 0.0);
+    const double x0 = grid.face(0, grid.domain.lo[0]);
+    const double z0 = grid.face(2, grid.domain.lo[2]);
+    // Each jet visits only the faces its bounding box touches (one face of margin), so a plate of many holes costs
+    // its holes' footprints, not holes x faces; a face's overlaps still add in jet order, and the faces skipped
+    // would add exactly zero, so the profile is the same bit for bit.
+    const auto first_last = [](double lo, double hi, double origin, double h, int n) {
+      const int a = std::max(0, static_cast<int>(std::floor((lo - origin) / h)) - 1);
+      const int b = std::min(n - 1, static_cast<int>(std::floor((hi - origin) / h)) + 1);
+      return std::pair<int, int>{a, b};
+    };
+    for (std::size_t j = 0; j < bc.jets.size(); ++j) {
+      if (!v.active[j]) continue;
+      const InletJet& jet = bc.jets[j];
+      const auto [i_a, i_b] = first_last(jet.x_centre - 0.5 * jet.width, jet.x_centre + 0.5 * jet.width, x0, grid.h[0], nx);
+      const double half_z = jet.shape == InletShape::Disc ? 0.5 * jet.width : 0.5 * jet.depth;
+      const auto [k_a, k_b] = jet.shape == InletShape::Slot
+                                  ? std::pair<int, int>{0, nz - 1}
+                                  : first_last(jet.z_centre - half_z, jet.z_centre + half_z, z0, grid.h[2], nz);
+      for (int k = k_a; k <= k_b; ++k)
+        for (int i = i_a; i <= i_b; ++i) {
+          const double x_lo = grid.face(0, grid.domain.lo[0] + i);
+          const double z_lo = grid.face(2, grid.domain.lo[2] + k);
           const double a = jet_overlap_area(jet, x_lo, x_lo + grid.h[0], z_lo, z_lo + grid.h[2]);
-          flux += (jet.velocity - u_bg) * a;
-          covered += a;
+          const std::size_t f = static_cast<std::size_t>(k) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i);
+          flux[f] += (v.jet[j] - u_bg) * a;
+          covered[f] += a;
         }
-        const std::size_t f = static_cast<std::size_t>(k) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i);
-        // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
-        out[f] = flux / area + (noise[f] - 1.0) * u_bg * std::max(0.0, 1.0 - covered / area);
-      }
+    }
+    std::vector<double> fraction(out.size());
+    for (std::size_t f = 0; f < out.size(); ++f) {
+      // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
+      fraction[f] = std::max(0.0, 1.0 - covered[f] / area);
+      out[f] = flux[f] / area + (noise[f] - 1.0) * u_bg * fraction[f];
+    }
+    keep_background_flow(noise, fraction, u_bg, out);
   }
 }
-template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<2>&, double, std::vector<double>&);
-template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<3>&, double, std::vector<double>&);
+
+template <int Dim>
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out) {
+  inlet_superficial_profile(bc, inlet_velocities(bc, t), grid, out);
+}
+
+namespace {
+// Uniform faces: the area-weighted mean is the plain mean.
+double mean_of(const std::vector<double>& u) {
+  double sum = 0.0;
+  for (double x : u) sum += x;
+  return u.empty() ? 0.0 : sum / static_cast<double>(u.size());
+}
+}  // namespace
+
+template <int Dim>
+double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t) {
+  std::vector<double> u;
+  inlet_superficial_profile(bc, grid, t, u);
+  return mean_of(u);
+}
+
+double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid2& grid, double t) {
+  std::vector<double> u;
+  inlet_superficial_profile(bc, grid, t, u);
+  return mean_of(u);
+}
+
+#define FLUIDBED_INLET_INSTANCES(D)                                                                              \
+  template void inlet_superficial_profile(const GasBoundaryConfig&, const InletVelocities&, const Grid<D>&,     \
+                                          std::vector<double>&);                                                 \
+  template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<D>&, double, std::vector<double>&); \
+  template double inlet_mean_velocity(const GasBoundaryConfig&, const Grid<D>&, double);
+FLUIDBED_INLET_INSTANCES(2)
+FLUIDBED_INLET_INSTANCES(3)
+#undef FLUIDBED_INLET_INSTANCES
 
 template <int Dim>
 void fill_wall_tangential(Field<Dim>& u, int e, bool high, WallKind kind, double u_wall) {
@@ -254,6 +441,34 @@ FLUIDBED_GHOST_INSTANCES(2)
 FLUIDBED_GHOST_INSTANCES(3)
 #undef FLUIDBED_GHOST_INSTANCES
 
+void validate(const InletSchedule& s, const std::string& region) {
+  const auto require = [&](bool ok, const std::string& what) {
+    if (!ok) throw_input_error("gas: " + region + " schedule: " + what);
+  };
+  switch (s.kind) {
+    case ScheduleKind::Constant:
+      break;
+    case ScheduleKind::Ramp:
+      require(s.ramp_time > 0.0 && std::isfinite(s.ramp_time), "ramp_time must be positive");
+      require(std::isfinite(s.ramp_from) && std::isfinite(s.ramp_start), "ramp_from and ramp_start must be finite");
+      break;
+    case ScheduleKind::Table:
+      require(!s.times.empty() && s.times.size() == s.velocities.size(),
+              "a table needs as many velocities as times, at least one");
+      for (std::size_t k = 0; k < s.times.size(); ++k) {
+        require(std::isfinite(s.times[k]) && std::isfinite(s.velocities[k]), "table values must be finite");
+        require(k == 0 || s.times[k] > s.times[k - 1], "table times must increase strictly");
+      }
+      break;
+    case ScheduleKind::Sine:
+    case ScheduleKind::Square:
+      require(s.frequency > 0.0 && std::isfinite(s.frequency), "frequency must be positive");
+      require(std::isfinite(s.amplitude) && std::isfinite(s.phase), "amplitude and phase must be finite");
+      require(s.kind == ScheduleKind::Sine || (s.duty > 0.0 && s.duty < 1.0), "duty must lie in (0, 1)");
+      break;
+  }
+}
+
 void validate(const GasConfig& c) {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw_input_error("gas: " + what);
@@ -278,7 +493,9 @@ void validate(const GasConfig& c) {
     require(jet.width > 0.0, "jet width must be positive");
     require(jet.shape != InletShape::Rectangle || jet.depth > 0.0, "a rectangular jet's depth must be positive");
     require(jet.t_end >= jet.t_start, "jet t_end must not precede t_start");
+    validate(jet.schedule, "jet");
   }
+  validate(c.boundary.schedule, "background");
 }
 
 void cell_to_u_faces(const Field2& cell, Field2& face) {

@@ -1,5 +1,9 @@
 #pragma once
 // Boundary-condition helpers of the gas phase, shared by the CFD-DEM gas solver and the two-fluid model.
+#include <cstdint>
+#include <string>
+#include <vector>
+
 #include "core/comm.hpp"
 #include "core/field.hpp"
 #include "core/field2.hpp"
@@ -9,13 +13,32 @@
 
 namespace fluidbed {
 
-/// Background superficial inlet velocity at time t (outside the jets), m/s: inlet_velocity, reached from
-/// ramp_from by a linear ramp over [0, ramp_time]. Every model takes its background inflow from here.
+/// Superficial velocity [m/s] at time t of a region whose velocity is u0 under schedule s (ScheduleKind gives each
+/// formula); pure, so the step's value is one call per region, never one per face.
+double schedule_velocity(const InletSchedule& s, double u0, double t);
+
+/// Background superficial inlet velocity at time t (outside the jets), m/s: the background schedule of
+/// inlet_velocity, or (Constant) inlet_velocity reached from ramp_from by a linear ramp over [0, ramp_time].
+/// Every model takes its background inflow from here.
 double background_inlet_velocity(const GasBoundaryConfig& bc, double t);
+
+/// Every inlet region's superficial velocity at one instant: evaluated once per gas step, then read per face.
+struct InletVelocities {
+  double background = 0.0;          ///< [m/s]
+  std::vector<double> jet;          ///< jet k's velocity from its schedule (0 while closed) [m/s]
+  std::vector<std::uint8_t> active; ///< 1 while jet k is open, t_start <= t < t_end
+};
+InletVelocities inlet_velocities(const GasBoundaryConfig& bc, double t);
+
+/// The largest |superficial velocity| any region reaches at any time (the background before its distributor
+/// factors), for time-step and sanity limits [m/s].
+double inlet_peak_velocity(const GasBoundaryConfig& bc);
 
 /// Superficial inlet velocity averaged over the bottom face [x_lo, x_hi] at time t: the background velocity,
 /// replaced by each active jet over the fraction of the face it covers (so the jet's volume flux is exact).
 double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, double x_hi, double t);
+/// The same from the step's region velocities.
+double inlet_superficial_velocity(const GasBoundaryConfig& bc, const InletVelocities& v, double x_lo, double x_hi);
 
 /// The fixed distributor factors of the nx bottom faces (all 1 without inlet_noise), mean exactly 1 up to rounding.
 std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx);
@@ -23,6 +46,12 @@ std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx);
 /// Superficial inlet velocity of every bottom face of the grid (size nx) at time t: inlet_superficial_velocity of
 /// each face, its background part scaled by the distributor factors.
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out);
+/// The same from the step's region velocities.
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid2& grid,
+                               std::vector<double>& out);
+
+/// The holes of a perforated plate as jets (2D: slots; 3D: discs), row by row in z, x fastest.
+std::vector<InletJet> perforated_plate_holes(const PerforatedPlate& plate, int dimension);
 
 /// Area of the jet's region (Slot: the strip |x - x_centre| <= width / 2 over the whole depth; Rectangle; Disc)
 /// inside the rectangle [x_lo, x_hi] x [z_lo, z_hi] of a 3D bed's bottom face, m^2 (exact, also for a disc).
@@ -34,6 +63,16 @@ double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_
 /// (i, k) is scaled by the distributor factor i + nx k of inlet_noise_factors(bc, nx nz).
 template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out);
+/// The same from the step's region velocities (inlet_velocities).
+template <int Dim>
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<Dim>& grid,
+                               std::vector<double>& out);
+
+/// The bottom's mean superficial inlet velocity at time t: the volume flow through the distributor over its area,
+/// as the profile delivers it (the monitor's inlet_velocity_m_s) [m/s].
+template <int Dim>
+double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t);
+double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid2& grid, double t);
 
 // ---- Ghost layers of the gas unknowns. Each function fills the ghosts of one side (axis e, `high`) of a field;
 // the caller applies it only where Grid::at_domain_side says the side is physical, so a sub-domain's internal
@@ -72,6 +111,8 @@ void fill_pressure_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, co
 
 /// Throws an input error naming the offending setting.
 void validate(const GasConfig& config);
+/// Throws an input error naming the region ("background", "jet") and the offending schedule setting.
+void validate(const InletSchedule& schedule, const std::string& region);
 
 /// Staggered (MAC) storage of the gas unknowns: P at cell centres (nx x ny), u on vertical faces ((nx+1) x ny),
 /// v on horizontal faces (nx x (ny+1)); u(i, j) sits at x0 + i dx, v(i, j) at y0 + j dy.

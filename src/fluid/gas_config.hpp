@@ -37,6 +37,30 @@ enum class PressureBackend {
 /// Pressure-velocity coupling of the outer iterations.
 enum class PressureCoupling { Simple, Simplec };
 
+/// How an inlet region's superficial velocity varies in time; U0 is the region's velocity (inlet_velocity of the
+/// background, InletJet::velocity of a jet).
+enum class ScheduleKind {
+  Constant,  ///< U0
+  Ramp,      ///< ramp_from until ramp_start, linear to U0 at ramp_start + ramp_time, then U0
+  Table,     ///< (times, velocities) pairs, linear between them, the end values held beyond them (U0 unused)
+  Sine,      ///< U0 + amplitude sin(2 pi frequency t + phase), the pulsed bed of NETL's challenge problems
+  Square,    ///< on/off pulsation: U0 + amplitude over the first `duty` of each period (phase shifts it), else U0
+};
+
+/// A region's superficial velocity as a function of time, evaluated once per gas step (inlet_velocities).
+struct InletSchedule {
+  ScheduleKind kind = ScheduleKind::Constant;
+  double ramp_from = 0.0;   ///< Ramp: velocity before and at ramp_start [m/s]
+  double ramp_start = 0.0;  ///< Ramp [s]
+  double ramp_time = 0.0;   ///< Ramp: duration, > 0 [s]
+  double amplitude = 0.0;   ///< Sine, Square [m/s]
+  double frequency = 0.0;   ///< Sine, Square, > 0 [Hz]
+  double phase = 0.0;       ///< Sine, Square [rad]
+  double duty = 0.5;        ///< Square: the "on" fraction of each period, in (0, 1)
+  std::vector<double> times;       ///< Table: strictly increasing [s]
+  std::vector<double> velocities;  ///< Table: as many as times [m/s]
+};
+
 /// The region of the bottom face a jet blows through: a slot across the whole depth (2D, or a 3D slab's slot),
 /// a rectangle or a disc of the bottom face of a 3D bed.
 enum class InletShape { Slot, Rectangle, Disc };
@@ -53,6 +77,27 @@ struct InletJet {
   InletShape shape = InletShape::Slot;
   double z_centre = 0.0;  ///< [m], Rectangle and Disc (3D)
   double depth = 0.0;     ///< z extent of a Rectangle [m]
+  InletSchedule schedule{}; ///< velocity in time while active; Constant: `velocity`
+};
+
+/// Square or triangular (equilateral, alternate rows shifted by half a pitch) arrangement of a plate's holes.
+enum class HolePitch { Square, Triangular };
+
+/// A perforated distributor plate: a block of equal holes, each an InletJet (perforated_plate_holes). 2D: n_x slots
+/// of `hole` width, pitch apart in x. 3D: n_x x n_z discs of diameter `hole`, rows pitch apart in z (triangular:
+/// pitch sqrt(3)/2 apart, odd rows shifted by pitch / 2); the block is centred on (x_centre, z_centre).
+struct PerforatedPlate {
+  int n_x = 1;
+  int n_z = 1;              ///< rows in z (3D)
+  double hole = 0.002;      ///< slot width (2D) or disc diameter (3D) [m]
+  double pitch = 0.01;      ///< centre-to-centre distance of neighbouring holes, >= hole [m]
+  HolePitch layout = HolePitch::Square;
+  double x_centre = 0.0;    ///< [m]
+  double z_centre = 0.0;    ///< [m], 3D
+  double velocity = 10.0;   ///< superficial velocity through each hole (U0 of the schedule) [m/s]
+  double t_start = 0.0;     ///< [s]
+  double t_end = 1e30;      ///< [s]
+  InletSchedule schedule{};
 };
 
 struct GasBoundaryConfig {
@@ -63,6 +108,8 @@ struct GasBoundaryConfig {
   /// point by opening the valve.
   double ramp_from = 0.0;  ///< [m/s]
   double ramp_time = 0.0;  ///< [s]
+  /// The background's velocity in time when not Constant (then ramp_from / ramp_time are unused): U0 = inlet_velocity.
+  InletSchedule schedule{};
   /// Distributor non-uniformity: the background inflow of bottom face i is scaled by a fixed factor
   /// 1 + inlet_noise (2 u_i - 1), u_i uniform in [0, 1) from noise_seed, renormalised so that the total inflow is
   /// unchanged. A perfectly uniform distributor lifts a packed bed as a plug; real ones seed bubbles.

@@ -29,6 +29,26 @@ constexpr double kDiscPackingFraction = 0.82;
 constexpr double kSpherePackingFraction = 0.64;
 
 // "0.6 x 1 m" in 2D, "0.6 x 1 x 0.1 m" in 3D (without the unit).
+// A schedule in words, the region's velocity u0.
+std::string schedule_text(const InletSchedule& s, double u0) {
+  switch (s.kind) {
+    case ScheduleKind::Constant:
+      return fmt::format("{} m/s", u0);
+    case ScheduleKind::Ramp:
+      return fmt::format("{} m/s, ramped linearly from {} m/s over {} <= t < {} s", u0, s.ramp_from, s.ramp_start,
+                         s.ramp_start + s.ramp_time);
+    case ScheduleKind::Table:
+      return fmt::format("a table of {} points from {} m/s at {} s to {} m/s at {} s, linear between", s.times.size(),
+                         s.velocities.front(), s.times.front(), s.velocities.back(), s.times.back());
+    case ScheduleKind::Sine:
+      return fmt::format("{} + {} sin(2 pi {} t + {}) m/s", u0, s.amplitude, s.frequency, s.phase);
+    case ScheduleKind::Square:
+      return fmt::format("{} m/s, plus {} m/s over {:g}% of each {} s period (phase {} rad)", u0, s.amplitude,
+                         100.0 * s.duty, 1.0 / s.frequency, s.phase);
+  }
+  return "";
+}
+
 std::string box_text(const DomainConfig& d) {
   return d.dimension == 3 ? fmt::format("{} x {} x {}", d.width, d.height, d.depth) : fmt::format("{} x {}", d.width, d.height);
 }
@@ -340,14 +360,29 @@ std::string describe_case(const CaseConfig& c) {
     }
     const GasBoundaryConfig& bc = c.gas.boundary;
     line("inlet (superficial)",
-         bc.ramp_time > 0.0 ? fmt::format("{} m/s through the bottom, ramped from {} m/s over 0 <= t < {} s",
+         bc.schedule.kind != ScheduleKind::Constant
+             ? schedule_text(bc.schedule, bc.inlet_velocity) + " through the bottom"
+         : bc.ramp_time > 0.0 ? fmt::format("{} m/s through the bottom, ramped from {} m/s over 0 <= t < {} s",
                                           bc.inlet_velocity, bc.ramp_from, bc.ramp_time)
                             : fmt::format("{} m/s through the bottom", bc.inlet_velocity));
     if (bc.inlet_noise > 0.0) {
       line("distributor non-uniformity", fmt::format("+-{:g}% per bottom cell, fixed in time (seed {}), total inflow "
                                                      "unchanged", 100.0 * bc.inlet_noise, bc.noise_seed));
     }
+    double open_area = 0.0;
     for (const InletJet& j : c.gas.boundary.jets) {
+      open_area += j.shape == InletShape::Disc      ? std::numbers::pi * 0.25 * j.width * j.width
+                   : j.shape == InletShape::Rectangle ? j.width * j.depth
+                                                      : j.width * (three_d ? c.domain.depth : 1.0);
+    }
+    const std::size_t n_jets = c.gas.boundary.jets.size();
+    if (n_jets > 8) {
+      line("jets and plate holes", fmt::format("{} regions, open area {:.6g} {} ({:.4g}% of the bottom); the first "
+                                               "four:", n_jets, open_area, three_d ? "m^2" : "m per metre of depth",
+                                               100.0 * open_area / (c.domain.width * (three_d ? c.domain.depth : 1.0))));
+    }
+    for (std::size_t k = 0; k < n_jets && (n_jets <= 8 || k < 4); ++k) {
+      const InletJet& j = c.gas.boundary.jets[k];
       std::string where = fmt::format("[{}, {}] m", j.x_centre - 0.5 * j.width, j.x_centre + 0.5 * j.width);
       if (three_d) {
         where = j.shape == InletShape::Disc
@@ -357,7 +392,10 @@ std::string describe_case(const CaseConfig& c) {
                                   j.z_centre + 0.5 * j.depth)
                     : fmt::format("a slot x in {} across the whole depth", where);
       }
-      line("jet", fmt::format("{} m/s over {} for {} <= t < {} s", j.velocity, where, j.t_start, j.t_end));
+      // A plate's default end (1e9 s) reads as "from t_start on".
+      const std::string when = j.t_end >= 1e9 ? fmt::format("from t = {} s on", j.t_start)
+                                              : fmt::format("for {} <= t < {} s", j.t_start, j.t_end);
+      line("jet", fmt::format("{} over {} {}", schedule_text(j.schedule, j.velocity), where, when));
     }
     line("U_mf of the throughflow ratio (bubble.u_mf)", fmt::format("{:.3f} m/s", c.bubble.u_mf));
   }

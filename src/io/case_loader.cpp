@@ -12,6 +12,8 @@
 #include "io/csv.hpp"
 #include "io/dem_model.hpp"
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace fluidbed {
 
@@ -447,6 +449,95 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   }
 }
 
+// A region's velocity schedule, keys under prefix p ("inlet." or "inlet.jet[k]."): inlet.schedule picks the kind;
+// u0_key is the region's velocity key (a table replaces it). The background's ramp keys are the start-up ramp's.
+InletSchedule read_schedule(CaseReader& r, const std::string& p, const std::string& u0_key, double ramp_start_default,
+                            bool background) {
+  using R = CaseReader;
+  InletSchedule s;
+  const std::string kind = r.string(p + "schedule", "constant", "superficial velocity in time: constant, ramp "
+                                    "(linear), table (linear between (t, U) pairs), sine (U0 + A sin(2 pi f t + phase)) "
+                                    "or square (U0 + A over the duty fraction of each period)",
+                                    {"constant", "ramp", "table", "sine", "square"});
+  const auto refuse = [&](std::initializer_list<const char*> keys, const std::string& why) {
+    for (const char* k : keys)
+      if (r.has(p + k)) r.fail(p + k, why);
+  };
+  if (kind == "constant") {
+    if (!background) refuse({"ramp_from", "ramp_start", "ramp_time"}, "ramp keys need schedule = \"ramp\"");
+  } else if (kind == "ramp") {
+    s.kind = ScheduleKind::Ramp;
+    if (!background) {
+      s.ramp_from = r.number(p + "ramp_from", 0.0, "m/s", "velocity until ramp_start (schedule = \"ramp\")");
+      s.ramp_time = r.required_number(p + "ramp_time", "s", "duration of the linear ramp to the region's velocity "
+                                      "(schedule = \"ramp\")", R::positive());
+    }
+    s.ramp_start = r.number(p + "ramp_start", ramp_start_default, "s", "the ramp begins (schedule = \"ramp\")");
+    if (!background) r.describe_default(p + "ramp_start", "the jet's start");
+  } else {
+    refuse({"ramp_start"}, "ramp_start needs schedule = \"ramp\"");
+    if (!background) refuse({"ramp_from", "ramp_time"}, "ramp keys need schedule = \"ramp\"");
+  }
+  if (kind == "table") {
+    s.kind = ScheduleKind::Table;
+    if (r.has(u0_key)) r.fail(u0_key, "a table schedule gives the velocities itself (table_velocities or table_file)");
+    const std::string file = r.string(p + "table_file", "", "CSV of the table (schedule = \"table\"): one header "
+                                      "line, then time_s,velocity_m_s rows; relative to the case file");
+    if (!file.empty()) {
+      if (r.has(p + "table_times") || r.has(p + "table_velocities")) {
+        r.fail(p + "table_file", "give the table inline (table_times, table_velocities) or as a file, not both");
+      }
+      const auto path = case_relative_path(r.file_name(), file);
+      std::ifstream in(path);
+      if (!in) r.fail(p + "table_file", fmt::format("cannot read {}", path.string()));
+      std::string line;
+      std::getline(in, line);
+      for (int row = 2; std::getline(in, line); ++row) {
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        std::istringstream ls(line);
+        double t = 0.0, u = 0.0;
+        char comma = 0;
+        if (!(ls >> t >> comma >> u) || comma != ',') {
+          r.fail(p + "table_file", fmt::format("{} line {}: expected time_s,velocity_m_s", path.string(), row));
+        }
+        s.times.push_back(t);
+        s.velocities.push_back(u);
+      }
+    } else {
+      s.times = r.numbers(p + "table_times", {}, "s", "times of the table (schedule = \"table\"), increasing");
+      s.velocities = r.numbers(p + "table_velocities", {}, "m/s", "velocities at table_times (schedule = \"table\")");
+    }
+    if (s.times.empty() || s.times.size() != s.velocities.size()) {
+      r.fail(file.empty() ? p + "table_velocities" : p + "table_file",
+             fmt::format("a table needs as many velocities as times, at least one (got {} and {})", s.times.size(),
+                         s.velocities.size()));
+    }
+    for (std::size_t k = 1; k < s.times.size(); ++k) {
+      if (!(s.times[k] > s.times[k - 1])) {
+        r.fail(file.empty() ? p + "table_times" : p + "table_file", "the table's times must increase strictly");
+      }
+    }
+  } else {
+    refuse({"table_file", "table_times", "table_velocities"}, "table keys need schedule = \"table\"");
+  }
+  if (kind == "sine" || kind == "square") {
+    s.kind = kind == "sine" ? ScheduleKind::Sine : ScheduleKind::Square;
+    s.amplitude = r.number(p + "amplitude", 0.0, "m/s", "pulsation amplitude A (schedule = \"sine\" or \"square\")");
+    s.frequency = r.required_number(p + "frequency", "Hz", "pulsation frequency f (schedule = \"sine\" or "
+                                    "\"square\")", R::positive());
+    s.phase = r.number(p + "phase", 0.0, "rad", "pulsation phase (schedule = \"sine\" or \"square\")");
+    if (s.kind == ScheduleKind::Square) {
+      s.duty = r.number(p + "duty", 0.5, "", "the on fraction of each period (schedule = \"square\")",
+                        R::Range{0.0, 1.0, true, true});
+    } else {
+      refuse({"duty"}, "duty needs schedule = \"square\"");
+    }
+  } else {
+    refuse({"amplitude", "frequency", "phase", "duty"}, "pulsation keys need schedule = \"sine\" or \"square\"");
+  }
+  return s;
+}
+
 void read_gas(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
@@ -563,6 +654,17 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   g.boundary.ramp_time = r.number("inlet.ramp_time", 0.0, "s", "the background inflow ramps linearly from "
                                   "inlet.ramp_from to inlet.velocity over this time (0: no ramp)", R::non_negative());
   g.boundary.ramp_from = r.number("inlet.ramp_from", 0.0, "m/s", "background inflow at t = 0 when inlet.ramp_time > 0");
+  g.boundary.schedule = read_schedule(r, "inlet.", "inlet.velocity", 0.0, true);
+  if (g.boundary.schedule.kind == ScheduleKind::Ramp) {
+    // The start-up ramp keys, from ramp_start: a ramp that starts at 0 is the start-up ramp itself.
+    g.boundary.schedule.ramp_from = g.boundary.ramp_from;
+    g.boundary.schedule.ramp_time = g.boundary.ramp_time;
+    if (!(g.boundary.ramp_time > 0.0)) r.fail("inlet.ramp_time", "schedule = \"ramp\" needs inlet.ramp_time > 0");
+  } else if (g.boundary.schedule.kind != ScheduleKind::Constant) {
+    for (const char* k : {"inlet.ramp_from", "inlet.ramp_time"}) {
+      if (r.has(k)) r.fail(k, "the start-up ramp is for a constant background; a table schedule can ramp too");
+    }
+  }
   g.boundary.inlet_noise = r.number("inlet.noise", 0.0, "", "distributor non-uniformity: the background inflow of "
                                     "bottom cell i is scaled by 1 + noise (2u_i - 1), u_i seeded by case.seed, fixed in "
                                     "time, total inflow unchanged", R::Range{0.0, 1.0, false, true});
@@ -614,6 +716,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     j.velocity = r.number(p + "velocity", 30.0, "m/s", "superficial gas velocity through the jet");
     j.t_start = r.number(p + "start", 0.0, "s", "the jet opens at this time", R::non_negative());
     j.t_end = r.number(p + "end", 0.4, "s", "the jet closes at this time", R::non_negative());
+    j.schedule = read_schedule(r, p, p + "velocity", j.t_start, false);
     // The jet is a region of the bottom face: inside it, and wide enough for the grid to resolve.
     if (j.x_centre - 0.5 * j.width < -1e-12 || j.x_centre + 0.5 * j.width > c.domain.width + 1e-12) {
       r.fail(p + "centre", fmt::format("the jet [{}, {}] m is not inside the bottom [0, {}] m",
@@ -635,6 +738,55 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     }
     if (j.t_end < j.t_start) r.fail(p + "end", "the jet closes before it opens");
     g.boundary.jets.push_back(j);
+  }
+  const std::size_t np = r.table_count("inlet.plate", "perforated distributor plates: blocks of equal holes (2D slots, "
+                                       "3D discs), each hole a jet");
+  for (std::size_t k = 0; k < np; ++k) {
+    const std::string p = fmt::format("inlet.plate[{}].", k);
+    PerforatedPlate pl;
+    pl.n_x = static_cast<int>(r.integer(p + "holes", 1, "holes per row (along x)", R::between(1, 100000)));
+    if (three_d) {
+      pl.n_z = static_cast<int>(r.integer(p + "rows", 1, "rows of holes (along z, 3D)", R::between(1, 100000)));
+      pl.hole = r.required_number(p + "hole_diameter", "m", "diameter of each disc hole (3D)", R::positive());
+      const std::string lay = r.string(p + "layout", "square", "hole pitch (3D): square or triangular (equilateral, "
+                                       "odd rows shifted by half a pitch)", {"square", "triangular"});
+      pl.layout = lay == "triangular" ? HolePitch::Triangular : HolePitch::Square;
+      pl.z_centre = r.number(p + "centre_z", 0.5 * c.domain.depth, "m", "z of the block's centre (3D)");
+      r.describe_default(p + "centre_z", "domain.depth / 2");
+    } else {
+      for (const char* key : {"rows", "hole_diameter", "layout", "centre_z"}) {
+        if (r.has(p + key)) r.fail(p + key, "a 2D plate is a row of slots (holes, hole_width, pitch); set case.dimension = 3");
+      }
+      pl.hole = r.required_number(p + "hole_width", "m", "width of each slot (2D)", R::positive());
+    }
+    if (three_d && r.has(p + "hole_width")) r.fail(p + "hole_width", "a 3D plate's holes are discs: hole_diameter");
+    pl.pitch = r.required_number(p + "pitch", "m", "centre-to-centre distance of neighbouring holes", R::positive());
+    if (pl.pitch < pl.hole) r.fail(p + "pitch", fmt::format("holes of {} m overlap at a pitch of {} m", pl.hole, pl.pitch));
+    pl.x_centre = r.number(p + "centre", c.domain.width / 2, "m", "x of the block's centre");
+    r.describe_default(p + "centre", "domain.width / 2");
+    pl.velocity = r.number(p + "velocity", 10.0, "m/s", "superficial velocity through each hole");
+    pl.t_start = r.number(p + "start", 0.0, "s", "the holes open at this time", R::non_negative());
+    pl.t_end = r.number(p + "end", 1e9, "s", "the holes close at this time", R::non_negative());
+    if (pl.t_end < pl.t_start) r.fail(p + "end", "the plate closes before it opens");
+    pl.schedule = read_schedule(r, p, p + "velocity", pl.t_start, false);
+    for (const InletJet& h : perforated_plate_holes(pl, three_d ? 3 : 2)) {
+      // Holes narrower than a cell are allowed: the face overlap keeps each hole's volume flux exact.
+      const double r_x = 0.5 * h.width;
+      const double r_z = 0.5 * h.depth;
+      if (h.x_centre - r_x < -1e-12 || h.x_centre + r_x > c.domain.width + 1e-12 ||
+          (three_d && (h.z_centre - r_z < -1e-12 || h.z_centre + r_z > c.domain.depth + 1e-12))) {
+        r.fail(p + "pitch", fmt::format("the hole centred at x = {} m{} is not inside the bottom", h.x_centre,
+                                        three_d ? fmt::format(", z = {} m", h.z_centre) : std::string()));
+      }
+      if (!three_d) {
+        InletJet slot = h;
+        slot.z_centre = 0.5 * c.domain.depth;
+        slot.depth = c.domain.depth;
+        g.boundary.jets.push_back(slot);
+      } else {
+        g.boundary.jets.push_back(h);
+      }
+    }
   }
 
   // [coupling]
@@ -662,8 +814,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     // A derived DEM step (t_c / 20) is far below what the gas needs; step the gas at the largest multiple of it
     // within a Courant number of 0.5 on the fastest interstitial inflow (superficial / eps_min) and within half the
     // Stokes relaxation time rho_p d^2 / (18 mu_g) of the smallest particle, so the drag stays resolved.
-    double u_max = std::max(std::abs(g.boundary.inlet_velocity), std::abs(g.boundary.ramp_from));
-    for (const InletJet& j : g.boundary.jets) u_max = std::max(u_max, std::abs(j.velocity));
+    const double u_max = inlet_peak_velocity(g.boundary);
     double h_min = std::min(c.grid.dx, c.grid.dy);
     if (three_d) h_min = std::min(h_min, c.grid.dz);
     const double courant = u_max > 0.0 ? 0.5 * h_min * cc.eps_min / u_max : 1e300;
@@ -715,9 +866,9 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   b.grid = c.grid.grid2();
   b.eps_threshold = r.number("bubble.threshold", 0.8, "", "voidage above which a cell is bubble (the paper: 0.8)",
                              R::Range{0.0, 1.0, true, true});
-  b.jet_x = r.number("bubble.jet_x", g.boundary.jets.empty() ? c.domain.width / 2 : g.boundary.jets[0].x_centre, "m",
+  b.jet_x = r.number("bubble.jet_x", nj == 0 ? c.domain.width / 2 : g.boundary.jets[0].x_centre, "m",
                      "vertical line on which the nose is measured");
-  b.jet_width = r.number("bubble.jet_width", g.boundary.jets.empty() ? dx : g.boundary.jets[0].width, "m",
+  b.jet_width = r.number("bubble.jet_width", nj == 0 ? dx : g.boundary.jets[0].width, "m",
                          "width of the jet the bubble grows from", R::positive());
   const bool u_mf_given = r.has("bubble.u_mf");
   const std::optional<double> u_ergun = bed_minimum_fluidisation_velocity(c);
@@ -740,7 +891,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     b.nz = c.grid.nz;
     b.min_volume = r.number("bubble.min_volume", b.min_volume, "m^3", "smallest void counted as a bubble (3D)",
                             R::positive());
-    if (!g.boundary.jets.empty()) {
+    if (nj > 0) {
       const InletJet& j = g.boundary.jets[0];
       b.jet_shape = j.shape;
       if (j.shape != InletShape::Slot) b.jet_z = j.z_centre;
@@ -896,6 +1047,22 @@ std::string case_keys_markdown() {
   merge(load_case_text("case.name = \"keys\"\ncase.dimension = 3\ndomain.depth = 0.1\nspecies = [{diameter = 0.004}]\n"
                        "inlet.jet = [{centre = 0.31}, {centre = 0.31, shape = \"rectangle\"}, "
                        "{centre = 0.31, shape = \"disc\"}]\n", "keys.toml").keys);
+  // The schedules' and plates' keys: a ramped background with ramp_start, a jet of each time-dependent kind, a plate
+  // in 2D and 3D (keys read only for their kind).
+  merge(load_case_text("case.name = \"keys\"\nspecies = [{diameter = 0.004}]\n"
+                       "inlet = {schedule = \"ramp\", ramp_time = 0.1, jet = [{centre = 0.31, schedule = \"ramp\", "
+                       "ramp_time = 0.1}, {centre = 0.31, schedule = \"table\", table_times = [0], table_velocities = "
+                       "[1]}, {centre = 0.31, "
+                       "schedule = \"square\", frequency = 1}], plate = [{hole_width = 0.004, pitch = 0.01}]}\n",
+                       "keys.toml").keys);
+  merge(load_case_text("case.name = \"keys\"\nspecies = [{diameter = 0.004}]\n"
+                       "inlet = {schedule = \"sine\", frequency = 1}\n", "keys.toml").keys);
+  merge(load_case_text("case.name = \"keys\"\nspecies = [{diameter = 0.004}]\n"
+                       "inlet = {schedule = \"square\", frequency = 1}\n", "keys.toml").keys);
+  merge(load_case_text("case.name = \"keys\"\nspecies = [{diameter = 0.004}]\n"
+                       "inlet = {schedule = \"table\", table_times = [0], table_velocities = [1]}\n", "keys.toml").keys);
+  merge(load_case_text("case.name = \"keys\"\ncase.dimension = 3\ndomain.depth = 0.1\nspecies = [{diameter = 0.004}]\n"
+                       "inlet.plate = [{hole_diameter = 0.004, pitch = 0.01}]\n", "keys.toml").keys);
   std::string md;
   std::string section;
   for (const KeyInfo& k : all) {

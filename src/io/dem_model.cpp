@@ -311,7 +311,8 @@ class DemModel final : public ModelRun {
             "gas_mass_balance", "simple_iterations", "min_voidage", "fluid_force_y_N", "gas_reaction_y_N",
             "neighbor_rebuilds", "lacey_index", "particles_lost", "mass_lost_kg",
             // Per metre of depth (over coupling.depth, the slab the monolayer stands for): the TFM's basis.
-            "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "linear_solver_fallbacks"};
+            "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "linear_solver_fallbacks",
+            "inlet_velocity_m_s"};
     // The feed (insertion), only in a case that has one (the others' monitor.csv stays as it was):
     // solids_mass_kg = M(0) + mass_inserted_kg - mass_lost_kg.
     if (config_.dem.insertion.enabled()) {
@@ -335,9 +336,15 @@ class DemModel final : public ModelRun {
     v.push_back(mass / depth);
     v.push_back(*v[0] / depth);
     v.push_back(std::nullopt);
+    v.push_back(std::nullopt);
     if (sim_.has_gas()) {
       const GasStepReport& r = sim_.last_gas_report();
-      v.back() = static_cast<double>(r.linear_fallbacks);
+      v[v.size() - 2] = static_cast<double>(r.linear_fallbacks);
+      // The superficial velocity the last gas step delivered: its bottom mass flow over rho_g and the bottom's area
+      // (2D: per metre of depth, as mass_in).
+      double bottom = config_.domain.width;
+      if constexpr (Dim == 3) bottom *= config_.domain.depth;
+      v.back() = r.mass_in / (config_.gas.rho_g * bottom);
       v[1] = sim_.gas().pressure_drop();
       v[3] = r.mass_residual;
       v[5] = r.mass_balance_relative;

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "fluid/gas_boundary.hpp"
 #include "io/hdf5_file.hpp"
 #include "tfm/tfm_solver.hpp"
 
@@ -39,7 +40,7 @@ class TfmModel final : public ModelRun {
     return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
             "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "time_step_s", "min_voidage",
             "max_solids_speed_m_s", "granular_temperature_bed_max_m2_s2", "granular_temperature_solids_mean_m2_s2",
-            "linear_solver_fallbacks"};
+            "linear_solver_fallbacks", "inlet_velocity_m_s"};
   }
   std::vector<std::optional<double>> monitor_values() override {
     // Kinetic energy of the solids' mean motion, from cell-centred velocities.
@@ -59,7 +60,9 @@ class TfmModel final : public ModelRun {
     return {ke * depth, solver_.pressure_drop(), std::nullopt, solver_.gas_volume_residual(), mass * depth,
             mass * per_depth, ke * per_depth, last_dt_, solver_.min_voidage(), solver_.max_solids_speed(),
             solver_.bed_granular_temperature_max(), solver_.solids_mean_granular_temperature(),
-            static_cast<double>(solver_.linear_fallbacks())};
+            static_cast<double>(solver_.linear_fallbacks()),
+            // The superficial inflow of the last step (the TFM takes it at the step's end, the current time).
+            inlet_mean_velocity(config_.tfm.boundary, g, solver_.time())};
   }
   FieldView fields() override {
     const Grid<Dim>& g = solver_.grid();
