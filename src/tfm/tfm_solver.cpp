@@ -890,8 +890,8 @@ void TfmSolver<Dim>::close_gas_continuity(double dt) {
 template <int Dim>
 double TfmSolver<Dim>::reference_speed() const {
   const GasBoundaryConfig& b = config_.boundary;
-  double u_in = std::max(std::abs(b.inlet_velocity), std::abs(b.ramp_from)) * (1.0 + b.inlet_noise);
-  for (const InletJet& j : b.jets) u_in = std::max(u_in, std::abs(j.velocity));
+  // The largest inflow any region's schedule reaches (pulses and tables included), noise on top.
+  const double u_in = inlet_peak_velocity(b) * (1.0 + b.inlet_noise);
   return u_in / config_.eps_star + std::sqrt(2.0 * gravity_norm() * grid_.length(kUp));
 }
 
