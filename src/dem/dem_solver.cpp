@@ -11,6 +11,24 @@
 
 namespace fluidbed {
 
+namespace {
+// The parameters of the laws beyond the paper's: Hertz and Mindlin moduli of the two materials, the Tsuji
+// coefficient for the restitution (found once here, not per contact), the rolling coefficients.
+void set_law_params(const DemConfig& c, const ElasticMaterial& a, const ElasticMaterial& b, const InteractionParams& ip,
+                    ContactParams& p) {
+  const ContactModelConfig& m = c.contact;
+  if (m.normal == NormalModel::Hertz || m.tangential == TangentialModel::Mindlin) {
+    p.e_star = effective_youngs_modulus(a, b);
+    p.g_star = effective_shear_modulus(a, b);
+  }
+  if (m.normal == NormalModel::Hertz || m.damping == DampingModel::Tsuji) {
+    p.alpha = m.normal == NormalModel::Hertz ? tsuji_alpha_for_hertz(ip.restitution) : tsuji_alpha_for_linear(ip.restitution);
+  }
+  p.mu_r = ip.rolling_friction;
+  p.eta_r = m.rolling_damping;
+}
+}  // namespace
+
 std::vector<ContactParams> make_pair_params(const DemConfig& c) {
   const std::size_t ns = c.n_species();
   std::vector<ContactParams> t(ns * ns);
@@ -24,6 +42,7 @@ std::vector<ContactParams> make_pair_params(const DemConfig& c) {
       p.eta_n = damping_from_restitution(m_eff, p.k_n, ip.restitution);  // Eq. 8, reduced mass
       p.eta_t = p.eta_n;  // the paper's single dashpot eta for both directions (Eqs. 2-3)
       p.mu = ip.friction;
+      set_law_params(c, c.material_of(a), c.material_of(b), ip, p);
     }
   }
   return t;
@@ -38,6 +57,7 @@ std::vector<ContactParams> make_wall_params(const DemConfig& c) {
     p.eta_n = damping_from_restitution(c.species[a].mass(), p.k_n, c.wall[a].restitution);  // Eq. 8, wall fixed
     p.eta_t = p.eta_n;
     p.mu = c.wall[a].friction;
+    set_law_params(c, c.material_of(a), c.contact.wall_material, c.wall[a], p);
   }
   return t;
 }
@@ -88,6 +108,7 @@ DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move
     }
   }
   for (auto& w : p_.wall_xi) std::fill(w.begin(), w.end(), 0.0);
+  for (auto& w : p_.wall_roll) std::fill(w.begin(), w.end(), 0.0);
 }
 
 template <int Dim>
@@ -99,7 +120,10 @@ void DemSolver<Dim>::rebuild() {
     old_offset_.swap(nbr_.offset);
     old_partner_id_.swap(nbr_.partner_id);
     old_history_.swap(nbr_.history);
+    old_rolling_.swap(nbr_.rolling);
   }
+  const bool rolling_history = config_.contact.needs_rolling_history();
+  const bool carry_rolling = rolling_history && have_old && old_rolling_.size() == old_history_.size();
 
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles
   // drift from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
@@ -110,6 +134,7 @@ void DemSolver<Dim>::rebuild() {
     p_.permute(order);
   }
   build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_);
+  if (rolling_history) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
 
   if (have_old) {
     // Carry each stretched spring over to the new entry of the same pair, found by the partner's id (so that
@@ -122,11 +147,13 @@ void DemSolver<Dim>::rebuild() {
       const std::size_t o = sorted ? order[i] : i;
       for (std::size_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
         const Vec<Dim> h = old_history_[q];
-        if (is_zero<Dim>(h)) continue;
+        const Spin<Dim> hr = carry_rolling ? old_rolling_[q] : Spin<Dim>{};
+        if (is_zero<Dim>(h) && spin_norm2<Dim>(hr) == 0.0) continue;
         const std::int64_t j = old_partner_id_[q];
         for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
           if (nbr_.partner_id[k] == j) {
             nbr_.history[k] = h;
+            if (carry_rolling) nbr_.rolling[k] = hr;
             break;
           }
         }
@@ -177,19 +204,25 @@ void DemSolver<Dim>::link_mirrors() {
 
 template <int Dim>
 double DemSolver<Dim>::compute_forces(double dt) {
+  // The contact law is chosen here, once per evaluation; the loops below are compiled for it.
   // With one species every contact has the same diameter: the largest overlap fraction is the largest overlap over
   // it, taken once after the loops; only a mixture pays for a division per contact (5% of the force loop).
-  return config_.n_species() > 1 ? compute_forces_of<true>(dt) : compute_forces_of<false>(dt);
+  return with_contact_law(config_.contact, [&]<class Law>(Law) {
+    return config_.n_species() > 1 ? compute_forces_of<Law, true>(dt) : compute_forces_of<Law, false>(dt);
+  });
 }
 
 template <int Dim>
-template <bool Mixed>
+template <class Law, bool Mixed>
 double DemSolver<Dim>::compute_forces_of(double dt) {
   const std::size_t n = p_.size();
   const Vec<Dim> L = config_.domain.extent<Dim>();
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
   if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
+  if (Law::kRollingHistory && nbr_.rolling.size() != nbr_.entries()) {
+    nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});  // a list restored from a run without rolling springs
+  }
   const AxisPtrs<Dim> X = axis_ptrs<Dim>([&](int a) -> auto& { return p_.coord(a); }, Dim);
   const AxisPtrs<Dim> V = axis_ptrs<Dim>([&](int a) -> auto& { return p_.velocity(a); }, Dim);
   const AxisPtrs<Dim> F = axis_ptrs<Dim>([&](int a) -> auto& { return p_.force(a); }, Dim);
@@ -197,6 +230,11 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   const AxisPtrs<NS> W = axis_ptrs<NS>([&](int c) -> auto& { return p_.spin_component(c); }, NS);
   const AxisPtrs<NS> T = axis_ptrs<NS>([&](int c) -> auto& { return p_.torque_component(c); }, NS);
   const double* R = p_.radius.data();
+  const double* M = p_.mass.data();
+  const double* IINV = p_.inv_inertia.data();
+  Spin<Dim>* const roll = Law::kRollingHistory ? nbr_.rolling.data() : nullptr;
+  // Ai et al. 2011 Eq. 17: the rolling inertia of one partner, I + m r^2.
+  auto roll_inertia = [&](std::size_t i) { return 1.0 / IINV[i] + M[i] * R[i] * R[i]; };
   auto pos = [&](std::size_t i) {
     Vec<Dim> v;
     for (int a = 0; a < Dim; ++a) v[a] = X[a][i];
@@ -239,9 +277,15 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       if (d2 >= rsum * rsum) {
         // Not touching: entries hold zeros unless this contact just ended (spring released, force cleared);
         // testing first spares the scattered writes to the partner's entry for the many pairs that only pass by.
-        if (!is_zero<Dim>(entry_force_[k]) || !is_zero<Dim>(nbr_.history[k])) {
+        bool held = !is_zero<Dim>(entry_force_[k]) || !is_zero<Dim>(nbr_.history[k]);
+        if constexpr (Law::kRollingHistory) held = held || spin_norm2<Dim>(roll[k]) != 0.0;
+        if (held) {
           nbr_.history[k] = Vec<Dim>{};
           nbr_.history[km] = Vec<Dim>{};
+          if constexpr (Law::kRollingHistory) {
+            roll[k] = Spin<Dim>{};
+            roll[km] = Spin<Dim>{};
+          }
           entry_force_[k] = Vec<Dim>{};
           entry_force_[km] = Vec<Dim>{};
           entry_torque_[k] = Spin<Dim>{};
@@ -261,8 +305,13 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
       const ContactParams& pp =
           Mixed ? pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])] : pair_params_[0];
-      const ContactForce<Dim> cf =
-          linear_spring_dashpot(pp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
+      ContactKinematics<Dim> kin{nrm, overlap, v_rel};
+      if constexpr (Law::kNeedsPairSize) {
+        kin.r_eff = ri * R[j] / rsum;
+        kin.m_eff = M[i] * M[j] / (M[i] + M[j]);
+        if constexpr (Law::kRolling) kin.i_roll = 1.0 / (1.0 / roll_inertia(i) + 1.0 / roll_inertia(j));
+      }
+      const ContactForce<Dim> cf = Law::template force<Dim>(pp, kin, dt, nbr_.history[k]);
       nbr_.history[km] = -nbr_.history[k];
       entry_force_[k] = cf.f;
       entry_force_[km] = -cf.f;
@@ -271,6 +320,15 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const Spin<Dim> tq = cross(nrm, cf.f_t);
       entry_torque_[k] = ai * tq;
       entry_torque_[km] = aj * tq;
+      if constexpr (Law::kRolling) {
+        // The rolling torque acts on i and, reversed, on j (Ai et al. 2011 Eq. 11: w_r = omega_i - omega_j).
+        Spin<Dim> unused{};
+        Spin<Dim>& m_k = Law::kRollingHistory ? roll[k] : unused;
+        const Spin<Dim> tr = Law::template rolling_torque<Dim>(pp, kin, cf, wi - spin(j), dt, m_k);
+        if constexpr (Law::kRollingHistory) roll[km] = -roll[k];
+        entry_torque_[k] += tr;
+        entry_torque_[km] -= tr;
+      }
       max_ov = std::max(max_ov, overlap);
       // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
       // no longer a small perturbation of two touching spheres.
@@ -281,6 +339,26 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   for (int w = 0; w < 2 * Dim; ++w) wall_on[static_cast<std::size_t>(w)] = walls.enabled(w / 2, w % 2);
   const AxisPtrs<2 * Dim * Dim> WX =
       axis_ptrs<2 * Dim * Dim>([&](int q) -> auto& { return p_.wall_xi[static_cast<std::size_t>(q)]; }, 2 * Dim * Dim);
+  const AxisPtrs<2 * Dim * NS> WR =
+      axis_ptrs<2 * Dim * NS>([&](int q) -> auto& { return p_.wall_roll[static_cast<std::size_t>(q)]; }, 2 * Dim * NS);
+  auto wall_roll_spring = [&](int w, std::size_t i) -> Spin<Dim> {
+    if constexpr (Dim == 2) {
+      return WR.a[static_cast<std::size_t>(w)][i];
+    } else {
+      const std::size_t q = static_cast<std::size_t>(3 * w);
+      return Vec3{WR.a[q][i], WR.a[q + 1][i], WR.a[q + 2][i]};
+    }
+  };
+  auto set_wall_roll_spring = [&](int w, std::size_t i, Spin<Dim> m) {
+    if constexpr (Dim == 2) {
+      WR.a[static_cast<std::size_t>(w)][i] = m;
+    } else {
+      const std::size_t q = static_cast<std::size_t>(3 * w);
+      WR.a[q][i] = m.x;
+      WR.a[q + 1][i] = m.y;
+      WR.a[q + 2][i] = m.z;
+    }
+  };
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
 #pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
@@ -309,6 +387,9 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
         if (held) {
           for (int c = 0; c < Dim; ++c) spring[c][i] = 0.0;
         }
+        if constexpr (Law::kRollingHistory) {
+          for (int c = 0; c < NS; ++c) WR.a[static_cast<std::size_t>(w * NS + c)][i] = 0.0;
+        }
         return;
       }
       Vec<Dim> nrm{};
@@ -319,10 +400,22 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       // Velocity, spin and species are read only here, by the few particles touching a wall.
       const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
       const ContactParams& wp = wall_params_[Mixed ? static_cast<std::size_t>(p_.species[i]) : 0];
-      const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
+      ContactKinematics<Dim> kin{nrm, overlap, v_rel};
+      if constexpr (Law::kNeedsPairSize) {
+        kin.r_eff = ri;
+        kin.m_eff = M[i];
+        if constexpr (Law::kRolling) kin.i_roll = roll_inertia(i);
+      }
+      const ContactForce<Dim> cf = Law::template force<Dim>(wp, kin, dt, xi_w);
       for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
       f += cf.f;
       torque += lever * cross(nrm, cf.f_t);
+      if constexpr (Law::kRolling) {
+        Spin<Dim> m_k{};
+        if constexpr (Law::kRollingHistory) m_k = wall_roll_spring(w, i);
+        torque += Law::template rolling_torque<Dim>(wp, kin, cf, spin(i), dt, m_k);
+        if constexpr (Law::kRollingHistory) set_wall_roll_spring(w, i, m_k);
+      }
       max_ov = std::max(max_ov, overlap);
       if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
     };
@@ -453,6 +546,8 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   list.partner.reserve(nbr_.partner.size());
   list.partner_id.reserve(nbr_.partner_id.size());
   list.history.reserve(nbr_.history.size());
+  const bool rolling = nbr_.rolling.size() == nbr_.history.size() && !nbr_.rolling.empty();
+  if (rolling) list.rolling.reserve(nbr_.rolling.size());
   if (nbr_.offset.size() == n + 1) {
     for (std::size_t k = 0; k < keep.size(); ++k) {
       const std::size_t i = keep[k];
@@ -462,6 +557,7 @@ std::size_t DemSolver<Dim>::remove_escaped() {
         list.partner.push_back(static_cast<std::uint32_t>(j));
         list.partner_id.push_back(nbr_.partner_id[q]);
         list.history.push_back(nbr_.history[q]);
+        if (rolling) list.rolling.push_back(nbr_.rolling[q]);
       }
       list.offset[k + 1] = list.partner.size();
     }

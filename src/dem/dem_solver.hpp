@@ -1,5 +1,6 @@
 #pragma once
-// The soft-sphere DEM of the paper's section 2.1: contact forces (Eqs. 2-8), torques (Eq. 9) and the explicit
+// The soft-sphere DEM of the paper's section 2.1: contact forces (Eqs. 2-8, or the law the case composes,
+// contact_law.hpp), torques (Eq. 9) and the explicit
 // update of Eq. 10, with plane walls on both sides of every axis and a Verlet neighbour list carrying the contact
 // history, keyed by particle ids, across rebuilds. One code for 2D discs of sphere mass (spin about z) and 3D
 // spheres (spin vector); instantiated for Dim = 2 and 3.
@@ -120,7 +121,7 @@ class DemSolver {
  private:
   DemStepInfo advance(double h);
   double compute_forces(double dt);
-  template <bool Mixed>
+  template <class Law, bool Mixed>
   double compute_forces_of(double dt);
   void rebuild();
   void link_mirrors();
@@ -159,6 +160,7 @@ class DemSolver {
   std::vector<std::size_t> old_offset_;
   std::vector<std::int64_t> old_partner_id_;
   std::vector<Vec<Dim>> old_history_;
+  std::vector<Spin<Dim>> old_rolling_;
   NeighborScratch scratch_;  ///< the list build's per-thread buffers, kept so a rebuild does not fault pages in
   // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
   // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.

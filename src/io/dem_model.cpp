@@ -139,6 +139,20 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
         f.write(std::string("dem/nbr_xi_") + kAxis[a], h);
       }
     }
+    // Rolling springs (laws with one): one array per spin component, absent when the law has none.
+    if (!s.neighbors.rolling.empty()) {
+      std::vector<double> h(s.neighbors.rolling.size());
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            h[k] = s.neighbors.rolling[k];
+          } else {
+            h[k] = s.neighbors.rolling[k][c];
+          }
+        }
+        f.write(fmt::format("dem/nbr_roll_{}", c), h);
+      }
+    }
     f.set_attribute("dem", "dimension", static_cast<std::int64_t>(Dim));
     f.set_attribute("dem", "time", s.time);
     f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
@@ -186,7 +200,10 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
     p.for_each_array([&](const std::string& name, auto& a, ArrayRole role) {
       using T = typename std::decay_t<decltype(a)>::value_type;
       if constexpr (std::is_same_v<T, double>) {
-        if (role == ArrayRole::State && !(flat_walls && name.starts_with("wall_xi_"))) read(name, a);
+        // Checkpoints written before the rolling laws have no wall rolling springs: they start released.
+        const bool optional = name.starts_with("wall_roll_") && !f.has("dem/" + name);
+        if (optional) a.assign(id.size(), 0.0);
+        if (role == ArrayRole::State && !(flat_walls && name.starts_with("wall_xi_")) && !optional) read(name, a);
       }
     });
     for (std::size_t a = 0; a < s.build.size(); ++a) read(std::string(kAxis[a]) + "_build", s.build[a]);
@@ -214,6 +231,22 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
       }
       s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
       for (int a = 0; a < Dim; ++a) s.neighbors.history[k][a] = hist[static_cast<std::size_t>(a)][k];
+    }
+    if (f.has("dem/nbr_roll_0")) {
+      s.neighbors.rolling.resize(partner.size());
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        const std::vector<double> h = f.read_double(fmt::format("dem/nbr_roll_{}", c));
+        if (h.size() != partner.size()) {
+          throw_input_error(fmt::format("{}: the rolling contact history is inconsistent", f.path().string()));
+        }
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            s.neighbors.rolling[k] = h[k];
+          } else {
+            s.neighbors.rolling[k][c] = h[k];
+          }
+        }
+      }
     }
     if constexpr (Dim == 2) {
       if (flat_walls) {
