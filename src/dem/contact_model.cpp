@@ -37,7 +37,7 @@ double hertz_tsuji_restitution(double alpha) {
     const double xp = std::max(x, 0.0);
     return -xp * std::sqrt(xp) - c * std::sqrt(std::sqrt(xp)) * v;
   };
-  constexpr double h = 3e-5;
+  constexpr double h = 1e-4;
   double x = 0.0, v = 1.0;
   for (int k = 0; k < 4000000; ++k) {
     const double k1x = v, k1v = acc(x, v);
@@ -61,7 +61,7 @@ double tsuji_alpha_for_hertz(double e) {
   if (e >= 1.0) return 0.0;
   double lo = 0.0, hi = 1.0;
   while (hertz_tsuji_restitution(hi) > e && hi < 1e3) hi *= 2.0;
-  for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
+  for (int it = 0; it < 60 && hi - lo > 1e-10; ++it) {
     const double mid = 0.5 * (lo + hi);
     if (hertz_tsuji_restitution(mid) > e) lo = mid; else hi = mid;
   }

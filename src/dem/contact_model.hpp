@@ -66,9 +66,9 @@ double effective_shear_modulus(const ElasticMaterial& a, const ElasticMaterial& 
 
 /// Restitution of a Hertz impact with Tsuji damping eta_n = alpha sqrt(m* dF/d delta): the dimensionless
 /// equation X'' = -X^(3/2) - alpha sqrt(3/2) X^(1/4) X' (X = delta / L, L = (m* v^2 / K)^(2/5), K = (4/3) E*
-/// sqrt(R*)) has no speed left, so e depends on alpha alone. Integrated by RK4 (10^5 steps per contact).
+/// sqrt(R*)) has no speed left, so e depends on alpha alone. Integrated by RK4 (3 10^4 steps per contact).
 double hertz_tsuji_restitution(double alpha);
-/// The alpha that gives restitution e (bisection on hertz_tsuji_restitution to 1e-12).
+/// The alpha that gives restitution e (bisection on hertz_tsuji_restitution to 1e-10).
 double tsuji_alpha_for_hertz(double e);
 /// The alpha of Tsuji damping on a linear spring: Eq. 8 written as eta = alpha sqrt(m* k).
 double tsuji_alpha_for_linear(double e);

@@ -63,6 +63,59 @@ double dem_packed_bed_time_step(const DemConfig& dem) {
 
 namespace {
 
+// The composed contact law (docs/model.md, contact laws): one name per part, the elastic constants of Hertz and
+// Mindlin per species and for the walls; returns the default rolling coefficients of pairs and walls (the pair
+// tables may override the first). The defaults are the paper's law.
+std::pair<double, double> read_contact_law(CaseReader& r, DemConfig& dem) {
+  using R = CaseReader;
+  ContactModelConfig& m = dem.contact;
+  const auto index_of = [](const std::vector<std::string>& names, const std::string& v) {
+    return static_cast<int>(std::find(names.begin(), names.end(), v) - names.begin());
+  };
+  m.normal = static_cast<NormalModel>(index_of(normal_model_names(), r.string("contact.normal", "linear",
+      "normal spring: linear (the paper's Eq. 2, contact.stiffness) or hertz (Hertz 1882, from the species' "
+      "Young's modulus and Poisson ratio)", normal_model_names())));
+  const bool hertz = m.normal == NormalModel::Hertz;
+  m.damping = static_cast<DampingModel>(index_of(damping_model_names(), r.string("contact.damping",
+      hertz ? "tsuji" : "paper", "normal and tangential dashpot from the restitution: paper (Eq. 8, constant eta; "
+      "linear spring only) or tsuji (Tsuji, Tanaka & Ishida 1992: eta = alpha sqrt(m* dF/d delta); restitution "
+      "independent of the impact speed)", damping_model_names())));
+  r.describe_default("contact.damping", "paper; tsuji with contact.normal = \"hertz\"");
+  if (hertz && m.damping == DampingModel::Paper) {
+    r.fail("contact.damping", "\"paper\" is the constant dashpot of the linear spring (Eq. 8); a Hertz spring "
+           "takes \"tsuji\", whose restitution is the input at every impact speed");
+  }
+  m.tangential = static_cast<TangentialModel>(index_of(tangential_model_names(), r.string("contact.tangential",
+      hertz ? "mindlin" : "linear", "tangential spring: linear (k_t = contact.tangential_stiffness_ratio x "
+      "contact.stiffness) or mindlin (Mindlin 1949: k_t = 8 G* sqrt(R* delta))", tangential_model_names())));
+  r.describe_default("contact.tangential", "linear; mindlin with contact.normal = \"hertz\"");
+  m.rolling = static_cast<RollingModel>(index_of(rolling_model_names(), r.string("contact.rolling", "none",
+      "rolling resistance (Ai et al. 2011): none, constant (model A, torque mu_r R* F_n against the rolling) or "
+      "epsd (model C, elastic-plastic spring-dashpot)", rolling_model_names())));
+  const double mu_r = r.number("contact.rolling_friction", 0.0, "", "rolling resistance coefficient mu_r of "
+                               "particle-particle contacts", R::non_negative());
+  const double mu_rw = r.number("contact.wall_rolling_friction", mu_r, "", "rolling resistance coefficient of "
+                                "particle-wall contacts", R::non_negative());
+  m.rolling_damping = r.number("contact.rolling_damping", 0.3, "", "viscous damping ratio eta_r of the epsd "
+                               "rolling model (Ai et al. 2011 Eq. 16)", R::non_negative());
+  m.impact_speed = r.number("contact.impact_speed", 1.0, "m/s", "impact speed at which a Hertz contact's duration "
+                            "is judged (default time step and its check; t_c ~ v^(-1/5))", R::positive());
+  m.wall_material.youngs_modulus = r.number("contact.wall_youngs_modulus", 7e10, "Pa", "Young's modulus of the walls "
+                                            "(Hertz, Mindlin)", R::positive());
+  m.wall_material.poisson_ratio = r.number("contact.wall_poisson_ratio", 0.25, "", "Poisson ratio of the walls",
+                                           R::Range{-1.0, 0.5, true, false});
+  const std::size_t ns = dem.n_species();
+  dem.material.assign(ns, ElasticMaterial{});
+  for (std::size_t s = 0; s < ns; ++s) {
+    const std::string p = fmt::format("species[{}].", s);
+    dem.material[s].youngs_modulus = r.number(p + "youngs_modulus", 7e10, "Pa", "Young's modulus of the particles "
+                                              "(Hertz, Mindlin)", R::positive());
+    dem.material[s].poisson_ratio = r.number(p + "poisson_ratio", 0.25, "", "Poisson ratio of the particles",
+                                             R::Range{-1.0, 0.5, true, false});
+  }
+  return {mu_r, mu_rw};
+}
+
 void read_case(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   // [case]
@@ -154,15 +207,18 @@ void read_case(CaseReader& r, CaseConfig& c) {
   const double mu_pp = r.number("contact.friction", 0.3, "", "particle-particle friction mu_f (Eq. 6)", R::non_negative());
   const double e_pw = r.number("contact.wall_restitution", e_pp, "", "particle-wall restitution", restitution);
   const double mu_pw = r.number("contact.wall_friction", mu_pp, "", "particle-wall friction", R::non_negative());
-  c.dem.pair.assign(ns * ns, InteractionParams{e_pp, mu_pp});
-  c.dem.wall.assign(ns, InteractionParams{e_pw, mu_pw});
+  const auto [mu_r, mu_rw] = read_contact_law(r, c.dem);
+  c.dem.pair.assign(ns * ns, InteractionParams{e_pp, mu_pp, mu_r});
+  c.dem.wall.assign(ns, InteractionParams{e_pw, mu_pw, mu_rw});
   const std::size_t npairs = r.table_count("contact.pair", "restitution and friction of one species pair");
   for (std::size_t k = 0; k < npairs; ++k) {
     const std::string p = fmt::format("contact.pair[{}].", k);
     const auto a = r.integer(p + "species_a", 0, "first species index", R::between(0, static_cast<double>(ns - 1)));
     const auto b = r.integer(p + "species_b", 0, "second species index", R::between(0, static_cast<double>(ns - 1)));
     const InteractionParams ip{r.number(p + "restitution", e_pp, "", "restitution of the pair", restitution),
-                               r.number(p + "friction", mu_pp, "", "friction of the pair", R::non_negative())};
+                               r.number(p + "friction", mu_pp, "", "friction of the pair", R::non_negative()),
+                               r.number(p + "rolling_friction", mu_r, "", "rolling resistance coefficient of the "
+                                        "pair", R::non_negative())};
     c.dem.pair[static_cast<std::size_t>(a) * ns + static_cast<std::size_t>(b)] = ip;
     c.dem.pair[static_cast<std::size_t>(b) * ns + static_cast<std::size_t>(a)] = ip;
   }

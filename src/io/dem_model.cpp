@@ -72,6 +72,26 @@ std::string settled_bed_record(const CaseConfig& c) {
     line(fmt::format("contact.wall({}).restitution", k), d.wall[k].restitution);
     line(fmt::format("contact.wall({}).friction", k), d.wall[k].friction);
   }
+  // The composed law's parts and parameters, only where it is not the paper's (so that the paper's records, and
+  // the beds cached with them, stay valid).
+  const ContactModelConfig& m = d.contact;
+  if (m.normal != NormalModel::Linear || m.damping != DampingModel::Paper || m.tangential != TangentialModel::Linear ||
+      m.rolling != RollingModel::None) {
+    s += fmt::format("contact.normal = {}\ncontact.damping = {}\ncontact.tangential = {}\ncontact.rolling = {}\n",
+                     to_string(m.normal), to_string(m.damping), to_string(m.tangential), to_string(m.rolling));
+    line("contact.rolling_damping", m.rolling_damping);
+    line("contact.wall_youngs_modulus", m.wall_material.youngs_modulus);
+    line("contact.wall_poisson_ratio", m.wall_material.poisson_ratio);
+    for (std::size_t k = 0; k < d.material.size(); ++k) {
+      line(fmt::format("species[{}].youngs_modulus", k), d.material[k].youngs_modulus);
+      line(fmt::format("species[{}].poisson_ratio", k), d.material[k].poisson_ratio);
+    }
+    for (std::size_t k = 0; k < d.pair.size(); ++k) {
+      line(fmt::format("contact.pair({},{}).rolling_friction", k / d.species.size(), k % d.species.size()),
+           d.pair[k].rolling_friction);
+    }
+    for (std::size_t k = 0; k < d.wall.size(); ++k) line(fmt::format("contact.wall({}).rolling_friction", k), d.wall[k].rolling_friction);
+  }
   line("domain.width", d.domain.width);
   line("domain.gravity.x", d.domain.gravity.x);
   line("domain.gravity.y", d.domain.gravity.y);
