@@ -18,14 +18,12 @@ double dem_stable_time_step(const DemConfig& dem) {
   double dt = 1e300;
   // A linear contact integrated by Eq. 10 (symplectic Euler) is stable for omega dt < 2 (sqrt(1 + zeta^2) - zeta).
   // Two modes per contact: normal (k_n on the reduced mass) and tangential, where the contact point also moves
-  // by rotation: 1/m_t = 1/m1 + 1/m2 + r1^2/I1 + r2^2/I2 (7/m for equal spheres).
-  auto limit = [&](double inv_m, double inv_m_t, double e) {
-    const double m_eff = 1.0 / inv_m;
-    const double eta = damping_from_restitution(m_eff, dem.stiffness, e);
-    for (const auto& [k, inv] : {std::pair{dem.stiffness, inv_m},
-                                 std::pair{dem.stiffness * dem.tangential_stiffness_ratio, inv_m_t}}) {
+  // by rotation: 1/m_t = 1/m1 + 1/m2 + r1^2/I1 + r2^2/I2 (7/m for equal spheres). A Hertz contact is judged by
+  // its stiffest moment, the tangent stiffness at the largest overlap (equivalent_contact).
+  auto limit = [&](double inv_m, double inv_m_t, const EquivalentContact& ec) {
+    for (const auto& [k, inv] : {std::pair{ec.k_n, inv_m}, std::pair{ec.k_t, inv_m_t}}) {
       const double w0 = std::sqrt(k * inv);
-      const double zeta = 0.5 * eta * inv / w0;
+      const double zeta = 0.5 * ec.eta_n * inv / w0;
       dt = std::min(dt, 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta));
     }
   };
@@ -36,9 +34,9 @@ double dem_stable_time_step(const DemConfig& dem) {
       const Species& sb = dem.species[b];
       const double rot_b = sb.radius() * sb.radius() / sb.inertia();
       limit(1.0 / sa.mass() + 1.0 / sb.mass(), 1.0 / sa.mass() + 1.0 / sb.mass() + rot_a + rot_b,
-            dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution);
+            equivalent_contact(dem, static_cast<int>(a), static_cast<int>(b)));
     }
-    limit(1.0 / sa.mass(), 1.0 / sa.mass() + rot_a, dem.wall[a].restitution);
+    limit(1.0 / sa.mass(), 1.0 / sa.mass() + rot_a, equivalent_contact(dem, static_cast<int>(a), -1));
   }
   return dt;
 }
@@ -48,14 +46,12 @@ double dem_packed_bed_time_step(const DemConfig& dem) {
   double dt = 1e300;
   for (std::size_t a = 0; a < dem.n_species(); ++a) {
     const Species& s = dem.species[a];
-    const double m_eff = 0.5 * s.mass();
-    const double eta = damping_from_restitution(m_eff, dem.stiffness, dem.pair_params(static_cast<int>(a),
-                                                                                       static_cast<int>(a)).restitution);
+    const EquivalentContact ec = equivalent_contact(dem, static_cast<int>(a), static_cast<int>(a));
     // The spin block of the stiffness is k_t r^2 / I times the contact graph's signless Laplacian (top eigenvalue
     // about 2 Z); the single dashpot (Eq. 3) has the same structure, hence zeta from the same factor.
     const double g = 2.0 * z * s.radius() * s.radius() / s.inertia();
-    const double w0 = std::sqrt(dem.stiffness * dem.tangential_stiffness_ratio * g);
-    const double zeta = 0.5 * eta * g / w0;
+    const double w0 = std::sqrt(ec.k_t * g);
+    const double zeta = 0.5 * ec.eta_n * g / w0;
     dt = std::min(dt, 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta));
   }
   return dt;
@@ -104,15 +100,6 @@ std::pair<double, double> read_contact_law(CaseReader& r, DemConfig& dem) {
                                             "(Hertz, Mindlin)", R::positive());
   m.wall_material.poisson_ratio = r.number("contact.wall_poisson_ratio", 0.25, "", "Poisson ratio of the walls",
                                            R::Range{-1.0, 0.5, true, false});
-  const std::size_t ns = dem.n_species();
-  dem.material.assign(ns, ElasticMaterial{});
-  for (std::size_t s = 0; s < ns; ++s) {
-    const std::string p = fmt::format("species[{}].", s);
-    dem.material[s].youngs_modulus = r.number(p + "youngs_modulus", 7e10, "Pa", "Young's modulus of the particles "
-                                              "(Hertz, Mindlin)", R::positive());
-    dem.material[s].poisson_ratio = r.number(p + "poisson_ratio", 0.25, "", "Poisson ratio of the particles",
-                                             R::Range{-1.0, 0.5, true, false});
-  }
   return {mu_r, mu_rw};
 }
 
@@ -179,6 +166,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   // [[species]]
   const std::size_t ns = std::max<std::size_t>(1, r.table_count("species", "particle species; default: one species"));
   c.dem.species.assign(ns, Species{});
+  c.dem.material.assign(ns, ElasticMaterial{});
   std::vector<double> fraction(ns, 1.0 / static_cast<double>(ns));
   for (std::size_t s = 0; s < ns; ++s) {
     const std::string p = fmt::format("species[{}].", s);
@@ -186,6 +174,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
     c.dem.species[s].density = r.number(p + "density", 2700.0, "kg/m^3", "particle density", R::positive());
     fraction[s] = r.number(p + "fraction", 1.0 / static_cast<double>(ns), "",
                            "number fraction of the randomly placed particles", R::between(0.0, 1.0));
+    // Elastic constants: read by the Hertz and Mindlin contact laws only (contact.normal, contact.tangential).
+    c.dem.material[s].youngs_modulus = r.number(p + "youngs_modulus", 7e10, "Pa", "Young's modulus of the particles "
+                                                "(Hertz, Mindlin)", R::positive());
+    c.dem.material[s].poisson_ratio = r.number(p + "poisson_ratio", 0.25, "", "Poisson ratio of the particles",
+                                               R::Range{-1.0, 0.5, true, false});
   }
   double fsum = 0.0;
   for (double f : fraction) fsum += f;
@@ -245,6 +238,19 @@ void read_case(CaseReader& r, CaseConfig& c) {
   if (c.dem.dt > dt_max) {
     r.fail("dem.time_step", fmt::format("{} s is above the stability limit of the stiffest contact; the largest "
                                         "stable time step is {:.4g} s", c.dem.dt, dt_max));
+  }
+  if (c.dem.contact.normal == NormalModel::Hertz) {
+    // The Hertz contact shortens with the impact speed (t_c ~ v^(-1/5)): judged at contact.impact_speed.
+    const StiffestContact sc = stiffest_contact(c.dem);
+    if (c.dem.dt > sc.t_c / kStepsPerContact) {
+      c.notes.push_back(fmt::format("dem.time_step = {:g} s is above t_c / {:g} = {:.3g} s of the Hertz contact of "
+                                    "{} at contact.impact_speed = {:g} m/s (t_c = {:.3g} s): too few steps per "
+                                    "contact for its restitution and peak force",
+                                    c.dem.dt, kStepsPerContact, sc.t_c / kStepsPerContact,
+                                    sc.b < 0 ? fmt::format("species {} with a wall", sc.a)
+                                             : fmt::format("species {} with species {}", sc.a, sc.b),
+                                    c.dem.contact.impact_speed, sc.t_c));
+    }
   }
   if (const double dt_bed = dem_packed_bed_time_step(c.dem); c.dem.dt > dt_bed && c.dem.dt <= dt_max) {
     c.notes.push_back(fmt::format("dem.time_step = {:g} s is above {:.3g} s, the limit of the spin mode of a packed "

@@ -9,7 +9,7 @@
 //    triangle that is steeper than any repose angle here: its flanks fail and relax, in 1 s, to rest at the angle
 //    of repose, which rises with the rolling coefficient (Zhou, Wright, Yang, Xu & Yu 1999, Physica A 269, 536:
 //    the angle grows with mu_r). Model C, mu_r = 0, 0.05, 0.2, measured 1.2, 7.6, 18.8 degrees; each angle must
-//    exceed the previous by 3 degrees (the fit of one heap's flanks scatters by about 1 degree between seeds).
+//    exceed the previous by 3 degrees, well above the resolution of the flank fit (columns of 1.25 d).
 //    Discs that roll freely (mu_r = 0) spread into a near-flat layer: rolling resistance is what holds a 2D heap.
 #include <gtest/gtest.h>
 
