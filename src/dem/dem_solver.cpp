@@ -108,7 +108,6 @@ DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move
     }
   }
   for (auto& w : p_.wall_xi) std::fill(w.begin(), w.end(), 0.0);
-  for (auto& w : p_.wall_roll) std::fill(w.begin(), w.end(), 0.0);
 }
 
 template <int Dim>
@@ -132,6 +131,7 @@ void DemSolver<Dim>::rebuild() {
   if (sorted) {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
+    permute_wall_roll(order);
   }
   build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_);
   if (rolling_history) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
@@ -164,6 +164,17 @@ void DemSolver<Dim>::rebuild() {
   for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   need_rebuild_ = false;
   ++rebuilds_;
+}
+
+template <int Dim>
+void DemSolver<Dim>::permute_wall_roll(const std::vector<std::size_t>& order) {
+  constexpr std::size_t nw = 2 * Dim;
+  if (wall_roll_.empty()) return;
+  std::vector<Spin<Dim>> next(order.size() * nw);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    for (std::size_t w = 0; w < nw; ++w) next[k * nw + w] = wall_roll_[order[k] * nw + w];
+  }
+  wall_roll_.swap(next);
 }
 
 template <int Dim>
@@ -223,6 +234,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   if (Law::kRollingHistory && nbr_.rolling.size() != nbr_.entries()) {
     nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});  // a list restored from a run without rolling springs
   }
+  if (Law::kRollingHistory && wall_roll_.size() != n * 2 * Dim) wall_roll_.assign(n * 2 * Dim, Spin<Dim>{});
   const AxisPtrs<Dim> X = axis_ptrs<Dim>([&](int a) -> auto& { return p_.coord(a); }, Dim);
   const AxisPtrs<Dim> V = axis_ptrs<Dim>([&](int a) -> auto& { return p_.velocity(a); }, Dim);
   const AxisPtrs<Dim> F = axis_ptrs<Dim>([&](int a) -> auto& { return p_.force(a); }, Dim);
@@ -339,26 +351,6 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   for (int w = 0; w < 2 * Dim; ++w) wall_on[static_cast<std::size_t>(w)] = walls.enabled(w / 2, w % 2);
   const AxisPtrs<2 * Dim * Dim> WX =
       axis_ptrs<2 * Dim * Dim>([&](int q) -> auto& { return p_.wall_xi[static_cast<std::size_t>(q)]; }, 2 * Dim * Dim);
-  const AxisPtrs<2 * Dim * NS> WR =
-      axis_ptrs<2 * Dim * NS>([&](int q) -> auto& { return p_.wall_roll[static_cast<std::size_t>(q)]; }, 2 * Dim * NS);
-  auto wall_roll_spring = [&](int w, std::size_t i) -> Spin<Dim> {
-    if constexpr (Dim == 2) {
-      return WR.a[static_cast<std::size_t>(w)][i];
-    } else {
-      const std::size_t q = static_cast<std::size_t>(3 * w);
-      return Vec3{WR.a[q][i], WR.a[q + 1][i], WR.a[q + 2][i]};
-    }
-  };
-  auto set_wall_roll_spring = [&](int w, std::size_t i, Spin<Dim> m) {
-    if constexpr (Dim == 2) {
-      WR.a[static_cast<std::size_t>(w)][i] = m;
-    } else {
-      const std::size_t q = static_cast<std::size_t>(3 * w);
-      WR.a[q][i] = m.x;
-      WR.a[q + 1][i] = m.y;
-      WR.a[q + 2][i] = m.z;
-    }
-  };
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
 #pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
@@ -387,9 +379,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
         if (held) {
           for (int c = 0; c < Dim; ++c) spring[c][i] = 0.0;
         }
-        if constexpr (Law::kRollingHistory) {
-          for (int c = 0; c < NS; ++c) WR.a[static_cast<std::size_t>(w * NS + c)][i] = 0.0;
-        }
+        if constexpr (Law::kRollingHistory) wall_roll_[i * (2 * Dim) + w] = Spin<Dim>{};
         return;
       }
       Vec<Dim> nrm{};
@@ -411,10 +401,9 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       f += cf.f;
       torque += lever * cross(nrm, cf.f_t);
       if constexpr (Law::kRolling) {
-        Spin<Dim> m_k{};
-        if constexpr (Law::kRollingHistory) m_k = wall_roll_spring(w, i);
+        Spin<Dim> unused{};
+        Spin<Dim>& m_k = Law::kRollingHistory ? wall_roll_[i * (2 * Dim) + w] : unused;
         torque += Law::template rolling_torque<Dim>(wp, kin, cf, spin(i), dt, m_k);
-        if constexpr (Law::kRollingHistory) set_wall_roll_spring(w, i, m_k);
       }
       max_ov = std::max(max_ov, overlap);
       if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
@@ -566,6 +555,7 @@ std::size_t DemSolver<Dim>::remove_escaped() {
     need_rebuild_ = true;
   }
   p_.permute(keep);
+  permute_wall_roll(keep);
   for (int a = 0; a < Dim; ++a) {
     std::vector<double>& b = build_[static_cast<std::size_t>(a)];
     std::vector<double> nb(keep.size());
@@ -630,7 +620,7 @@ double DemSolver<Dim>::kinetic_energy() const {
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
   return State{p_,           nbr_,           build_,        time_,         steps_,       rebuilds_,
-               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
+               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, wall_roll_};
 }
 
 template <int Dim>
@@ -645,6 +635,7 @@ void DemSolver<Dim>::restore(State s) {
   steps_origin_ = s.steps_origin;
   removed_count_ = s.removed_count;
   removed_mass_ = s.removed_mass;
+  wall_roll_ = std::move(s.wall_roll);
   need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
   if (nbr_.partner_id.size() != nbr_.partner.size()) {
     // A list given by slots only: its ids are those of the partners in this storage order.

@@ -92,6 +92,7 @@ class DemSolver {
     std::uint64_t steps_origin = 0;
     std::uint64_t removed_count = 0;
     double removed_mass = 0.0;
+    std::vector<Spin<Dim>> wall_roll;  ///< rolling springs against the walls (rolling-spring laws only)
   };
   State state() const;
   /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
@@ -107,10 +108,11 @@ class DemSolver {
     std::uint64_t steps_origin;
     std::uint64_t removed_count;
     double removed_mass;
+    const std::vector<Spin<Dim>>& wall_roll;
   };
   StateView view() const {
     return {p_,        nbr_,          build_,       time_,          steps_,       rebuilds_,
-            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
+            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, wall_roll_};
   }
   void restore(State s);
   const List& neighbors() const { return nbr_; }
@@ -161,6 +163,11 @@ class DemSolver {
   std::vector<std::int64_t> old_partner_id_;
   std::vector<Vec<Dim>> old_history_;
   std::vector<Spin<Dim>> old_rolling_;
+  /// Rolling spring of particle slot i against wall w at wall_roll_[2 Dim i + w], in the store's order (laws with
+  /// a rolling spring only, else empty; kept here so that the paper's law does not carry it per particle).
+  std::vector<Spin<Dim>> wall_roll_;
+  /// Reorder wall_roll_ as ParticleStore::permute reorders the particles.
+  void permute_wall_roll(const std::vector<std::size_t>& order);
   NeighborScratch scratch_;  ///< the list build's per-thread buffers, kept so a rebuild does not fault pages in
   // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
   // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.

@@ -107,9 +107,6 @@ struct ParticleStore : ParticleAxes<Dim> {
   /// Tangential spring against each plane wall, component c of wall w at wall_xi[w * Dim + c], m; a wall the
   /// particle does not touch holds zeros. Per particle, so it is carried by the particle's id.
   std::array<std::vector<double>, 2 * Dim * Dim> wall_xi;
-  /// Rolling spring torque against each plane wall (rolling laws with a spring), component c of wall w at
-  /// wall_roll[w * kSpinComponents + c], N m; zeros otherwise.
-  std::array<std::vector<double>, 2 * Dim * kSpinComponents<Dim>> wall_roll;
 
   std::size_t size() const { return id.size(); }
 
@@ -157,12 +154,6 @@ struct ParticleStore : ParticleAxes<Dim> {
       for (int c = 0; c < Dim; ++c) {
         f(std::string("wall_xi_") + kSide[w] + "_" + kAxis[c], wall_xi[static_cast<std::size_t>(w * Dim + c)],
           ArrayRole::State);
-      }
-    }
-    for (int w = 0; w < 2 * Dim; ++w) {
-      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        f(std::string("wall_roll_") + kSide[w] + (Dim == 2 ? std::string() : std::string("_") + kAxis[c]),
-          wall_roll[static_cast<std::size_t>(w * kSpinComponents<Dim> + c)], ArrayRole::State);
       }
     }
   }

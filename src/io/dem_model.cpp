@@ -173,6 +173,20 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
         f.write(fmt::format("dem/nbr_roll_{}", c), h);
       }
     }
+    // Rolling springs against the walls, 2 Dim per particle in storage order, likewise absent without them.
+    if (!s.wall_roll.empty()) {
+      std::vector<double> h(s.wall_roll.size());
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            h[k] = s.wall_roll[k];
+          } else {
+            h[k] = s.wall_roll[k][c];
+          }
+        }
+        f.write(fmt::format("dem/wall_roll_{}", c), h);
+      }
+    }
     f.set_attribute("dem", "dimension", static_cast<std::int64_t>(Dim));
     f.set_attribute("dem", "time", s.time);
     f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
@@ -220,10 +234,7 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
     p.for_each_array([&](const std::string& name, auto& a, ArrayRole role) {
       using T = typename std::decay_t<decltype(a)>::value_type;
       if constexpr (std::is_same_v<T, double>) {
-        // Checkpoints written before the rolling laws have no wall rolling springs: they start released.
-        const bool optional = name.starts_with("wall_roll_") && !f.has("dem/" + name);
-        if (optional) a.assign(id.size(), 0.0);
-        if (role == ArrayRole::State && !(flat_walls && name.starts_with("wall_xi_")) && !optional) read(name, a);
+        if (role == ArrayRole::State && !(flat_walls && name.starts_with("wall_xi_"))) read(name, a);
       }
     });
     for (std::size_t a = 0; a < s.build.size(); ++a) read(std::string(kAxis[a]) + "_build", s.build[a]);
@@ -251,6 +262,22 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
       }
       s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
       for (int a = 0; a < Dim; ++a) s.neighbors.history[k][a] = hist[static_cast<std::size_t>(a)][k];
+    }
+    if (f.has("dem/wall_roll_0")) {
+      s.wall_roll.resize(2 * Dim * n);
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        const std::vector<double> h = f.read_double(fmt::format("dem/wall_roll_{}", c));
+        if (h.size() != s.wall_roll.size()) {
+          throw_input_error(fmt::format("{}: the rolling wall springs are inconsistent", f.path().string()));
+        }
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            s.wall_roll[k] = h[k];
+          } else {
+            s.wall_roll[k][c] = h[k];
+          }
+        }
+      }
     }
     if (f.has("dem/nbr_roll_0")) {
       s.neighbors.rolling.resize(partner.size());
