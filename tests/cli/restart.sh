@@ -115,7 +115,7 @@ TOML
 restart_case dem "$WORK/dem.toml" 0.08
 # The composed contact laws carry more history: Hertz-Mindlin with the elastic-plastic rolling spring (its springs
 # id-keyed in the neighbour list and per wall in the particle store, both in the checkpoint). A soft material
-# (E = 10 MPa) keeps t_c / 20 near 2.5e-5 s.
+# (E = 10 MPa) keeps t_c / 20 near 2e-5 s.
 restart_case dem-rolling "$WORK/dem.toml" 0.04 --set contact.normal=hertz --set 'species=[{youngs_modulus = 1e7}]' \
   --set contact.wall_youngs_modulus=1e7 --set contact.rolling=epsd --set contact.rolling_friction=0.1
 # Output times are the scheduled instants k * interval exactly, not a sum of 2e-4 s steps (0.019000000000000003):
