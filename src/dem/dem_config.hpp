@@ -1,5 +1,6 @@
 #pragma once
 // Configuration of the discrete element model; defaults are the paper's Table 1 (DEM column).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -7,14 +8,17 @@
 #include <vector>
 
 #include "core/domain.hpp"
+#include "dem/contact_model.hpp"
 #include "dem/particle_store.hpp"
 
 namespace fluidbed {
 
-/// Restitution and friction of one kind of contact (paper, Table 3 item 3: per pair, walls separate).
+/// Restitution and friction of one kind of contact (paper, Table 3 item 3: per pair, walls separate), and its
+/// rolling resistance coefficient (rolling laws only).
 struct InteractionParams {
   double restitution = 0.9;
   double friction = 0.3;
+  double rolling_friction = 0.0;
 };
 
 /// Plane walls on the low and high side of each axis: x (left, right), y (bottom, top), z (back, front; 3D).
@@ -70,6 +74,10 @@ struct DemConfig {
   std::vector<InteractionParams> pair{InteractionParams{}};
   /// Particle-wall restitution and friction per species.
   std::vector<InteractionParams> wall{InteractionParams{}};
+  /// The parts of the contact law (default: the paper's) and the walls' material.
+  ContactModelConfig contact{};
+  /// Elastic constants per species (Hertz, Mindlin); one entry per species when used.
+  std::vector<ElasticMaterial> material{ElasticMaterial{}};
   /// The box [0, width] x [0, height] (x [0, depth] in 3D) and gravity; the DEM reads the first Dim components.
   DomainConfig domain{};
   WallConfig walls{};
@@ -78,6 +86,7 @@ struct DemConfig {
   double skin = 0.0004;  ///< Verlet skin, m (0: rebuild the neighbour list every step)
 
   std::size_t n_species() const { return species.size(); }
+  const ElasticMaterial& material_of(std::size_t s) const { return material[std::min(s, material.size() - 1)]; }
   const InteractionParams& pair_params(int a, int b) const {
     return pair[static_cast<std::size_t>(a) * species.size() + static_cast<std::size_t>(b)];
   }

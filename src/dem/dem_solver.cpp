@@ -11,6 +11,24 @@
 
 namespace fluidbed {
 
+namespace {
+// The parameters of the laws beyond the paper's: Hertz and Mindlin moduli of the two materials, the Tsuji
+// coefficient for the restitution (found once here, not per contact), the rolling coefficients.
+void set_law_params(const DemConfig& c, const ElasticMaterial& a, const ElasticMaterial& b, const InteractionParams& ip,
+                    ContactParams& p) {
+  const ContactModelConfig& m = c.contact;
+  if (m.normal == NormalModel::Hertz || m.tangential == TangentialModel::Mindlin) {
+    p.e_star = effective_youngs_modulus(a, b);
+    p.g_star = effective_shear_modulus(a, b);
+  }
+  if (m.normal == NormalModel::Hertz || m.damping == DampingModel::Tsuji) {
+    p.alpha = m.normal == NormalModel::Hertz ? tsuji_alpha_for_hertz(ip.restitution) : tsuji_alpha_for_linear(ip.restitution);
+  }
+  p.mu_r = ip.rolling_friction;
+  p.eta_r = m.rolling_damping;
+}
+}  // namespace
+
 std::vector<ContactParams> make_pair_params(const DemConfig& c) {
   const std::size_t ns = c.n_species();
   std::vector<ContactParams> t(ns * ns);
@@ -24,6 +42,7 @@ std::vector<ContactParams> make_pair_params(const DemConfig& c) {
       p.eta_n = damping_from_restitution(m_eff, p.k_n, ip.restitution);  // Eq. 8, reduced mass
       p.eta_t = p.eta_n;  // the paper's single dashpot eta for both directions (Eqs. 2-3)
       p.mu = ip.friction;
+      set_law_params(c, c.material_of(a), c.material_of(b), ip, p);
     }
   }
   return t;
@@ -38,6 +57,7 @@ std::vector<ContactParams> make_wall_params(const DemConfig& c) {
     p.eta_n = damping_from_restitution(c.species[a].mass(), p.k_n, c.wall[a].restitution);  // Eq. 8, wall fixed
     p.eta_t = p.eta_n;
     p.mu = c.wall[a].friction;
+    set_law_params(c, c.material_of(a), c.contact.wall_material, c.wall[a], p);
   }
   return t;
 }
@@ -131,7 +151,10 @@ void DemSolver<Dim>::rebuild() {
     old_offset_.swap(nbr_.offset);
     old_partner_id_.swap(nbr_.partner_id);
     old_history_.swap(nbr_.history);
+    old_rolling_.swap(nbr_.rolling);
   }
+  const bool rolling_history = config_.contact.needs_rolling_history();
+  const bool carry_rolling = rolling_history && have_old && old_rolling_.size() == old_history_.size();
 
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles
   // drift from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
@@ -140,8 +163,10 @@ void DemSolver<Dim>::rebuild() {
   if (sorted) {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
+    permute_wall_roll(order);
   }
   build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_, periodic_);
+  if (rolling_history) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
 
   if (have_old) {
     // Carry each stretched spring over to the new entry of the same pair, found by the partner's id (so that
@@ -154,11 +179,13 @@ void DemSolver<Dim>::rebuild() {
       const std::size_t o = sorted ? order[i] : i;
       for (std::size_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
         const Vec<Dim> h = old_history_[q];
-        if (is_zero<Dim>(h)) continue;
+        const Spin<Dim> hr = carry_rolling ? old_rolling_[q] : Spin<Dim>{};
+        if (is_zero<Dim>(h) && spin_norm2<Dim>(hr) == 0.0) continue;
         const std::int64_t j = old_partner_id_[q];
         for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
           if (nbr_.partner_id[k] == j) {
             nbr_.history[k] = h;
+            if (carry_rolling) nbr_.rolling[k] = hr;
             break;
           }
         }
@@ -169,6 +196,17 @@ void DemSolver<Dim>::rebuild() {
   for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   need_rebuild_ = false;
   ++rebuilds_;
+}
+
+template <int Dim>
+void DemSolver<Dim>::permute_wall_roll(const std::vector<std::size_t>& order) {
+  constexpr std::size_t nw = 2 * Dim;
+  if (wall_roll_.empty()) return;
+  std::vector<Spin<Dim>> next(order.size() * nw);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    for (std::size_t w = 0; w < nw; ++w) next[k * nw + w] = wall_roll_[order[k] * nw + w];
+  }
+  wall_roll_.swap(next);
 }
 
 template <int Dim>
@@ -209,22 +247,30 @@ void DemSolver<Dim>::link_mirrors() {
 
 template <int Dim>
 double DemSolver<Dim>::compute_forces(double dt) {
+  // The contact law is chosen here, once per evaluation; the loops below are compiled for it.
   // With one species every contact has the same diameter: the largest overlap fraction is the largest overlap over
   // it, taken once after the loops; only a mixture pays for a division per contact (5% of the force loop).
   // Periodic axes take the minimum image of each separation; the closed box keeps its loop without that test.
   const bool mixed = config_.n_species() > 1;
-  if (periodic_.any()) return mixed ? compute_forces_of<true, true>(dt) : compute_forces_of<false, true>(dt);
-  return mixed ? compute_forces_of<true, false>(dt) : compute_forces_of<false, false>(dt);
+  const bool periodic = periodic_.any();
+  return with_contact_law(config_.contact, [&]<class Law>(Law) {
+    if (periodic) return mixed ? compute_forces_of<Law, true, true>(dt) : compute_forces_of<Law, false, true>(dt);
+    return mixed ? compute_forces_of<Law, true, false>(dt) : compute_forces_of<Law, false, false>(dt);
+  });
 }
 
 template <int Dim>
-template <bool Mixed, bool Periodic>
+template <class Law, bool Mixed, bool Periodic>
 double DemSolver<Dim>::compute_forces_of(double dt) {
   const std::size_t n = p_.size();
   const Vec<Dim> L = config_.domain.extent<Dim>();
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
   if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
+  if (Law::kRollingHistory && nbr_.rolling.size() != nbr_.entries()) {
+    nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});  // a list restored from a run without rolling springs
+  }
+  if (Law::kRollingHistory && wall_roll_.size() != n * 2 * Dim) wall_roll_.assign(n * 2 * Dim, Spin<Dim>{});
   const AxisPtrs<Dim> X = axis_ptrs<Dim>([&](int a) -> auto& { return p_.coord(a); }, Dim);
   const AxisPtrs<Dim> V = axis_ptrs<Dim>([&](int a) -> auto& { return p_.velocity(a); }, Dim);
   const AxisPtrs<Dim> F = axis_ptrs<Dim>([&](int a) -> auto& { return p_.force(a); }, Dim);
@@ -232,6 +278,11 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   const AxisPtrs<NS> W = axis_ptrs<NS>([&](int c) -> auto& { return p_.spin_component(c); }, NS);
   const AxisPtrs<NS> T = axis_ptrs<NS>([&](int c) -> auto& { return p_.torque_component(c); }, NS);
   const double* R = p_.radius.data();
+  const double* M = p_.mass.data();
+  const double* IINV = p_.inv_inertia.data();
+  Spin<Dim>* const roll = Law::kRollingHistory ? nbr_.rolling.data() : nullptr;
+  // Ai et al. 2011 Eq. 17: the rolling inertia of one partner, I + m r^2.
+  auto roll_inertia = [&](std::size_t i) { return 1.0 / IINV[i] + M[i] * R[i] * R[i]; };
   auto pos = [&](std::size_t i) {
     Vec<Dim> v;
     for (int a = 0; a < Dim; ++a) v[a] = X[a][i];
@@ -275,9 +326,15 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       if (d2 >= rsum * rsum) {
         // Not touching: entries hold zeros unless this contact just ended (spring released, force cleared);
         // testing first spares the scattered writes to the partner's entry for the many pairs that only pass by.
-        if (!is_zero<Dim>(entry_force_[k]) || !is_zero<Dim>(nbr_.history[k])) {
+        bool held = !is_zero<Dim>(entry_force_[k]) || !is_zero<Dim>(nbr_.history[k]);
+        if constexpr (Law::kRollingHistory) held = held || spin_norm2<Dim>(roll[k]) != 0.0;
+        if (held) {
           nbr_.history[k] = Vec<Dim>{};
           nbr_.history[km] = Vec<Dim>{};
+          if constexpr (Law::kRollingHistory) {
+            roll[k] = Spin<Dim>{};
+            roll[km] = Spin<Dim>{};
+          }
           entry_force_[k] = Vec<Dim>{};
           entry_force_[km] = Vec<Dim>{};
           entry_torque_[k] = Spin<Dim>{};
@@ -297,8 +354,13 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
       const ContactParams& pp =
           Mixed ? pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])] : pair_params_[0];
-      const ContactForce<Dim> cf =
-          linear_spring_dashpot(pp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
+      ContactKinematics<Dim> kin{nrm, overlap, v_rel};
+      if constexpr (Law::kNeedsPairSize) {
+        kin.r_eff = ri * R[j] / rsum;
+        kin.m_eff = M[i] * M[j] / (M[i] + M[j]);
+        if constexpr (Law::kRolling) kin.i_roll = 1.0 / (1.0 / roll_inertia(i) + 1.0 / roll_inertia(j));
+      }
+      const ContactForce<Dim> cf = Law::template force<Dim>(pp, kin, dt, nbr_.history[k]);
       nbr_.history[km] = -nbr_.history[k];
       entry_force_[k] = cf.f;
       entry_force_[km] = -cf.f;
@@ -307,6 +369,15 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const Spin<Dim> tq = cross(nrm, cf.f_t);
       entry_torque_[k] = ai * tq;
       entry_torque_[km] = aj * tq;
+      if constexpr (Law::kRolling) {
+        // The rolling torque acts on i and, reversed, on j (Ai et al. 2011 Eq. 11: w_r = omega_i - omega_j).
+        Spin<Dim> unused{};
+        Spin<Dim>& m_k = Law::kRollingHistory ? roll[k] : unused;
+        const Spin<Dim> tr = Law::template rolling_torque<Dim>(pp, kin, cf, wi - spin(j), dt, m_k);
+        if constexpr (Law::kRollingHistory) roll[km] = -roll[k];
+        entry_torque_[k] += tr;
+        entry_torque_[km] -= tr;
+      }
       max_ov = std::max(max_ov, overlap);
       // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
       // no longer a small perturbation of two touching spheres.
@@ -345,6 +416,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
         if (held) {
           for (int c = 0; c < Dim; ++c) spring[c][i] = 0.0;
         }
+        if constexpr (Law::kRollingHistory) wall_roll_[i * (2 * Dim) + w] = Spin<Dim>{};
         return;
       }
       Vec<Dim> nrm{};
@@ -355,10 +427,21 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       // Velocity, spin and species are read only here, by the few particles touching a wall.
       const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
       const ContactParams& wp = wall_params_[Mixed ? static_cast<std::size_t>(p_.species[i]) : 0];
-      const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
+      ContactKinematics<Dim> kin{nrm, overlap, v_rel};
+      if constexpr (Law::kNeedsPairSize) {
+        kin.r_eff = ri;
+        kin.m_eff = M[i];
+        if constexpr (Law::kRolling) kin.i_roll = roll_inertia(i);
+      }
+      const ContactForce<Dim> cf = Law::template force<Dim>(wp, kin, dt, xi_w);
       for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
       f += cf.f;
       torque += lever * cross(nrm, cf.f_t);
+      if constexpr (Law::kRolling) {
+        Spin<Dim> unused{};
+        Spin<Dim>& m_k = Law::kRollingHistory ? wall_roll_[i * (2 * Dim) + w] : unused;
+        torque += Law::template rolling_torque<Dim>(wp, kin, cf, spin(i), dt, m_k);
+      }
       max_ov = std::max(max_ov, overlap);
       if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
     };
@@ -499,6 +582,8 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   list.partner.reserve(nbr_.partner.size());
   list.partner_id.reserve(nbr_.partner_id.size());
   list.history.reserve(nbr_.history.size());
+  const bool rolling = nbr_.rolling.size() == nbr_.history.size() && !nbr_.rolling.empty();
+  if (rolling) list.rolling.reserve(nbr_.rolling.size());
   if (nbr_.offset.size() == n + 1) {
     for (std::size_t k = 0; k < keep.size(); ++k) {
       const std::size_t i = keep[k];
@@ -508,6 +593,7 @@ std::size_t DemSolver<Dim>::remove_escaped() {
         list.partner.push_back(static_cast<std::uint32_t>(j));
         list.partner_id.push_back(nbr_.partner_id[q]);
         list.history.push_back(nbr_.history[q]);
+        if (rolling) list.rolling.push_back(nbr_.rolling[q]);
       }
       list.offset[k + 1] = list.partner.size();
     }
@@ -516,6 +602,7 @@ std::size_t DemSolver<Dim>::remove_escaped() {
     need_rebuild_ = true;
   }
   p_.permute(keep);
+  permute_wall_roll(keep);
   for (int a = 0; a < Dim; ++a) {
     std::vector<double>& b = build_[static_cast<std::size_t>(a)];
     std::vector<double> nb(keep.size());
@@ -571,6 +658,8 @@ std::size_t DemSolver<Dim>::insert_due() {
     // The list stays that of the old particles, the new one without partners, so the next rebuild carries the
     // springs of the old contacts over as after any other step.
     if (list_valid) nbr_.offset.push_back(nbr_.offset.back());
+    // Its wall rolling springs start relaxed; the others' stay (a size mismatch would reset them all).
+    if (!wall_roll_.empty()) wall_roll_.resize(wall_roll_.size() + 2 * Dim, Spin<Dim>{});
     for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)].push_back(x[a]);
     ++feed_.inserted;
     feed_.mass += p_.mass.back();
@@ -634,7 +723,8 @@ double DemSolver<Dim>::kinetic_energy() const {
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
   return State{p_,           nbr_,           build_,        time_,         steps_,       rebuilds_,
-               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_};
+               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,
+               wall_roll_};
 }
 
 template <int Dim>
@@ -652,6 +742,7 @@ void DemSolver<Dim>::restore(State s) {
   feed_ = s.feed;
   // A state from before the feed: the next id follows the largest present.
   for (std::int64_t id : p_.id) feed_.next_id = std::max(feed_.next_id, id + 1);
+  wall_roll_ = std::move(s.wall_roll);
   need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
   if (nbr_.partner_id.size() != nbr_.partner.size()) {
     // A list given by slots only: its ids are those of the partners in this storage order.

@@ -1,7 +1,8 @@
 #pragma once
-// The soft-sphere DEM of the paper's section 2.1: contact forces (Eqs. 2-8), torques (Eq. 9) and the explicit
-// update of Eq. 10, with plane walls on both sides of every axis (or periodic axes, or outflow sides) and a Verlet
-// neighbour list carrying the contact history, keyed by particle ids, across rebuilds. One code for 2D discs of sphere mass (spin about z) and 3D
+// The soft-sphere DEM of the paper's section 2.1: contact forces (Eqs. 2-8, or the law the case composes,
+// contact_law.hpp), torques (Eq. 9) and the explicit update of Eq. 10, with plane walls on both sides of every axis
+// (or periodic axes, or outflow sides) and a Verlet neighbour list carrying the contact history, keyed by particle
+// ids, across rebuilds. One code for 2D discs of sphere mass (spin about z) and 3D
 // spheres (spin vector); instantiated for Dim = 2 and 3.
 #include <array>
 #include <cmath>
@@ -107,6 +108,7 @@ class DemSolver {
     std::uint64_t removed_count = 0;
     double removed_mass = 0.0;
     FeedState feed{};
+    std::vector<Spin<Dim>> wall_roll;  ///< rolling springs against the walls (rolling-spring laws only)
   };
   State state() const;
   /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
@@ -123,10 +125,11 @@ class DemSolver {
     std::uint64_t removed_count;
     double removed_mass;
     FeedState feed;
+    const std::vector<Spin<Dim>>& wall_roll;
   };
   StateView view() const {
-    return {p_,        nbr_,          build_,       time_,          steps_,       rebuilds_,
-            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_};
+    return {p_,           nbr_,         build_,        time_,          steps_,        rebuilds_, need_rebuild_,
+            time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,        wall_roll_};
   }
   void restore(State s);
   const List& neighbors() const { return nbr_; }
@@ -137,7 +140,7 @@ class DemSolver {
  private:
   DemStepInfo advance(double h);
   double compute_forces(double dt);
-  template <bool Mixed, bool Periodic>
+  template <class Law, bool Mixed, bool Periodic>
   double compute_forces_of(double dt);
   void rebuild();
   void link_mirrors();
@@ -194,6 +197,12 @@ class DemSolver {
   std::vector<std::size_t> old_offset_;
   std::vector<std::int64_t> old_partner_id_;
   std::vector<Vec<Dim>> old_history_;
+  std::vector<Spin<Dim>> old_rolling_;
+  /// Rolling spring of particle slot i against wall w at wall_roll_[2 Dim i + w], in the store's order (laws with
+  /// a rolling spring only, else empty; kept here so that the paper's law does not carry it per particle).
+  std::vector<Spin<Dim>> wall_roll_;
+  /// Reorder wall_roll_ as ParticleStore::permute reorders the particles.
+  void permute_wall_roll(const std::vector<std::size_t>& order);
   NeighborScratch scratch_;  ///< the list build's per-thread buffers, kept so a rebuild does not fault pages in
   // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
   // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.

@@ -19,6 +19,8 @@ struct NeighborList {
   std::vector<std::uint32_t> partner;   ///< storage slot of the partner (what the force loop reads)
   std::vector<std::int64_t> partner_id; ///< global id of the partner: the key the contact history is carried by
   std::vector<Vec<Dim>> history;        ///< tangential spring of the contact, mirrored in the partner's entry
+  /// Rolling spring torque of the contact (laws with a rolling spring only, else empty), mirrored like history.
+  std::vector<Spin<Dim>> rolling;
 
   std::size_t entries() const { return partner.size(); }
 };

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "dem/contact_law.hpp"
+#include "dem/contact_model.hpp"
 #include "fluid/drag.hpp"
 #include "io/case_loader.hpp"
 
@@ -58,16 +59,47 @@ std::string cell_text(const CaseGrid& g) {
 
 }  // namespace
 
+EquivalentContact equivalent_contact(const DemConfig& dem, int a, int b) {
+  const Species& sa = dem.species[static_cast<std::size_t>(a)];
+  const bool wall = b < 0;
+  const Species& sb = wall ? sa : dem.species[static_cast<std::size_t>(b)];
+  const double m_eff = wall ? sa.mass() : reduced_mass(sa.mass(), sb.mass());
+  const double e = wall ? dem.wall[static_cast<std::size_t>(a)].restitution : dem.pair_params(a, b).restitution;
+  const ContactModelConfig& m = dem.contact;
+  if (m.normal == NormalModel::Linear) {
+    const double k = dem.stiffness;
+    const double k_t = m.tangential == TangentialModel::Linear ? k * dem.tangential_stiffness_ratio : 0.0;
+    const double eta = damping_from_restitution(m_eff, k, e);
+    EquivalentContact c{m_eff, k, k_t, eta, pair_contact_duration(m_eff, k, e)};
+    if (m.tangential == TangentialModel::Mindlin) {
+      // Mindlin's k_t at the linear spring's largest overlap of the impact
+      const double r_eff = wall ? sa.radius() : sa.radius() * sb.radius() / (sa.radius() + sb.radius());
+      const ElasticMaterial& mb = wall ? m.wall_material : dem.material_of(static_cast<std::size_t>(b));
+      const double g = effective_shear_modulus(dem.material_of(static_cast<std::size_t>(a)), mb);
+      c.k_t = 8.0 * g * std::sqrt(r_eff * m.impact_speed * std::sqrt(m_eff / k));
+    }
+    return c;
+  }
+  const double r_eff = wall ? sa.radius() : sa.radius() * sb.radius() / (sa.radius() + sb.radius());
+  const ElasticMaterial& ma = dem.material_of(static_cast<std::size_t>(a));
+  const ElasticMaterial& mb = wall ? m.wall_material : dem.material_of(static_cast<std::size_t>(b));
+  const double e_star = effective_youngs_modulus(ma, mb);
+  const HertzImpact h = hertz_impact(m_eff, e_star, r_eff, m.impact_speed);
+  const double a_max = std::sqrt(r_eff * h.max_overlap);
+  const double k_n = 2.0 * e_star * a_max;
+  const double k_t = m.tangential == TangentialModel::Mindlin ? 8.0 * effective_shear_modulus(ma, mb) * a_max
+                                                              : k_n * dem.tangential_stiffness_ratio;
+  return {m_eff, k_n, k_t, tsuji_alpha_for_hertz(e) * std::sqrt(m_eff * k_n), h.duration};
+}
+
 StiffestContact stiffest_contact(const DemConfig& dem) {
   StiffestContact out{1e300, 0, -1};
   for (std::size_t a = 0; a < dem.n_species(); ++a) {
-    const double ma = dem.species[a].mass();
     for (std::size_t b = a; b < dem.n_species(); ++b) {
-      const double t = pair_contact_duration(reduced_mass(ma, dem.species[b].mass()), dem.stiffness,
-                                             dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution);
+      const double t = equivalent_contact(dem, static_cast<int>(a), static_cast<int>(b)).t_c;
       if (t < out.t_c) out = {t, static_cast<int>(a), static_cast<int>(b)};
     }
-    const double t = pair_contact_duration(ma, dem.stiffness, dem.wall[a].restitution);
+    const double t = equivalent_contact(dem, static_cast<int>(a), -1).t_c;
     if (t < out.t_c) out = {t, static_cast<int>(a), -1};
   }
   return out;
@@ -234,22 +266,43 @@ std::string describe_case(const CaseConfig& c) {
     const double m_light = std::min_element(dem.species.begin(), dem.species.end(), [](const Species& x, const Species& y) {
                              return x.mass() < y.mass();
                            })->mass();
+    const ContactModelConfig& law = dem.contact;
+    line("contact law", fmt::format("normal {}, damping {}, tangential {}, rolling {}", to_string(law.normal),
+                                    to_string(law.damping), to_string(law.tangential), to_string(law.rolling)));
+    if (law.normal == NormalModel::Hertz) {
+      // Hertz contacts: duration and largest overlap of an impact at contact.impact_speed (Johnson 1985).
+      for (std::size_t a = 0; a < dem.n_species(); ++a) {
+        for (const int b : {static_cast<int>(a), -1}) {
+          const EquivalentContact ec = equivalent_contact(dem, static_cast<int>(a), b);
+          const double e_star = effective_youngs_modulus(
+              dem.material_of(a), b < 0 ? law.wall_material : dem.material_of(static_cast<std::size_t>(b)));
+          const double r_eff = dem.species[a].radius() * (b < 0 ? 1.0 : 0.5);
+          const double d_max = ec.k_n * ec.k_n / (4.0 * e_star * e_star * r_eff);  // a_max = k_n / (2 E*)
+          line(fmt::format("Hertz contact {}-{}", a, b < 0 ? std::string("wall") : fmt::format("{}", b)),
+               fmt::format("at {:g} m/s: t_c = {:.4g} s = {:.1f} time steps, largest overlap {:.3g}% of d, tangent "
+                           "stiffness {:.4g} N/m", law.impact_speed, ec.t_c, ec.t_c / dem.dt,
+                           100.0 * d_max / dem.species[a].diameter, ec.k_n));
+        }
+      }
+    }
     const double t_cr = critical_time(m_light, k);
     line("t_cr = 2 pi sqrt(m/k) (Table 3 item 5)",
          fmt::format("{:.4g} s for the lightest species; dt / t_cr = {:.3f}", t_cr, dem.dt / t_cr));
-    // Every kind of contact: its duration in time steps says whether dt resolves it.
-    for (std::size_t a = 0; a < dem.n_species(); ++a) {
-      for (std::size_t b = a; b < dem.n_species(); ++b) {
-        const double m_eff = reduced_mass(dem.species[a].mass(), dem.species[b].mass());
-        const double e = dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution;
-        const double t_c = pair_contact_duration(m_eff, k, e);
-        line(fmt::format("contact duration {}-{} (e = {})", a, b, e),
-             fmt::format("{:.4g} s = {:.1f} time steps; damping eta {:.4g} kg/s (Eq. 8)", t_c, t_c / dem.dt,
-                         damping_from_restitution(m_eff, k, e)));
+    // Every kind of contact: its duration in time steps says whether dt resolves it (the Hertz lines above).
+    if (law.normal == NormalModel::Linear) {
+      for (std::size_t a = 0; a < dem.n_species(); ++a) {
+        for (std::size_t b = a; b < dem.n_species(); ++b) {
+          const double m_eff = reduced_mass(dem.species[a].mass(), dem.species[b].mass());
+          const double e = dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution;
+          const double t_c = pair_contact_duration(m_eff, k, e);
+          line(fmt::format("contact duration {}-{} (e = {})", a, b, e),
+               fmt::format("{:.4g} s = {:.1f} time steps; damping eta {:.4g} kg/s (Eq. 8)", t_c, t_c / dem.dt,
+                           damping_from_restitution(m_eff, k, e)));
+        }
+        const double e = dem.wall[a].restitution;
+        const double t_c = pair_contact_duration(dem.species[a].mass(), k, e);
+        line(fmt::format("contact duration {}-wall (e = {})", a, e), fmt::format("{:.4g} s = {:.1f} time steps", t_c, t_c / dem.dt));
       }
-      const double e = dem.wall[a].restitution;
-      const double t_c = pair_contact_duration(dem.species[a].mass(), k, e);
-      line(fmt::format("contact duration {}-wall (e = {})", a, e), fmt::format("{:.4g} s = {:.1f} time steps", t_c, t_c / dem.dt));
     }
     const StiffestContact sc = stiffest_contact(dem);
     line("DEM time step", fmt::format("{:g} s = t_c / {:.1f} of the stiffest contact ({}); largest stable {:.4g} s",

@@ -21,6 +21,19 @@ struct StiffestContact {
 };
 StiffestContact stiffest_contact(const DemConfig& dem);
 
+/// A contact of species a with species b (b < 0: a wall) seen as a linear spring-dashpot, for the time-step rules:
+/// the linear law's own k_n, k_t and Eq. 8 dashpot; for Hertz (Hertz 1882) the tangent stiffness 2 E* a_max at
+/// the largest overlap of an impact at contact.impact_speed, Mindlin's 8 G* a_max (or k_n times the ratio), the
+/// Tsuji dashpot there, and the Hertz contact duration (Johnson 1985), which shrinks as v^(-1/5).
+struct EquivalentContact {
+  double m_eff;  ///< kg
+  double k_n;    ///< N/m
+  double k_t;    ///< N/m
+  double eta_n;  ///< kg/s
+  double t_c;    ///< s
+};
+EquivalentContact equivalent_contact(const DemConfig& dem, int a, int b);
+
 /// Time steps per contact of the default DEM time step: dt = t_c / 20 (at most, see default_dem_time_step).
 inline constexpr double kStepsPerContact = 20.0;
 /// The DEM time step used when dem.time_step is not given: t_c / kStepsPerContact of the stiffest contact (and

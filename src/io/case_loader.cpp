@@ -21,14 +21,12 @@ double dem_stable_time_step(const DemConfig& dem) {
   double dt = 1e300;
   // A linear contact integrated by Eq. 10 (symplectic Euler) is stable for omega dt < 2 (sqrt(1 + zeta^2) - zeta).
   // Two modes per contact: normal (k_n on the reduced mass) and tangential, where the contact point also moves
-  // by rotation: 1/m_t = 1/m1 + 1/m2 + r1^2/I1 + r2^2/I2 (7/m for equal spheres).
-  auto limit = [&](double inv_m, double inv_m_t, double e) {
-    const double m_eff = 1.0 / inv_m;
-    const double eta = damping_from_restitution(m_eff, dem.stiffness, e);
-    for (const auto& [k, inv] : {std::pair{dem.stiffness, inv_m},
-                                 std::pair{dem.stiffness * dem.tangential_stiffness_ratio, inv_m_t}}) {
+  // by rotation: 1/m_t = 1/m1 + 1/m2 + r1^2/I1 + r2^2/I2 (7/m for equal spheres). A Hertz contact is judged by
+  // its stiffest moment, the tangent stiffness at the largest overlap (equivalent_contact).
+  auto limit = [&](double inv_m, double inv_m_t, const EquivalentContact& ec) {
+    for (const auto& [k, inv] : {std::pair{ec.k_n, inv_m}, std::pair{ec.k_t, inv_m_t}}) {
       const double w0 = std::sqrt(k * inv);
-      const double zeta = 0.5 * eta * inv / w0;
+      const double zeta = 0.5 * ec.eta_n * inv / w0;
       dt = std::min(dt, 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta));
     }
   };
@@ -39,9 +37,9 @@ double dem_stable_time_step(const DemConfig& dem) {
       const Species& sb = dem.species[b];
       const double rot_b = sb.radius() * sb.radius() / sb.inertia();
       limit(1.0 / sa.mass() + 1.0 / sb.mass(), 1.0 / sa.mass() + 1.0 / sb.mass() + rot_a + rot_b,
-            dem.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution);
+            equivalent_contact(dem, static_cast<int>(a), static_cast<int>(b)));
     }
-    limit(1.0 / sa.mass(), 1.0 / sa.mass() + rot_a, dem.wall[a].restitution);
+    limit(1.0 / sa.mass(), 1.0 / sa.mass() + rot_a, equivalent_contact(dem, static_cast<int>(a), -1));
   }
   return dt;
 }
@@ -51,20 +49,62 @@ double dem_packed_bed_time_step(const DemConfig& dem) {
   double dt = 1e300;
   for (std::size_t a = 0; a < dem.n_species(); ++a) {
     const Species& s = dem.species[a];
-    const double m_eff = 0.5 * s.mass();
-    const double eta = damping_from_restitution(m_eff, dem.stiffness, dem.pair_params(static_cast<int>(a),
-                                                                                       static_cast<int>(a)).restitution);
+    const EquivalentContact ec = equivalent_contact(dem, static_cast<int>(a), static_cast<int>(a));
     // The spin block of the stiffness is k_t r^2 / I times the contact graph's signless Laplacian (top eigenvalue
     // about 2 Z); the single dashpot (Eq. 3) has the same structure, hence zeta from the same factor.
     const double g = 2.0 * z * s.radius() * s.radius() / s.inertia();
-    const double w0 = std::sqrt(dem.stiffness * dem.tangential_stiffness_ratio * g);
-    const double zeta = 0.5 * eta * g / w0;
+    const double w0 = std::sqrt(ec.k_t * g);
+    const double zeta = 0.5 * ec.eta_n * g / w0;
     dt = std::min(dt, 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta));
   }
   return dt;
 }
 
 namespace {
+
+// The composed contact law (docs/model.md, contact laws): one name per part, the elastic constants of Hertz and
+// Mindlin per species and for the walls; returns the default rolling coefficients of pairs and walls (the pair
+// tables may override the first). The defaults are the paper's law.
+std::pair<double, double> read_contact_law(CaseReader& r, DemConfig& dem) {
+  using R = CaseReader;
+  ContactModelConfig& m = dem.contact;
+  const auto index_of = [](const std::vector<std::string>& names, const std::string& v) {
+    return static_cast<int>(std::find(names.begin(), names.end(), v) - names.begin());
+  };
+  m.normal = static_cast<NormalModel>(index_of(normal_model_names(), r.string("contact.normal", "linear",
+      "normal spring: linear (the paper's Eq. 2, contact.stiffness) or hertz (Hertz 1882, from the species' "
+      "Young's modulus and Poisson ratio)", normal_model_names())));
+  const bool hertz = m.normal == NormalModel::Hertz;
+  m.damping = static_cast<DampingModel>(index_of(damping_model_names(), r.string("contact.damping",
+      hertz ? "tsuji" : "paper", "normal and tangential dashpot from the restitution: paper (Eq. 8, constant eta; "
+      "linear spring only) or tsuji (Tsuji, Tanaka & Ishida 1992: eta = alpha sqrt(m* dF/d delta); restitution "
+      "independent of the impact speed)", damping_model_names())));
+  r.describe_default("contact.damping", "paper; tsuji with contact.normal = \"hertz\"");
+  if (hertz && m.damping == DampingModel::Paper) {
+    r.fail("contact.damping", "\"paper\" is the constant dashpot of the linear spring (Eq. 8); a Hertz spring "
+           "takes \"tsuji\", whose restitution is the input at every impact speed");
+  }
+  m.tangential = static_cast<TangentialModel>(index_of(tangential_model_names(), r.string("contact.tangential",
+      hertz ? "mindlin" : "linear", "tangential spring: linear (k_t = contact.tangential_stiffness_ratio x "
+      "contact.stiffness) or mindlin (Mindlin 1949: k_t = 8 G* sqrt(R* delta))", tangential_model_names())));
+  r.describe_default("contact.tangential", "linear; mindlin with contact.normal = \"hertz\"");
+  m.rolling = static_cast<RollingModel>(index_of(rolling_model_names(), r.string("contact.rolling", "none",
+      "rolling resistance (Ai et al. 2011): none, constant (model A, torque mu_r R* F_n against the rolling) or "
+      "epsd (model C, elastic-plastic spring-dashpot)", rolling_model_names())));
+  const double mu_r = r.number("contact.rolling_friction", 0.0, "", "rolling resistance coefficient mu_r of "
+                               "particle-particle contacts", R::non_negative());
+  const double mu_rw = r.number("contact.wall_rolling_friction", mu_r, "", "rolling resistance coefficient of "
+                                "particle-wall contacts", R::non_negative());
+  m.rolling_damping = r.number("contact.rolling_damping", 0.3, "", "viscous damping ratio eta_r of the epsd "
+                               "rolling model (Ai et al. 2011 Eq. 16)", R::non_negative());
+  m.impact_speed = r.number("contact.impact_speed", 1.0, "m/s", "impact speed at which a Hertz contact's duration "
+                            "is judged (default time step and its check; t_c ~ v^(-1/5))", R::positive());
+  m.wall_material.youngs_modulus = r.number("contact.wall_youngs_modulus", 7e10, "Pa", "Young's modulus of the walls "
+                                            "(Hertz, Mindlin)", R::positive());
+  m.wall_material.poisson_ratio = r.number("contact.wall_poisson_ratio", 0.25, "", "Poisson ratio of the walls",
+                                           R::Range{-1.0, 0.5, true, false});
+  return {mu_r, mu_rw};
+}
 
 void read_case(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
@@ -165,6 +205,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   // [[species]]
   const std::size_t ns = std::max<std::size_t>(1, r.table_count("species", "particle species; default: one species"));
   c.dem.species.assign(ns, Species{});
+  c.dem.material.assign(ns, ElasticMaterial{});
   std::vector<double> fraction(ns, 1.0 / static_cast<double>(ns));
   for (std::size_t s = 0; s < ns; ++s) {
     const std::string p = fmt::format("species[{}].", s);
@@ -172,6 +213,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
     c.dem.species[s].density = r.number(p + "density", 2700.0, "kg/m^3", "particle density", R::positive());
     fraction[s] = r.number(p + "fraction", 1.0 / static_cast<double>(ns), "",
                            "number fraction of the randomly placed particles", R::between(0.0, 1.0));
+    // Elastic constants: read by the Hertz and Mindlin contact laws only (contact.normal, contact.tangential).
+    c.dem.material[s].youngs_modulus = r.number(p + "youngs_modulus", 7e10, "Pa", "Young's modulus of the particles "
+                                                "(Hertz, Mindlin)", R::positive());
+    c.dem.material[s].poisson_ratio = r.number(p + "poisson_ratio", 0.25, "", "Poisson ratio of the particles",
+                                               R::Range{-1.0, 0.5, true, false});
   }
   double fsum = 0.0;
   for (double f : fraction) fsum += f;
@@ -193,15 +239,18 @@ void read_case(CaseReader& r, CaseConfig& c) {
   const double mu_pp = r.number("contact.friction", 0.3, "", "particle-particle friction mu_f (Eq. 6)", R::non_negative());
   const double e_pw = r.number("contact.wall_restitution", e_pp, "", "particle-wall restitution", restitution);
   const double mu_pw = r.number("contact.wall_friction", mu_pp, "", "particle-wall friction", R::non_negative());
-  c.dem.pair.assign(ns * ns, InteractionParams{e_pp, mu_pp});
-  c.dem.wall.assign(ns, InteractionParams{e_pw, mu_pw});
+  const auto [mu_r, mu_rw] = read_contact_law(r, c.dem);
+  c.dem.pair.assign(ns * ns, InteractionParams{e_pp, mu_pp, mu_r});
+  c.dem.wall.assign(ns, InteractionParams{e_pw, mu_pw, mu_rw});
   const std::size_t npairs = r.table_count("contact.pair", "restitution and friction of one species pair");
   for (std::size_t k = 0; k < npairs; ++k) {
     const std::string p = fmt::format("contact.pair[{}].", k);
     const auto a = r.integer(p + "species_a", 0, "first species index", R::between(0, static_cast<double>(ns - 1)));
     const auto b = r.integer(p + "species_b", 0, "second species index", R::between(0, static_cast<double>(ns - 1)));
     const InteractionParams ip{r.number(p + "restitution", e_pp, "", "restitution of the pair", restitution),
-                               r.number(p + "friction", mu_pp, "", "friction of the pair", R::non_negative())};
+                               r.number(p + "friction", mu_pp, "", "friction of the pair", R::non_negative()),
+                               r.number(p + "rolling_friction", mu_r, "", "rolling resistance coefficient of the "
+                                        "pair", R::non_negative())};
     c.dem.pair[static_cast<std::size_t>(a) * ns + static_cast<std::size_t>(b)] = ip;
     c.dem.pair[static_cast<std::size_t>(b) * ns + static_cast<std::size_t>(a)] = ip;
   }
@@ -241,6 +290,19 @@ void read_case(CaseReader& r, CaseConfig& c) {
   if (c.dem.dt > dt_max) {
     r.fail("dem.time_step", fmt::format("{} s is above the stability limit of the stiffest contact; the largest "
                                         "stable time step is {:.4g} s", c.dem.dt, dt_max));
+  }
+  if (c.dem.contact.normal == NormalModel::Hertz) {
+    // The Hertz contact shortens with the impact speed (t_c ~ v^(-1/5)): judged at contact.impact_speed.
+    const StiffestContact sc = stiffest_contact(c.dem);
+    if (c.dem.dt > sc.t_c / kStepsPerContact) {
+      c.notes.push_back(fmt::format("dem.time_step = {:g} s is above t_c / {:g} = {:.3g} s of the Hertz contact of "
+                                    "{} at contact.impact_speed = {:g} m/s (t_c = {:.3g} s): too few steps per "
+                                    "contact for its restitution and peak force",
+                                    c.dem.dt, kStepsPerContact, sc.t_c / kStepsPerContact,
+                                    sc.b < 0 ? fmt::format("species {} with a wall", sc.a)
+                                             : fmt::format("species {} with species {}", sc.a, sc.b),
+                                    c.dem.contact.impact_speed, sc.t_c));
+    }
   }
   if (const double dt_bed = dem_packed_bed_time_step(c.dem); c.dem.dt > dt_bed && c.dem.dt <= dt_max) {
     c.notes.push_back(fmt::format("dem.time_step = {:g} s is above {:.3g} s, the limit of the spin mode of a packed "

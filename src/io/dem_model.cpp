@@ -72,6 +72,26 @@ std::string settled_bed_record(const CaseConfig& c) {
     line(fmt::format("contact.wall({}).restitution", k), d.wall[k].restitution);
     line(fmt::format("contact.wall({}).friction", k), d.wall[k].friction);
   }
+  // The composed law's parts and parameters, only where it is not the paper's (so that the paper's records, and
+  // the beds cached with them, stay valid).
+  const ContactModelConfig& m = d.contact;
+  if (m.normal != NormalModel::Linear || m.damping != DampingModel::Paper || m.tangential != TangentialModel::Linear ||
+      m.rolling != RollingModel::None) {
+    s += fmt::format("contact.normal = {}\ncontact.damping = {}\ncontact.tangential = {}\ncontact.rolling = {}\n",
+                     to_string(m.normal), to_string(m.damping), to_string(m.tangential), to_string(m.rolling));
+    line("contact.rolling_damping", m.rolling_damping);
+    line("contact.wall_youngs_modulus", m.wall_material.youngs_modulus);
+    line("contact.wall_poisson_ratio", m.wall_material.poisson_ratio);
+    for (std::size_t k = 0; k < d.material.size(); ++k) {
+      line(fmt::format("species[{}].youngs_modulus", k), d.material[k].youngs_modulus);
+      line(fmt::format("species[{}].poisson_ratio", k), d.material[k].poisson_ratio);
+    }
+    for (std::size_t k = 0; k < d.pair.size(); ++k) {
+      line(fmt::format("contact.pair({},{}).rolling_friction", k / d.species.size(), k % d.species.size()),
+           d.pair[k].rolling_friction);
+    }
+    for (std::size_t k = 0; k < d.wall.size(); ++k) line(fmt::format("contact.wall({}).rolling_friction", k), d.wall[k].rolling_friction);
+  }
   line("domain.width", d.domain.width);
   line("domain.gravity.x", d.domain.gravity.x);
   line("domain.gravity.y", d.domain.gravity.y);
@@ -141,6 +161,34 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
       for (int a = 0; a < Dim; ++a) {
         for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k][a];
         f.write(std::string("dem/nbr_xi_") + kAxis[a], h);
+      }
+    }
+    // Rolling springs (laws with one): one array per spin component, absent when the law has none.
+    if (!s.neighbors.rolling.empty()) {
+      std::vector<double> h(s.neighbors.rolling.size());
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            h[k] = s.neighbors.rolling[k];
+          } else {
+            h[k] = s.neighbors.rolling[k][c];
+          }
+        }
+        f.write(fmt::format("dem/nbr_roll_{}", c), h);
+      }
+    }
+    // Rolling springs against the walls, 2 Dim per particle in storage order, likewise absent without them.
+    if (!s.wall_roll.empty()) {
+      std::vector<double> h(s.wall_roll.size());
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            h[k] = s.wall_roll[k];
+          } else {
+            h[k] = s.wall_roll[k][c];
+          }
+        }
+        f.write(fmt::format("dem/wall_roll_{}", c), h);
       }
     }
     f.set_attribute("dem", "dimension", static_cast<std::int64_t>(Dim));
@@ -222,6 +270,38 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
       }
       s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
       for (int a = 0; a < Dim; ++a) s.neighbors.history[k][a] = hist[static_cast<std::size_t>(a)][k];
+    }
+    if (f.has("dem/wall_roll_0")) {
+      s.wall_roll.resize(2 * Dim * n);
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        const std::vector<double> h = f.read_double(fmt::format("dem/wall_roll_{}", c));
+        if (h.size() != s.wall_roll.size()) {
+          throw_input_error(fmt::format("{}: the rolling wall springs are inconsistent", f.path().string()));
+        }
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            s.wall_roll[k] = h[k];
+          } else {
+            s.wall_roll[k][c] = h[k];
+          }
+        }
+      }
+    }
+    if (f.has("dem/nbr_roll_0")) {
+      s.neighbors.rolling.resize(partner.size());
+      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+        const std::vector<double> h = f.read_double(fmt::format("dem/nbr_roll_{}", c));
+        if (h.size() != partner.size()) {
+          throw_input_error(fmt::format("{}: the rolling contact history is inconsistent", f.path().string()));
+        }
+        for (std::size_t k = 0; k < h.size(); ++k) {
+          if constexpr (Dim == 2) {
+            s.neighbors.rolling[k] = h[k];
+          } else {
+            s.neighbors.rolling[k][c] = h[k];
+          }
+        }
+      }
     }
     if constexpr (Dim == 2) {
       if (flat_walls) {
