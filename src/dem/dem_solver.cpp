@@ -78,9 +78,20 @@ template <int Dim>
 DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move(config)), p_(std::move(particles)) {
   pair_params_ = make_pair_params(config_);
   wall_params_ = make_wall_params(config_);
-  double d_max = 0.0;
-  for (const Species& s : config_.species) d_max = std::max(d_max, s.diameter);
+  const std::size_t ns = config_.n_species();
+  for (std::size_t a = 0; a < ns; ++a) {
+    for (std::size_t b = 0; b < ns; ++b) {
+      pair_damping_per_root_mass_.push_back(damping_from_restitution(
+          1.0, config_.stiffness, config_.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution));
+    }
+    wall_damping_per_root_mass_.push_back(damping_from_restitution(1.0, config_.stiffness, config_.wall[a].restitution));
+  }
+  // Cells of the largest particle that can be present (a species' largest size, or a larger one read from a file)
+  // plus the skin: every pair within reach is then in neighbouring cells.
+  double d_max = p_.max_diameter();
+  for (const Species& s : config_.species) d_max = std::max(d_max, s.d_max());
   cell_size_ = d_max + config_.skin;
+  sized_ = p_.has_own_sizes(config_.species);
   p_.sort_by_id();
   for (std::size_t i = 1; i < p_.size(); ++i) {
     if (p_.id[i] == p_.id[i - 1]) {
@@ -179,11 +190,12 @@ template <int Dim>
 double DemSolver<Dim>::compute_forces(double dt) {
   // With one species every contact has the same diameter: the largest overlap fraction is the largest overlap over
   // it, taken once after the loops; only a mixture pays for a division per contact (5% of the force loop).
-  return config_.n_species() > 1 ? compute_forces_of<true>(dt) : compute_forces_of<false>(dt);
+  if (sized_) return compute_forces_of<true, true>(dt);
+  return config_.n_species() > 1 ? compute_forces_of<true, false>(dt) : compute_forces_of<false, false>(dt);
 }
 
 template <int Dim>
-template <bool Mixed>
+template <bool Mixed, bool Sized>
 double DemSolver<Dim>::compute_forces_of(double dt) {
   const std::size_t n = p_.size();
   const Vec<Dim> L = config_.domain.extent<Dim>();
@@ -197,6 +209,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   const AxisPtrs<NS> W = axis_ptrs<NS>([&](int c) -> auto& { return p_.spin_component(c); }, NS);
   const AxisPtrs<NS> T = axis_ptrs<NS>([&](int c) -> auto& { return p_.torque_component(c); }, NS);
   const double* R = p_.radius.data();
+  const double* M = p_.mass.data();
   auto pos = [&](std::size_t i) {
     Vec<Dim> v;
     for (int a = 0; a < Dim; ++a) v[a] = X[a][i];
@@ -259,8 +272,13 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
       // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
       const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
-      const ContactParams& pp =
-          Mixed ? pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])] : pair_params_[0];
+      const std::size_t pair = Mixed ? si * ns + static_cast<std::size_t>(p_.species[j]) : 0;
+      ContactParams pp = pair_params_[pair];
+      if constexpr (Sized) {
+        // Eq. 8 on this pair's reduced mass: the restitution of the input for every pair of sizes.
+        pp.eta_n = pair_damping_per_root_mass_[pair] * std::sqrt(reduced_mass(M[i], M[j]));
+        pp.eta_t = pp.eta_n;
+      }
       const ContactForce<Dim> cf =
           linear_spring_dashpot(pp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, nbr_.history[k]);
       nbr_.history[km] = -nbr_.history[k];
@@ -318,7 +336,12 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double lever = ri - overlap;  // to the contact point on the wall plane
       // Velocity, spin and species are read only here, by the few particles touching a wall.
       const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
-      const ContactParams& wp = wall_params_[Mixed ? static_cast<std::size_t>(p_.species[i]) : 0];
+      const std::size_t sw = Mixed ? static_cast<std::size_t>(p_.species[i]) : 0;
+      ContactParams wp = wall_params_[sw];
+      if constexpr (Sized) {
+        wp.eta_n = wall_damping_per_root_mass_[sw] * std::sqrt(M[i]);  // Eq. 8, the wall fixed
+        wp.eta_t = wp.eta_n;
+      }
       const ContactForce<Dim> cf = linear_spring_dashpot(wp, ContactKinematics<Dim>{nrm, overlap, v_rel}, dt, xi_w);
       for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
       f += cf.f;
@@ -558,6 +581,10 @@ void DemSolver<Dim>::restore(State s) {
     }
   }
   mirror_.clear();  // linked again at the next force evaluation
+  sized_ = p_.has_own_sizes(config_.species);
+  double d_max = p_.max_diameter();
+  for (const Species& sp : config_.species) d_max = std::max(d_max, sp.d_max());
+  cell_size_ = d_max + config_.skin;
 }
 
 template class DemSolver<2>;

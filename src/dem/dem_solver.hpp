@@ -106,11 +106,14 @@ class DemSolver {
     std::uint64_t steps_origin;
     std::uint64_t removed_count;
     double removed_mass;
+    bool own_sizes;  ///< the particles' sizes are state (has_own_sizes)
   };
   StateView view() const {
     return {p_,        nbr_,          build_,       time_,          steps_,       rebuilds_,
-            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
+            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, sized_};
   }
+  /// Whether some particle's size differs from its species' diameter (a size distribution, or a file's sizes).
+  bool has_own_sizes() const { return sized_; }
   void restore(State s);
   const List& neighbors() const { return nbr_; }
 
@@ -120,7 +123,9 @@ class DemSolver {
  private:
   DemStepInfo advance(double h);
   double compute_forces(double dt);
-  template <bool Mixed>
+  /// Mixed: species looked up per contact, overlap judged per contact; Sized: particles have their own sizes, so
+  /// the dashpot of Eq. 8 is taken on each pair's own reduced mass.
+  template <bool Mixed, bool Sized>
   double compute_forces_of(double dt);
   void rebuild();
   void link_mirrors();
@@ -153,6 +158,11 @@ class DemSolver {
   Store p_;
   std::vector<ContactParams> pair_params_;
   std::vector<ContactParams> wall_params_;
+  /// Eq. 8 per unit square root of mass, eta / sqrt(m_eff), per species pair and per species on a wall, for beds
+  /// whose particles have their own sizes (sized_).
+  std::vector<double> pair_damping_per_root_mass_;
+  std::vector<double> wall_damping_per_root_mass_;
+  bool sized_ = false;  ///< some particle's size differs from its species' diameter
   List nbr_;
   std::array<std::vector<double>, Dim> build_;
   // The previous list during a rebuild (kept to reuse its memory).
