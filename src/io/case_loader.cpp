@@ -292,7 +292,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   const std::string source = r.string("particles.source", "random",
                                       "random: place at random (then settle, see [settle]); file: read a CSV "
                                       "id,x,y,vx,vy,omega,species (3D: id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,"
-                                      "species)",
+                                      "species), optionally a last column diameter (m) per particle",
                                       {"random", "file"});
   c.particles.source = source == "file" ? ParticleSource::File : ParticleSource::Random;
   c.particles.file = r.string("particles.file", "", "CSV file of particles (particles.source = \"file\"), "
