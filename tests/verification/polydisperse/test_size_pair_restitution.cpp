@@ -2,7 +2,7 @@
 // (2 and 5 mm, masses 1 : 15.6) rebounds with the restitution asked for. The linear spring-dashpot's restitution
 // is exact for eta of Eq. 8 on the pair's m_eff; the explicit step leaves an O(ln(1/e)^2 / N) error at N steps per
 // contact (docs/verification-dem.md, test 2): N = 400 here, so |e_measured - e| < 1e-3. Damping taken from the
-// species' nominal size instead (m_eff of two 3.5 mm particles) would give e = 0.86 for this pair, outside it.
+// species' nominal size instead (m_eff of two 3.5 mm particles) would give e = 0.54 for this pair.
 #include <gtest/gtest.h>
 
 #include <cmath>
