@@ -4,14 +4,15 @@ bubble_population.hpp; docs/analysis.md, "Bubble statistics"):
 
 - equivalent diameter against height (centroid above the distributor), binned, with Darton et al. (1977) in 3D,
   d_b = 0.54 (U - U_mf)^0.4 (h + 4 sqrt(A0))^0.8 g^-0.2 (SI units; A0 the distributor area per orifice, 0 for a
-  porous plate); docs/ cite no 2D bubble-size correlation, so 2D runs get none;
+  porous plate); in 2D the form of Shen, Johnsson and Leckner (2004) for two-dimensional beds,
+  D = 0.89 [(U - U_mf)(h + h0)]^(2/3) g^(-1/3) (docs/analysis.md gives the sources and what was checked);
 - centroid rise velocity against equivalent diameter, binned, with U_b = C sqrt(g D), C = 0.711 in 3D (Davidson and
   Harrison 1963) and 0.5 in 2D (docs/analysis.md gives its sources);
 - bubble frequency: bubbles whose centroid crosses a height upwards (between two samples of the same id), per second;
 - bubble fraction: bubble area (volume) over bed area (volume) above the distributor zone, mean and standard deviation
   over the samples of the window.
 
-Usage: bubble_stats.py OUT_DIR [--t0 T] [--t1 T] [--u U --u-mf UMF] [--a0 A0] [--distributor-height H]
+Usage: bubble_stats.py OUT_DIR [--t0 T] [--t1 T] [--u U --u-mf UMF] [--a0 A0] [--h0 H0] [--distributor-height H]
                        [--heights 0.1,0.2] [--bins 10] [--out FIGURE.png] [--table TABLE.csv]
 OUT_DIR holds bubbles.csv and bubble_frames.csv; the dimension is read from the header (volume_m3: 3D).
 """
@@ -41,6 +42,26 @@ def darton_diameter(h, u, u_mf, a0=0.0, g=G):
     the distributor, excess gas velocity U - U_mf (m/s), distributor area per orifice A0 (m^2); dimensionally
     homogeneous, so SI in, metres out."""
     return 0.54 * (u - u_mf) ** 0.4 * (np.asarray(h) + 4.0 * np.sqrt(a0)) ** 0.8 / g ** 0.2
+
+
+def shen_diameter_2d(h, u, u_mf, h0=0.0, g=G):
+    """Shen, Johnsson and Leckner (2004), Chem. Eng. Sci. 59:2607, for two-dimensional beds: area-equivalent bubble
+    diameter (m) at height h (m) above the distributor, excess gas velocity U - U_mf (m/s), h0 (m) the height of the
+    equivalent bubble source (0 for a porous plate). (U - U_mf) h is the bubble flow per unit depth (m^2/s), and
+    [(U - U_mf) h]^(2/3) g^(-1/3) is the only power law of it and g that is a length: the 2D counterpart of Darton's
+    [(U - U_mf)^2 h^4 / g]^(1/5)."""
+    return 0.89 * ((u - u_mf) * (np.asarray(h) + h0)) ** (2.0 / 3.0) / g ** (1.0 / 3.0)
+
+
+def diameter_correlation(dimension, h, u, u_mf, a0=0.0, h0=0.0, g=G):
+    """The bubble-size correlation of the run's dimension (Darton et al. 1977 in 3D, Shen et al. 2004 in 2D)."""
+    if dimension == 3:
+        return darton_diameter(h, u, u_mf, a0, g)
+    return shen_diameter_2d(h, u, u_mf, h0, g)
+
+
+def correlation_name(dimension):
+    return "Darton et al. (1977)" if dimension == 3 else "Shen et al. (2004), 2D"
 
 
 def rise_constant(dimension):
@@ -77,7 +98,7 @@ def crossings(bubbles, height, t0, t1):
 
 
 def bubble_statistics(bubbles, frames, t0=None, t1=None, u=None, u_mf=None, a0=0.0, distributor_height=0.0,
-                      heights=None, bins=10, dimension=None, g=G):
+                      heights=None, bins=10, dimension=None, g=G, h0=0.0):
     """The statistics as a dict of numpy arrays. bubbles: columns of bubbles.csv (as read_csv() gives them; numbers
     converted here); frames: columns of bubble_frames.csv."""
     dimension = dimension or (3 if "volume_m3" in bubbles else 2)
@@ -95,8 +116,11 @@ def bubble_statistics(bubbles, frames, t0=None, t1=None, u=None, u_mf=None, a0=0
     h_edges = np.linspace(0.0, top, bins + 1) if h.size else np.linspace(0.0, 1.0, bins + 1)
     out["h"] = 0.5 * (h_edges[1:] + h_edges[:-1])
     out["d_mean"], out["d_std"], out["d_count"] = binned(h, d, h_edges)
-    out["d_darton"] = (darton_diameter(out["h"], u, u_mf, a0, g) if dimension == 3 and u is not None
-                       and u_mf is not None else np.full(out["h"].size, np.nan))
+    out["d_corr"] = (diameter_correlation(dimension, out["h"], u, u_mf, a0, h0, g) if u is not None
+                       and u_mf is not None and u > u_mf else np.full(out["h"].size, np.nan))
+    out["samples"] = int(d.size)
+    out["d_all_mean"] = float(np.nanmean(d)) if d.size else np.nan
+    out["u_all_mean"] = float(np.nanmean(ub)) if np.isfinite(ub).any() else np.nan
     d_edges = np.linspace(0.0, d.max() if d.size else 1.0, bins + 1)
     out["D"] = 0.5 * (d_edges[1:] + d_edges[:-1])
     out["u_mean"], out["u_std"], out["u_count"] = binned(d, ub, d_edges)
@@ -119,7 +143,7 @@ def write_table(s, path):
         w.writerow(["quantity", "x", "mean", "std", "count", "correlation"])
         for k in range(s["h"].size):
             w.writerow(["diameter_vs_height_m", s["h"][k], s["d_mean"][k], s["d_std"][k], s["d_count"][k],
-                        s["d_darton"][k]])
+                        s["d_corr"][k]])
         for k in range(s["D"].size):
             w.writerow(["rise_velocity_vs_diameter_m_s", s["D"][k], s["u_mean"][k], s["u_std"][k], s["u_count"][k],
                         s["u_theory"][k]])
@@ -134,8 +158,8 @@ def figure(s, path):
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(1, 3, figsize=(12, 3.8))
     ax[0].errorbar(s["h"], s["d_mean"], yerr=s["d_std"], fmt="o", ms=4, label="run")
-    if np.isfinite(s["d_darton"]).any():
-        ax[0].plot(s["h"], s["d_darton"], "k-", label="Darton et al. (1977)")
+    if np.isfinite(s["d_corr"]).any():
+        ax[0].plot(s["h"], s["d_corr"], "k-", label=correlation_name(s["dimension"]))
     ax[0].set_xlabel("height above distributor (m)")
     ax[0].set_ylabel("equivalent diameter (m)")
     ax[1].errorbar(s["D"], s["u_mean"], yerr=s["u_std"], fmt="o", ms=4, label="run (centroid)")
@@ -154,6 +178,98 @@ def figure(s, path):
     plt.close(fig)
 
 
+# ------------------------------------------------------------------------------------ for post/report.py
+
+def run_window(case, t_first, t_last):
+    """(t0, t1, why) of a run: its [averages] window when the case has one (the averaged fields and the statistics
+    then describe the same interval), else the second half of its bubble samples (the first holds the start-up)."""
+    a = case.get("averages", {}) if isinstance(case.get("averages"), dict) else {}
+    t0, t1 = a.get("t_start"), a.get("t_end")
+    if isinstance(t0, (int, float)) and isinstance(t1, (int, float)) and t1 > t0:
+        return float(t0), float(t1), "the case's [averages] window"
+    return 0.5 * (t_first + t_last), t_last, "the second half of the run"
+
+
+def run_statistics(folder, case, dimension, g=G, bins=8):
+    """(statistics, None) of a run folder with bubbles.csv and bubble_frames.csv, or (None, why not). U from
+    inlet.velocity, U_mf from bubble.u_mf (the paper's 1.8 m/s if absent), a porous plate (A0 = 0, h0 = 0); the
+    frequency at the quarters of the mean bed height of the window (bed_height_m of bubble_frames.csv, else the
+    highest centroid)."""
+    paths = [os.path.join(folder, f) for f in ("bubbles.csv", "bubble_frames.csv")]
+    if not all(os.path.isfile(p) for p in paths):
+        return None, "no bubbles.csv or bubble_frames.csv"
+    bub, frm = read_csv(paths[0]), read_csv(paths[1])
+    if not bub or not bub.get("time_s") or not frm or not frm.get("time_s"):
+        return None, "no bubble in bubbles.csv"
+    ft = num(frm["time_s"])
+    t0, t1, why = run_window(case, float(ft.min()), float(ft.max()))
+    inlet = case.get("inlet", {}) if isinstance(case.get("inlet"), dict) else {}
+    bubble = case.get("bubble", {}) if isinstance(case.get("bubble"), dict) else {}
+    u = inlet.get("velocity") if isinstance(inlet.get("velocity"), (int, float)) else None
+    u_mf = bubble.get("u_mf") if isinstance(bubble.get("u_mf"), (int, float)) else 1.8
+    bed = num(frm["bed_height_m"]) if "bed_height_m" in frm else np.array([np.nan])
+    bed = bed[(ft >= t0) & (ft <= t1)] if bed.size == ft.size else bed
+    top = float(np.nanmean(bed)) if np.isfinite(bed).any() else float(np.nanmax(num(bub["centroid_y_m"])))
+    heights = [top * k / 4 for k in (1, 2, 3)]
+    s = bubble_statistics(bub, frm, t0, t1, u, u_mf, heights=heights, bins=bins, dimension=dimension, g=g)
+    if s["samples"] == 0:
+        return None, f"no bubble sample in {why} ({t0:.3g} to {t1:.3g} s)"
+    s["window"] = why
+    s["u"], s["u_mf"], s["g"] = u, u_mf, g
+    return s, None
+
+
+def figure_runs(entries, path):
+    """The three panels of figure() with one colour per run: entries are (label, statistics)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 3, figsize=(12, 3.8))
+    for k, (label, s) in enumerate(entries):
+        c = f"C{k % 10}"
+        ok = s["d_count"] > 0
+        ax[0].errorbar(s["h"][ok], s["d_mean"][ok], yerr=s["d_std"][ok], fmt="o", ms=4, color=c, label=label)
+        if np.isfinite(s["d_corr"]).any():
+            ax[0].plot(s["h"], s["d_corr"], "--", color=c, label=f"{correlation_name(s['dimension'])}")
+        ok = s["u_count"] > 0
+        ax[1].errorbar(s["D"][ok], s["u_mean"][ok], yerr=s["u_std"][ok], fmt="o", ms=4, color=c, label=label)
+        ax[1].plot(s["D"], s["u_theory"], "--", color=c,
+                   label=f"{rise_constant(s['dimension'])} $\\sqrt{{gD}}$ ({s['dimension']}D)")
+        ax[2].plot(s["frequency_height"], s["frequency"], "o-", color=c,
+                   label=f"{label}: fraction {s['fraction_mean']:.3g} $\\pm$ {s['fraction_std']:.2g}")
+    ax[0].set_xlabel("centroid height above distributor (m)")
+    ax[0].set_ylabel("equivalent diameter (m)")
+    ax[1].set_xlabel("equivalent diameter D (m)")
+    ax[1].set_ylabel("centroid rise velocity (m/s)")
+    ax[2].set_xlabel("height above distributor (m)")
+    ax[2].set_ylabel("bubble frequency (1/s)")
+    ax[2].set_ylim(bottom=0.0)
+    for a in ax:
+        a.grid(alpha=0.3)
+        a.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def table_runs(entries):
+    """Markdown lines: per run the window, the samples, the means against the correlations, frequency, fraction."""
+    lines = ["| run | window (s) | bubble samples | mean D (m) | correlation D at mean height (m) | mean u_centroid "
+             "(m/s) | C sqrt(g D) at mean D (m/s) | frequency (1/s) at heights (m) | bubble fraction |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for label, s in entries:
+        h_mean = float(np.nansum(s["h"] * s["d_count"]) / max(np.sum(s["d_count"]), 1))
+        corr = (diameter_correlation(s["dimension"], h_mean, s["u"], s["u_mf"], g=s["g"])
+                if s["u"] is not None and s["u"] > s["u_mf"] else np.nan)
+        theory = rise_constant(s["dimension"]) * np.sqrt(s["g"] * s["d_all_mean"])
+        freq = ", ".join(f"{f:.2f} at {h:.2f}" for h, f in zip(s["frequency_height"], s["frequency"]))
+        lines.append(f"| {label} | {s['t0']:.3g}-{s['t1']:.3g} ({s['window']}) | {s['samples']} | "
+                     f"{s['d_all_mean']:.3f} | {corr:.3f} (h = {h_mean:.2f} m, {correlation_name(s['dimension'])}) | "
+                     f"{s['u_all_mean']:.2f} | {theory:.2f} (C = {rise_constant(s['dimension'])}) | {freq} | "
+                     f"{s['fraction_mean']:.3f} ± {s['fraction_std']:.3f} |")
+    return lines
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out_dir")
@@ -162,6 +278,7 @@ def main():
     ap.add_argument("--u", type=float, help="superficial gas velocity, m/s")
     ap.add_argument("--u-mf", type=float, help="minimum fluidization velocity, m/s")
     ap.add_argument("--a0", type=float, default=0.0, help="distributor area per orifice, m^2")
+    ap.add_argument("--h0", type=float, default=0.0, help="2D: height of the equivalent bubble source, m")
     ap.add_argument("--distributor-height", type=float, default=0.0)
     ap.add_argument("--heights", help="comma-separated heights above the distributor for the frequency, m")
     ap.add_argument("--bins", type=int, default=10)
@@ -171,7 +288,7 @@ def main():
     bub = read_csv(os.path.join(a.out_dir, "bubbles.csv"))
     frm = read_csv(os.path.join(a.out_dir, "bubble_frames.csv"))
     heights = [float(v) for v in a.heights.split(",")] if a.heights else None
-    s = bubble_statistics(bub, frm, a.t0, a.t1, a.u, a.u_mf, a.a0, a.distributor_height, heights, a.bins)
+    s = bubble_statistics(bub, frm, a.t0, a.t1, a.u, a.u_mf, a.a0, a.distributor_height, heights, a.bins, h0=a.h0)
     write_table(s, a.table)
     figure(s, a.out)
     print(f"wrote {a.table} and {a.out}")

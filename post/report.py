@@ -26,6 +26,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from psd import welch_psd  # noqa: E402
+import averages as time_averages  # noqa: E402
+import bubble_stats  # noqa: E402
 
 import matplotlib
 
@@ -763,6 +765,43 @@ def figure_rise_vs_correlation(runs, path, notes):
     return None
 
 
+def bubbling_statistics(runs):
+    """(entries, notes) of post/bubble_stats.run_statistics for the beds without a jet (freely bubbling)."""
+    entries, notes = [], []
+    for r in runs:
+        if r.has_jet() is not False:
+            continue
+        s, why = bubble_stats.run_statistics(r.folder, r.case, r.dimension, r.gravity)
+        if s is None:
+            notes.append(f"{r.label}: left out, {why}")
+        else:
+            entries.append((r.label, s))
+    return entries, notes
+
+
+def figure_bubbling_statistics(runs, path, notes):
+    entries, left_out = bubbling_statistics(runs)
+    notes += left_out
+    if not entries:
+        return "no bed without a jet has bubbles in its statistics window"
+    bubble_stats.figure_runs(entries, path)
+    return None
+
+
+def figure_time_averages(runs, path, notes):
+    entries = []
+    for r in runs:
+        got = time_averages.read_averages(r.folder)
+        if got is None:
+            notes.append(f"{r.label}: left out, no averages.csv (no [averages] window reached)")
+        else:
+            entries.append((r.label, got[0], got[1]))
+    if not entries:
+        return "no run has averages.csv"
+    time_averages.figure(entries, path)
+    return None
+
+
 # ------------------------------------------------------------------------------------------------------ tables
 
 def nearest_row(cols, t):
@@ -1100,6 +1139,13 @@ def write_report(folders, out, labels=None, animate=False):
                                     "Bubble equivalent diameter", p, n)),
         ("rise_vs_correlation.png", "Rise velocity against the 2D correlation",
          lambda p, n: figure_rise_vs_correlation(runs, p, n)),
+    ] + ([
+        ("bubbling_statistics.png", "Freely bubbling statistics of the beds without a jet (post/bubble_stats.py)",
+         lambda p, n: figure_bubbling_statistics(runs, p, n)),
+    ] if any(r.has_jet() is False for r in runs) else []) + ([
+        ("time_averages.png", "Time-averaged fields of the [averages] window (post/averages.py)",
+         lambda p, n: figure_time_averages(runs, p, n)),
+    ] if any(os.path.isfile(os.path.join(r.folder, "averages.csv")) for r in runs) else []) + [
         ("pressure_drop.png", "Bed pressure drop",
          lambda p, n: figure_curves(runs, "monitor", "pressure_drop_Pa", "pressure drop (Pa)", "Bed pressure drop",
                                     p, n)),
@@ -1151,6 +1197,10 @@ def write_report(folders, out, labels=None, animate=False):
     if any(r.probes is not None for r in runs):
         md += ["", "## Pressure fluctuations (probes.csv)", ""]
         md += pressure_table(runs)
+    entries, _ = bubbling_statistics(runs) if any(r.has_jet() is False for r in runs) else ([], [])
+    if entries:
+        md += ["", "## Freely bubbling statistics (beds without a jet; docs/analysis.md, \"Bubble statistics\")", ""]
+        md += bubble_stats.table_runs(entries)
     md += ["", "## Bubble events", ""]
     md += bubble_events(runs)
     md += ["", "## Cost", ""]

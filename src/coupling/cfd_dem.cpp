@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "coupling/voidage.hpp"
 #include "fluid/drag.hpp"
@@ -61,27 +62,50 @@ void CfdDemSimulation<Dim>::update_particle_forces() {
   const bool counting = coupling_.voidage == VoidageMethod::Centre;
   if (counting) particle_cell_weights(p, g, eps_, VoidageMethod::Bilinear, interp_weights_);
   const std::vector<CellWeights<Dim>>& iw = counting ? interp_weights_ : weights_;
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const CellWeights<Dim>& cw = weights_[i];
-    const CellWeights<Dim>& cwi = iw[i];
-    const double eps = std::min(gather(eps_gas_, cw), 1.0 - 1e-9);
-    Vec<Dim> ug{};
-    for (int a = 0; a < Dim; ++a) ug[a] = gather(ug_[static_cast<std::size_t>(a)], cwi);
-    const double r = p.radius[i];
-    const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
-    const double slip = norm(ug - p.vel(i));
-    const double beta = beta_ergun_wen_yu(DragInput{eps, 2.0 * r, gc.rho_g, gc.mu_g, slip}, coupling_.drag_switch);
-    // Eq. 12's beta is per unit mixture volume; one particle's share is V_p / (1 - eps).
-    p.drag_k[i] = vp * beta / (1.0 - eps);
-    for (int a = 0; a < Dim; ++a) p.gas_velocity(a)[i] = ug[a];
-    if (pressure_force) {
-      for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = -vp * gather(grad_p_[static_cast<std::size_t>(a)], cwi);
-    } else {
-      for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = 0.0;
+  // Beetstra et al.'s polydisperse correction needs the Sauter mean diameter sum d^3 / sum d^2 around each
+  // particle: both sums deposited with the particles' own kernel weights (serially, in storage order, so the
+  // thread count cannot change them) and gathered back with the same weights.
+  Field<Dim> sum_d3, sum_d2;
+  if (coupling_.drag_law == DragLaw::Beetstra) {
+    sum_d3 = Field<Dim>(g.owned, 0);
+    sum_d2 = Field<Dim>(g.owned, 0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double d = 2.0 * p.radius[i];
+      const CellWeights<Dim>& cw = weights_[i];
+      for (int k = 0; k < cw.count; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        sum_d3.data()[cw.cell[kk]] += cw.w[kk] * d * d * d;
+        sum_d2.data()[cw.cell[kk]] += cw.w[kk] * d * d;
+      }
     }
   }
+  // The drag law is chosen here, once; the particle loop is compiled per law.
+  with_drag_law(DragModel{coupling_.drag_law, coupling_.drag_switch}, [&](auto law) {
+    using Law = decltype(law);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const CellWeights<Dim>& cw = weights_[i];
+      const CellWeights<Dim>& cwi = iw[i];
+      const double eps = std::min(gather(eps_gas_, cw), 1.0 - 1e-9);
+      Vec<Dim> ug{};
+      for (int a = 0; a < Dim; ++a) ug[a] = gather(ug_[static_cast<std::size_t>(a)], cwi);
+      const double r = p.radius[i];
+      const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      const double slip = norm(ug - p.vel(i));
+      DragInput in{eps, 2.0 * r, gc.rho_g, gc.mu_g, slip};
+      if constexpr (std::is_same_v<Law, BeetstraLaw>) in.d_mean = gather(sum_d3, cw) / gather(sum_d2, cw);
+      const double beta = Law::beta(in);
+      // Eq. 12's beta is per unit mixture volume; one particle's share is V_p / (1 - eps).
+      p.drag_k[i] = vp * beta / (1.0 - eps);
+      for (int a = 0; a < Dim; ++a) p.gas_velocity(a)[i] = ug[a];
+      if (pressure_force) {
+        for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = -vp * gather(grad_p_[static_cast<std::size_t>(a)], cwi);
+      } else {
+        for (int a = 0; a < Dim; ++a) p.force_ext(a)[i] = 0.0;
+      }
+    }
+  });
 }
 
 template <int Dim>

@@ -19,7 +19,8 @@ struct CouplingConfig {
   /// voidage to impossible values (paper, section 2.1).
   double eps_min = 0.3;
   int dem_substeps = 1;        ///< DEM steps per gas step
-  DragSwitch drag_switch = DragSwitch::Sharp;
+  DragLaw drag_law = DragLaw::ErgunWenYu;   ///< the paper's Eqs. 13-14 by default
+  DragSwitch drag_switch = DragSwitch::Sharp;  ///< Ergun/Wen-Yu join of ErgunWenYu and Gidaspow
   bool pressure_gradient_force = true;  ///< -V_p grad P on each particle (implied by -eps grad P in Eq. 12)
 };
 

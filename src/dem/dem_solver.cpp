@@ -92,10 +92,42 @@ DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move
   for (const Species& s : config_.species) d_max = std::max(d_max, s.d_max());
   cell_size_ = d_max + config_.skin;
   sized_ = p_.has_own_sizes(config_.species);
+  periodic_ = config_.domain.periodic_box<Dim>();
+  if (config_.domain.periodic[1]) {
+    throw_input_error("the y axis cannot be periodic: gravity, the inlet and the outlet lie along it");
+  }
+  for (int a = 0; a < Dim; ++a) {
+    if (!periodic_.periodic(a)) continue;
+    // A periodic axis has no walls, and a particle must not meet its own partner twice (directly and through
+    // an image), which the image search rules out for periods longer than two reaches.
+    const char* names[3] = {"width", "height", "depth"};
+    if (!(periodic_.length[a] > 2.0 * cell_size_)) {
+      throw_input_error(fmt::format("a periodic axis needs a period above 2 (largest diameter + dem.skin) = {} m; "
+                                    "domain.{} is {} m", 2.0 * cell_size_, names[a], periodic_.length[a]));
+    }
+    if (a == 0) config_.walls.left = config_.walls.right = false;
+    if (a == 2) config_.walls.back = config_.walls.front = false;
+    config_.walls.side_outflow[static_cast<std::size_t>(2 * a)] = false;
+    config_.walls.side_outflow[static_cast<std::size_t>(2 * a + 1)] = false;
+    std::vector<double>& x = p_.coord(a);
+    for (double& xi : x) {
+      if (xi >= 0.0 && xi <= periodic_.length[a]) xi = periodic_.wrap(a, xi);
+    }
+  }
   p_.sort_by_id();
   for (std::size_t i = 1; i < p_.size(); ++i) {
     if (p_.id[i] == p_.id[i - 1]) {
       throw_input_error(fmt::format("particle id {} is given twice: every particle needs its own id", p_.id[i]));
+    }
+  }
+  feed_.next_id = p_.size() == 0 ? 0 : p_.id.back() + 1;
+  if (config_.insertion.enabled()) {
+    const InsertionConfig& in = config_.insertion;
+    if (in.species < 0 || static_cast<std::size_t>(in.species) >= config_.n_species()) {
+      throw_input_error(fmt::format("insertion.species = {} is not a species index", in.species));
+    }
+    for (int a = 0; a < Dim; ++a) {
+      if (!(in.region_lo[a] <= in.region_hi[a])) throw_input_error("insertion: the region's low corner lies above its high one");
     }
   }
   for (auto& w : p_.wall_xi) std::fill(w.begin(), w.end(), 0.0);
@@ -120,7 +152,7 @@ void DemSolver<Dim>::rebuild() {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
   }
-  build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_);
+  build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_, periodic_);
 
   if (have_old) {
     // Carry each stretched spring over to the new entry of the same pair, found by the partner's id (so that
@@ -190,12 +222,19 @@ template <int Dim>
 double DemSolver<Dim>::compute_forces(double dt) {
   // With one species every contact has the same diameter: the largest overlap fraction is the largest overlap over
   // it, taken once after the loops; only a mixture pays for a division per contact (5% of the force loop).
-  if (sized_) return compute_forces_of<true, true>(dt);
-  return config_.n_species() > 1 ? compute_forces_of<true, false>(dt) : compute_forces_of<false, false>(dt);
+  // Periodic axes take the minimum image of each separation; the closed box keeps its loop without that test.
+  // Particles of their own sizes take the mixed loop (overlap per contact) with the dashpot per pair.
+  const bool mixed = config_.n_species() > 1;
+  if (periodic_.any()) {
+    if (sized_) return compute_forces_of<true, true, true>(dt);
+    return mixed ? compute_forces_of<true, true, false>(dt) : compute_forces_of<false, true, false>(dt);
+  }
+  if (sized_) return compute_forces_of<true, false, true>(dt);
+  return mixed ? compute_forces_of<true, false, false>(dt) : compute_forces_of<false, false, false>(dt);
 }
 
 template <int Dim>
-template <bool Mixed, bool Sized>
+template <bool Mixed, bool Periodic, bool Sized>
 double DemSolver<Dim>::compute_forces_of(double dt) {
   const std::size_t n = p_.size();
   const Vec<Dim> L = config_.domain.extent<Dim>();
@@ -246,7 +285,8 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const std::size_t j = nbr_.partner[k];
       if (j < i) continue;  // evaluated by j
       const std::size_t km = mirror_[k];
-      const Vec<Dim> dx = pos(j) - xi;
+      Vec<Dim> dx = pos(j) - xi;
+      if constexpr (Periodic) dx = periodic_.min_image(dx);  // the partner's nearest image
       const double d2 = dot(dx, dx);
       const double rsum = ri + R[j];
       if (d2 >= rsum * rsum) {
@@ -369,6 +409,7 @@ DemStepInfo DemSolver<Dim>::step() {
   DemStepInfo info = advance(config_.dt);
   // Whole steps from the clock origin: n dt carries one rounding, a running sum of dt one per step.
   time_ = time_origin_ + static_cast<double>(steps_ - steps_origin_) * config_.dt;
+  if (config_.insertion.enabled()) info.inserted = insert_due();
   return info;
 }
 
@@ -379,6 +420,7 @@ DemStepInfo DemSolver<Dim>::step(double h) {
   time_ += h;
   time_origin_ = time_;
   steps_origin_ = steps_;
+  if (config_.insertion.enabled()) info.inserted = insert_due();
   return info;
 }
 
@@ -397,8 +439,9 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
   const std::size_t n = p_.size();
   const Vec<Dim> g = config_.domain.gravity_vector<Dim>();
   const double half_skin2 = 0.25 * config_.skin * config_.skin;
-  const double H = config_.domain.height;
   const DomainTest in_domain = domain_test();
+  const PeriodicBox<Dim> box = periodic_;
+  const bool wrap = box.any();
   const AxisPtrs<Dim> X = axis_ptrs<Dim>([&](int a) -> auto& { return p_.coord(a); }, Dim);
   const AxisPtrs<Dim> V = axis_ptrs<Dim>([&](int a) -> auto& { return p_.velocity(a); }, Dim);
   const AxisPtrs<Dim> F = axis_ptrs<Dim>([&](int a) -> auto& { return p_.force(a); }, Dim);
@@ -427,12 +470,18 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
     bool ok = true;
     for (int a = 0; a < Dim; ++a) {
       const double v = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * im + g[a]) * dt) * relax;
-      const double x = X[a][i] + v * dt;
+      double x = X[a][i] + v * dt;
+      double dd = x - B[a][i];
+      if (wrap) {
+        // Re-enter through the opposite side; the distance moved since the list build is the nearest image's.
+        x = box.wrap(a, x);
+        dd = box.min_image(a, x - B[a][i]);
+      }
       V[a][i] = v;
       X[a][i] = x;
-      const double dd = x - B[a][i];
       moved2 += dd * dd;
       ok = ok && in_domain.inside(a, x) && std::isfinite(v);
+      if (in_domain.any_outflow && in_domain.escaped(a, x)) escaped = 1;
     }
     // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
     for (int c = 0; c < NS; ++c) {
@@ -442,7 +491,6 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
     }
     if (moved2 >= half_skin2) moved_far = 1;
     if (!ok) bad = 1;
-    if (in_domain.outflow && X[1][i] > H) escaped = 1;
   }
   need_rebuild_ = moved_far != 0;
   ++steps_;
@@ -454,13 +502,15 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
 template <int Dim>
 std::size_t DemSolver<Dim>::remove_escaped() {
   const std::size_t n = p_.size();
-  const double H = config_.domain.height;
+  const DomainTest in_domain = domain_test();
   constexpr auto kGone = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> keep, new_slot(n, kGone);
   keep.reserve(n);
   std::size_t removed = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (p_.y[i] > H) {
+    bool gone = false;
+    for (int a = 0; a < Dim; ++a) gone = gone || in_domain.escaped(a, p_.coord(a)[i]);
+    if (gone) {
       ++removed;
       removed_mass_ += p_.mass[i];
     } else {
@@ -501,6 +551,66 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   }
   if (!need_rebuild_) link_mirrors();
   return removed;
+}
+
+namespace {
+/// splitmix64 (Steele, Lea and Flood 2014) of (seed, n): the n-th number of a stream that needs no state but its
+/// counter, so a restart continues it from the counter alone. Uniform in [0, 1).
+double feed_uniform(std::uint64_t seed, std::uint64_t n) {
+  std::uint64_t z = seed * 0x9E3779B97F4A7C15ull + (n + 1) * 0xD1B54A32D192ED69ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+}  // namespace
+
+template <int Dim>
+std::size_t DemSolver<Dim>::insert_due() {
+  const InsertionConfig& in = config_.insertion;
+  if (time_ < in.t_start) return 0;
+  // Due by now: the whole particles of rate (t - t_start), the feed stopping at t_end.
+  const double t = std::min(time_, in.t_end) - in.t_start;
+  const auto due = static_cast<std::uint64_t>(std::floor(in.rate * t));
+  if (due <= feed_.inserted) return 0;
+  const Species& species = config_.species[static_cast<std::size_t>(in.species)];
+  Vec<Dim> vel;
+  for (int a = 0; a < Dim; ++a) vel[a] = in.velocity[a];
+  std::size_t added = 0;
+  std::uint64_t tries = static_cast<std::uint64_t>(std::max(in.attempts_per_particle, 1)) * (due - feed_.inserted);
+  while (feed_.inserted < due && tries-- > 0) {
+    // A species with a size distribution: the k-th fed particle's size from a counter-based stream of its own
+    // (k = feed_.inserted, in the checkpoint), so a restart feeds the same sizes.
+    const Species sp = species.sized() ? species.of_diameter(size_quantile(
+                                             species.size, feed_uniform(in.seed ^ 0x5bd1e995ull, feed_.inserted)))
+                                       : species;
+    const double r = sp.radius();
+    Vec<Dim> x;
+    for (int a = 0; a < Dim; ++a) {
+      const double u = feed_uniform(in.seed, feed_.draws++);
+      x[a] = periodic_.wrap(a, in.region_lo[a] + u * (in.region_hi[a] - in.region_lo[a]));
+    }
+    // Clear of every particle (their nearest images on periodic axes): a new particle starts out of contact.
+    bool clear = true;
+    for (std::size_t i = 0; i < p_.size() && clear; ++i) {
+      const Vec<Dim> d = periodic_.min_image(p_.pos(i) - x);
+      const double reach = p_.radius[i] + r;
+      clear = dot(d, d) >= reach * reach;
+    }
+    if (!clear) continue;
+    const bool list_valid = nbr_.offset.size() == p_.size() + 1;
+    p_.add(feed_.next_id++, in.species, sp, x, vel);
+    // The list stays that of the old particles, the new one without partners, so the next rebuild carries the
+    // springs of the old contacts over as after any other step.
+    if (list_valid) nbr_.offset.push_back(nbr_.offset.back());
+    for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)].push_back(x[a]);
+    ++feed_.inserted;
+    feed_.mass += p_.mass.back();
+    ++added;
+  }
+  if (added > 0) need_rebuild_ = true;
+  if (added > 0 && species.sized()) sized_ = true;
+  return added;
 }
 
 template <int Dim>
@@ -557,7 +667,7 @@ double DemSolver<Dim>::kinetic_energy() const {
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
   return State{p_,           nbr_,           build_,        time_,         steps_,       rebuilds_,
-               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_};
+               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_};
 }
 
 template <int Dim>
@@ -572,6 +682,9 @@ void DemSolver<Dim>::restore(State s) {
   steps_origin_ = s.steps_origin;
   removed_count_ = s.removed_count;
   removed_mass_ = s.removed_mass;
+  feed_ = s.feed;
+  // A state from before the feed: the next id follows the largest present.
+  for (std::int64_t id : p_.id) feed_.next_id = std::max(feed_.next_id, id + 1);
   need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
   if (nbr_.partner_id.size() != nbr_.partner.size()) {
     // A list given by slots only: its ids are those of the partners in this storage order.

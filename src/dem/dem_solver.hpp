@@ -1,7 +1,7 @@
 #pragma once
 // The soft-sphere DEM of the paper's section 2.1: contact forces (Eqs. 2-8), torques (Eq. 9) and the explicit
-// update of Eq. 10, with plane walls on both sides of every axis and a Verlet neighbour list carrying the contact
-// history, keyed by particle ids, across rebuilds. One code for 2D discs of sphere mass (spin about z) and 3D
+// update of Eq. 10, with plane walls on both sides of every axis (or periodic axes, or outflow sides) and a Verlet
+// neighbour list carrying the contact history, keyed by particle ids, across rebuilds. One code for 2D discs of sphere mass (spin about z) and 3D
 // spheres (spin vector); instantiated for Dim = 2 and 3.
 #include <array>
 #include <cmath>
@@ -23,7 +23,8 @@ enum class Wall : int { Left = 0, Right = 1, Bottom = 2, Top = 3, Back = 4, Fron
 struct DemStepInfo {
   double max_overlap = 0.0;  ///< m
   bool rebuilt = false;
-  std::size_t removed = 0;   ///< particles that left through an outflow top in this step
+  std::size_t removed = 0;   ///< particles that left through an outflow side in this step
+  std::size_t inserted = 0;  ///< particles added by the feed (DemConfig::insertion) after this step
 };
 
 template <int Dim>
@@ -69,9 +70,23 @@ class DemSolver {
   /// Largest overlap of the last force evaluation relative to its own contact: the smaller diameter of the pair,
   /// or the particle's diameter against a wall.
   double max_overlap_fraction() const { return max_overlap_fraction_; }
-  /// Particles removed through an outflow top since the start of the run, and their mass (kg).
+  /// Particles removed through an outflow side since the start of the run, and their mass (kg).
   std::uint64_t removed_count() const { return removed_count_; }
   double removed_mass() const { return removed_mass_; }
+  /// Particles added by the feed since the start of the run, and their mass (kg): with the removed ones, the
+  /// balance M(t) = M(0) + inserted_mass - removed_mass.
+  std::uint64_t inserted_count() const { return feed_.inserted; }
+  double inserted_mass() const { return feed_.mass; }
+  /// The periodic axes the solver applies (DomainConfig::periodic).
+  const PeriodicBox<Dim>& periodic() const { return periodic_; }
+
+  /// The feed's counters: what it has added, how many random draws it has used, the id the next particle gets.
+  struct FeedState {
+    std::uint64_t inserted = 0;
+    double mass = 0.0;
+    std::uint64_t draws = 0;
+    std::int64_t next_id = 0;
+  };
   const ContactParams& pair_params(int a, int b) const {
     return pair_params_[static_cast<std::size_t>(a) * config_.n_species() + static_cast<std::size_t>(b)];
   }
@@ -91,6 +106,7 @@ class DemSolver {
     std::uint64_t steps_origin = 0;
     std::uint64_t removed_count = 0;
     double removed_mass = 0.0;
+    FeedState feed{};
   };
   State state() const;
   /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
@@ -106,11 +122,12 @@ class DemSolver {
     std::uint64_t steps_origin;
     std::uint64_t removed_count;
     double removed_mass;
+    FeedState feed;
     bool own_sizes;  ///< the particles' sizes are state (has_own_sizes)
   };
   StateView view() const {
     return {p_,        nbr_,          build_,       time_,          steps_,       rebuilds_,
-            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, sized_};
+            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_, sized_};
   }
   /// Whether some particle's size differs from its species' diameter (a size distribution, or a file's sizes).
   bool has_own_sizes() const { return sized_; }
@@ -123,25 +140,37 @@ class DemSolver {
  private:
   DemStepInfo advance(double h);
   double compute_forces(double dt);
-  /// Mixed: species looked up per contact, overlap judged per contact; Sized: particles have their own sizes, so
-  /// the dashpot of Eq. 8 is taken on each pair's own reduced mass.
-  template <bool Mixed, bool Sized>
+  /// Mixed: species looked up per contact, overlap judged per contact; Periodic: minimum-image separations;
+  /// Sized: particles have their own sizes, so the dashpot of Eq. 8 is taken on each pair's own reduced mass.
+  template <bool Mixed, bool Periodic, bool Sized>
   double compute_forces_of(double dt);
   void rebuild();
   void link_mirrors();
-  /// Drop the particles whose centre is above the top (an outflow top), keeping the order of the others, their
-  /// neighbour entries and contact springs; counts them and their mass.
+  /// Drop the particles whose centre is beyond an outflow side, keeping the order of the others, their neighbour
+  /// entries and contact springs; counts them and their mass.
   std::size_t remove_escaped();
+  /// The feed: add the particles due by the current time (DemConfig::insertion), each at the first of its random
+  /// draws that overlaps no particle; those not placed within their tries wait for the next step.
+  std::size_t insert_due();
   static constexpr std::uint64_t kSortEvery = 16;
   /// The step found a particle outside the domain or not finite: fail naming the one with the smallest id.
   void check_particles() const;
-  /// Inside the domain (above the top counts as inside with an outflow top: it is removed) with a finite state.
-  /// The bounds are copied out of the config so that the step's loop keeps them in registers.
+  /// Inside the domain (beyond an outflow side counts as inside: it is removed) with a finite state. The bounds
+  /// are copied out of the config so that the step's loop keeps them in registers.
   struct DomainTest {
     Vec<Dim> extent;
-    bool outflow;
+    std::array<bool, 2 * Dim> outflow;  ///< per side, Wall order
+    bool any_outflow;
     /// Coordinate x on axis a within the domain's bounds.
-    bool inside(int a, double x) const { return x >= 0.0 && (x <= extent[a] || (a == 1 && outflow)); }
+    bool inside(int a, double x) const {
+      return (x >= 0.0 || outflow[static_cast<std::size_t>(2 * a)]) &&
+             (x <= extent[a] || outflow[static_cast<std::size_t>(2 * a + 1)]);
+    }
+    /// Beyond an outflow side on axis a.
+    bool escaped(int a, double x) const {
+      return (x < 0.0 && outflow[static_cast<std::size_t>(2 * a)]) ||
+             (x > extent[a] && outflow[static_cast<std::size_t>(2 * a + 1)]);
+    }
     bool operator()(const Store& p, std::size_t i) const {
       bool ok = true;
       for (int a = 0; a < Dim; ++a) ok = ok && inside(a, p.coord(a)[i]);
@@ -151,7 +180,13 @@ class DemSolver {
     }
   };
   DomainTest domain_test() const {
-    return {config_.domain.extent<Dim>(), config_.walls.top_outflow && !config_.walls.top};
+    DomainTest t{config_.domain.extent<Dim>(), {}, false};
+    for (int w = 0; w < 2 * Dim; ++w) {
+      const bool out = config_.walls.outflow(w) && !config_.walls.enabled(w / 2, w % 2);
+      t.outflow[static_cast<std::size_t>(w)] = out;
+      t.any_outflow = t.any_outflow || out;
+    }
+    return t;
   }
 
   DemConfig config_;
@@ -184,6 +219,8 @@ class DemSolver {
   std::uint64_t steps_origin_ = 0;
   std::uint64_t removed_count_ = 0;
   double removed_mass_ = 0.0;
+  FeedState feed_{};
+  PeriodicBox<Dim> periodic_{};
   std::uint64_t rebuilds_ = 0;
   bool need_rebuild_ = true;
 };

@@ -39,10 +39,21 @@ struct CellBins {
   }
 };
 
+/// The points a search bins: the particles themselves or, on periodic axes, the particles and their images.
 template <int Dim>
-CellBins<Dim> bin_particles(const ParticleStore<Dim>& p, double cell_size) {
+using Coords = std::array<const std::vector<double>*, Dim>;
+
+template <int Dim>
+Coords<Dim> coords_of(const ParticleStore<Dim>& p) {
+  Coords<Dim> c;
+  for (int a = 0; a < Dim; ++a) c[static_cast<std::size_t>(a)] = &p.coord(a);
+  return c;
+}
+
+template <int Dim>
+CellBins<Dim> bin_points(const Coords<Dim>& xs, double cell_size) {
   CellBins<Dim> b;
-  const std::size_t np = p.size();
+  const std::size_t np = xs[0]->size();
   b.size = cell_size;
   b.n.fill(1);
   if (np == 0) {
@@ -54,7 +65,8 @@ CellBins<Dim> bin_particles(const ParticleStore<Dim>& p, double cell_size) {
   const double max_cells = 4.0 * static_cast<double>(np) + 16.0;
   double cells_below = 1.0;  // cells of the axes before this one
   for (int a = 0; a < Dim; ++a) {
-    const auto [mn, mx] = std::minmax_element(p.coord(a).begin(), p.coord(a).end());
+    const std::vector<double>& x = *xs[static_cast<std::size_t>(a)];
+    const auto [mn, mx] = std::minmax_element(x.begin(), x.end());
     b.lo[a] = *mn;
     const double cap = a == 0 ? max_cells : max_cells / cells_below + 1.0;
     b.n[a] = std::max(1, static_cast<int>(std::min((*mx - b.lo[a]) / cell_size + 1.0, cap)));
@@ -66,7 +78,7 @@ CellBins<Dim> bin_particles(const ParticleStore<Dim>& p, double cell_size) {
   b.start.assign(ncell + 1, 0);
   for (std::size_t i = 0; i < np; ++i) {
     std::array<int, Dim> c;
-    for (int a = 0; a < Dim; ++a) c[a] = b.cell(a, p.coord(a)[i]);
+    for (int a = 0; a < Dim; ++a) c[a] = b.cell(a, (*xs[static_cast<std::size_t>(a)])[i]);
     const auto k = static_cast<std::uint32_t>(b.flat(c));
     b.cell_of[i] = k;
     ++b.start[k + 1];
@@ -79,6 +91,11 @@ CellBins<Dim> bin_particles(const ParticleStore<Dim>& p, double cell_size) {
 }
 
 template <int Dim>
+CellBins<Dim> bin_particles(const ParticleStore<Dim>& p, double cell_size) {
+  return bin_points<Dim>(coords_of(p), cell_size);
+}
+
+template <int Dim>
 void add_cell_ordered_copies(const ParticleStore<Dim>& p, CellBins<Dim>& b) {
   const std::size_t n = b.slots.size();
   for (int a = 0; a < Dim; ++a) b.xs[a].resize(n);
@@ -88,6 +105,70 @@ void add_cell_ordered_copies(const ParticleStore<Dim>& p, CellBins<Dim>& b) {
     for (int a = 0; a < Dim; ++a) b.xs[a][k] = p.coord(a)[i];
     b.rs[k] = p.radius[i];
   }
+}
+
+/// The particles and, for each one within `reach` of a periodic side, its images shifted by a period across that
+/// side (and across both sides of a corner in 3D); owner[q] is the particle slot point q stands for.
+template <int Dim>
+struct ImagePoints {
+  std::array<std::vector<double>, Dim> x;
+  std::vector<std::uint32_t> owner;
+};
+
+template <int Dim>
+ImagePoints<Dim> with_images(const ParticleStore<Dim>& p, const PeriodicBox<Dim>& box, double reach) {
+  ImagePoints<Dim> q;
+  const std::size_t n = p.size();
+  for (int a = 0; a < Dim; ++a) q.x[a].assign(p.coord(a).begin(), p.coord(a).end());
+  q.owner.resize(n);
+  for (std::size_t i = 0; i < n; ++i) q.owner[i] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < n; ++i) {
+    // Shift -1, 0 or +1 period per periodic axis: a particle near the low side is seen again beyond the high one.
+    std::array<int, Dim> lo{}, hi{};
+    for (int a = 0; a < Dim; ++a) {
+      if (!box.periodic(a)) continue;
+      const double x = p.coord(a)[i];
+      if (x < reach) hi[a] = 1;
+      if (x >= box.length[a] - reach) lo[a] = -1;
+    }
+    std::array<int, Dim> s = lo;
+    while (true) {
+      bool self = true;
+      for (int a = 0; a < Dim; ++a) self = self && s[a] == 0;
+      if (!self) {
+        for (int a = 0; a < Dim; ++a) q.x[a].push_back(p.coord(a)[i] + s[a] * box.length[a]);
+        q.owner.push_back(static_cast<std::uint32_t>(i));
+      }
+      int a = 0;
+      while (a < Dim && s[a] == hi[a]) {
+        s[a] = lo[a];
+        ++a;
+      }
+      if (a == Dim) break;
+      ++s[a];
+    }
+  }
+  return q;
+}
+
+/// Bins of the particles and their periodic images; the slots name the particles the points stand for, so the
+/// search finds a partner across a periodic side by its own slot.
+template <int Dim>
+CellBins<Dim> bin_with_images(const ParticleStore<Dim>& p, const PeriodicBox<Dim>& box, double cell_size) {
+  const ImagePoints<Dim> q = with_images(p, box, cell_size);
+  Coords<Dim> c;
+  for (int a = 0; a < Dim; ++a) c[static_cast<std::size_t>(a)] = &q.x[a];
+  CellBins<Dim> b = bin_points<Dim>(c, cell_size);
+  const std::size_t n = b.slots.size();
+  for (int a = 0; a < Dim; ++a) b.xs[a].resize(n);
+  b.rs.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t pt = b.slots[k];
+    for (int a = 0; a < Dim; ++a) b.xs[a][k] = q.x[a][pt];
+    b.slots[k] = q.owner[pt];
+    b.rs[k] = p.radius[b.slots[k]];
+  }
+  return b;
 }
 
 /// Appends to `out`, from position `used`, every particle j != i within r_i + r_j + skin of particle i, in a
@@ -160,9 +241,20 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
                          NeighborScratch& scratch) {
+  build_neighbor_list(p, cell_size, skin, out, scratch, PeriodicBox<Dim>{});
+}
+
+template <int Dim>
+void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
+                         NeighborScratch& scratch, const PeriodicBox<Dim>& periodic) {
   const std::size_t n = p.size();
-  CellBins<Dim> b = bin_particles(p, cell_size);
-  add_cell_ordered_copies(p, b);
+  CellBins<Dim> b;
+  if (periodic.any()) {
+    b = bin_with_images(p, periodic, cell_size);
+  } else {
+    b = bin_particles(p, cell_size);
+    add_cell_ordered_copies(p, b);
+  }
   out.offset.assign(n + 1, 0);
   // One search pass: each thread fills its own buffer for a contiguous block of particles, and the blocks are
   // joined in block order, so the list is the same for any number of threads.
@@ -212,10 +304,16 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 
 template <int Dim>
 std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts(const ParticleStore<Dim>& p, double skin) {
+  return brute_force_contacts(p, skin, PeriodicBox<Dim>{});
+}
+
+template <int Dim>
+std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts(const ParticleStore<Dim>& p, double skin,
+                                                                        const PeriodicBox<Dim>& periodic) {
   std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::size_t j = i + 1; j < p.size(); ++j) {
-      const Vec<Dim> d = p.pos(j) - p.pos(i);
+      const Vec<Dim> d = periodic.min_image(p.pos(j) - p.pos(i));
       const double reach = p.radius[i] + p.radius[j] + skin;
       if (norm2(d) < reach * reach) pairs.emplace_back(std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]));
     }
@@ -232,5 +330,13 @@ template void build_neighbor_list<2>(const ParticleStore<2>&, double, double, Ne
 template void build_neighbor_list<3>(const ParticleStore<3>&, double, double, NeighborList<3>&, NeighborScratch&);
 template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<2>(const ParticleStore<2>&, double);
 template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<3>(const ParticleStore<3>&, double);
+template void build_neighbor_list<2>(const ParticleStore<2>&, double, double, NeighborList<2>&, NeighborScratch&,
+                                     const PeriodicBox<2>&);
+template void build_neighbor_list<3>(const ParticleStore<3>&, double, double, NeighborList<3>&, NeighborScratch&,
+                                     const PeriodicBox<3>&);
+template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<2>(const ParticleStore<2>&, double,
+                                                                                     const PeriodicBox<2>&);
+template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<3>(const ParticleStore<3>&, double,
+                                                                                     const PeriodicBox<3>&);
 
 }  // namespace fluidbed

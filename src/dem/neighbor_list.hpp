@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/periodic.hpp"
 #include "core/vec.hpp"
 #include "dem/particle_store.hpp"
 
@@ -42,8 +43,19 @@ template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
                          NeighborScratch& scratch);
 
+/// The same across periodic axes: the particles (inside [0, L) on each periodic axis) are binned with their images
+/// within `cell_size` of each periodic side, so a pair is found once, through its nearest image (the partner's
+/// entry names its own slot). Needs L > 2 cell_size on each periodic axis, else a pair could meet twice.
+template <int Dim>
+void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
+                         NeighborScratch& scratch, const PeriodicBox<Dim>& periodic);
+
 /// Brute-force O(N^2) set of touching pairs (i < j by id), for tests.
 template <int Dim>
 std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts(const ParticleStore<Dim>& p, double skin);
+/// The same with minimum-image separations on the periodic axes.
+template <int Dim>
+std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts(const ParticleStore<Dim>& p, double skin,
+                                                                        const PeriodicBox<Dim>& periodic);
 
 }  // namespace fluidbed

@@ -249,8 +249,9 @@ std::string describe_case(const CaseConfig& c) {
   for (const std::string& n : c.notes) s += fmt::format("  note: {}\n", n);
   const bool three_d = c.domain.dimension == 3;
   if (three_d) {
-    line("domain", fmt::format("{} x {} x {} m (width x height x depth, front and back walls), gravity ({}, {}, {}) "
-                               "m/s^2", c.domain.width, c.domain.height, c.domain.depth, c.domain.gravity.x,
+    line("domain", fmt::format("{} x {} x {} m (width x height x depth, {}), gravity ({}, {}, {}) "
+                               "m/s^2", c.domain.width, c.domain.height, c.domain.depth,
+                               c.domain.periodic[2] ? "periodic in z" : "front and back walls", c.domain.gravity.x,
                                c.domain.gravity.y, c.domain.gravity.z));
   } else {
     line("domain", fmt::format("{} x {} m, gravity ({}, {}) m/s^2", c.domain.width, c.domain.height, c.domain.gravity.x,
@@ -383,7 +384,30 @@ std::string describe_case(const CaseConfig& c) {
     line("top of the domain (particles)", c.dem.walls.top ? "wall"
                                           : c.dem.walls.top_outflow ? "outflow: leaving particles are removed and counted"
                                                                     : "open: a particle crossing it fails the run");
-    if (three_d) line("front and back (particles)", "walls (z = 0 and z = domain.depth)");
+    if (three_d && !c.domain.periodic[2]) {
+      line("front and back (particles)", c.dem.walls.outflow(4) || c.dem.walls.outflow(5)
+                                             ? "walls, except the outflow sides of domain.particle_outflow"
+                                             : "walls (z = 0 and z = domain.depth)");
+    }
+    if (c.domain.any_periodic()) {
+      line("periodic axes", fmt::format("{}{}: particles leaving one side re-enter at the other, contacts through "
+                                        "the nearest image", c.domain.periodic[0] ? "x" : "",
+                                        c.domain.periodic[2] ? (c.domain.periodic[0] ? " and z" : "z") : ""));
+    }
+    std::string out;
+    const char* side_names[6] = {"left", "right", "bottom", "top", "back", "front"};
+    for (int w = 0; w < (three_d ? 6 : 4); ++w) {
+      if (w != 3 && c.dem.walls.outflow(w)) out += (out.empty() ? "" : ", ") + std::string(side_names[w]);
+    }
+    if (!out.empty()) line("outflow sides (particles)", out + ": leaving particles are removed and counted");
+    if (c.dem.insertion.enabled()) {
+      const InsertionConfig& in = c.dem.insertion;
+      const double m = c.dem.species[static_cast<std::size_t>(in.species)].mass();
+      line("particle feed", fmt::format("{:.6g} particles/s ({:.6g} kg/s) of species {} from t = {} s{}, seed {}",
+                                        in.rate, in.rate * m, in.species, in.t_start,
+                                        std::isfinite(in.t_end) ? fmt::format(" to {} s", in.t_end) : std::string(),
+                                        in.seed));
+    }
   }
   if (c.model == Model::Tfm || c.gas_enabled) {
     if (three_d) {
@@ -425,6 +449,13 @@ std::string describe_case(const CaseConfig& c) {
     if (sinks) line("terminal velocity (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(t.d_p, t.rho_s, t.rho_g, t.mu_g, g)));
     line("bed weight per area", fmt::format("{:.0f} Pa", (1.0 - t.eps_initial) * (t.rho_s - t.rho_g) * g * t.packed_height));
     line("memory estimate", fmt::format("{:.2f} MB", static_cast<double>(c.grid.cells()) * 40 * 8 / 1e6));
+  }
+  if (c.averages.enabled) {
+    const AveragesConfig& a = c.averages;
+    line("time averages ([averages])",
+         a.interval > 0.0 ? fmt::format("{} to {} s, a sample every {} s ({:.0f} samples)", a.t_start, a.t_end,
+                                        a.interval, std::floor((a.t_end - a.t_start) / a.interval + 1e-9) + 1)
+                          : fmt::format("{} to {} s, a sample after every model step", a.t_start, a.t_end));
   }
   return s;
 }

@@ -6,6 +6,7 @@
 
 #include "analysis/bubble_tracker.hpp"
 #include "analysis/probes.hpp"
+#include "analysis/time_average.hpp"
 #include "core/domain.hpp"
 #include "core/grid.hpp"
 #include "core/grid2.hpp"
@@ -102,6 +103,7 @@ struct CaseConfig {
   CouplingConfig coupling{};
   BubbleConfig bubble{};
   ProbesConfig probes{};  ///< [probes], [[probe]] (issue 15)
+  AveragesConfig averages{};  ///< [averages]: time-averaged fields over a window (issue 15)
   tfm::TfmConfig tfm{};
   double max_overlap_fraction = 0.1;  ///< a run fails when an overlap exceeds this fraction of the diameter
   /// What the loader wants the user to read before a run: defaults it derived from other keys (and how), values

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -206,13 +207,53 @@ void read_case(CaseReader& r, CaseConfig& c) {
                                          "or set case.dimension = 3", grav[2]));
   }
   c.domain.gravity = {grav[0], grav[1], grav.size() == 3 ? grav[2] : 0.0};
+  const std::vector<std::string> periodic =
+      r.strings("domain.periodic", {}, "periodic axes: particles and gas leaving through one side re-enter through "
+                "the opposite one, with no walls there (x; z too in 3D; CFD-DEM and DEM only)",
+                three_d ? std::vector<std::string>{"x", "z"} : std::vector<std::string>{"x"});
+  for (const std::string& axis : periodic) c.domain.periodic[axis == "x" ? 0 : 2] = true;
+  if (c.model == Model::Tfm && !periodic.empty()) {
+    r.fail("domain.periodic", "the two-fluid model has walls on every side in this version: periodic axes need "
+                              "case.model = \"dem\"");
+  }
   c.dem.domain = c.domain;
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "
-                                    "outflow (they leave, removed and counted in monitor.csv); the sides, the "
-                                    "bottom and, in 3D, the front and back are always walls", {"open", "wall", "outflow"});
+                                    "outflow (they leave, removed and counted in monitor.csv); the other sides are "
+                                    "walls unless periodic (domain.periodic) or outflow (domain.particle_outflow)",
+                                    {"open", "wall", "outflow"});
   c.dem.walls.top = ptop == "wall";
   c.dem.walls.top_outflow = ptop == "outflow";
+  {
+    const std::vector<std::string> sides = three_d
+        ? std::vector<std::string>{"left", "right", "bottom", "top", "back", "front"}
+        : std::vector<std::string>{"left", "right", "bottom", "top"};
+    const std::vector<std::string> out =
+        r.strings("domain.particle_outflow", {}, "sides particles leave through (no wall there; each particle that "
+                  "crosses is removed and counted in monitor.csv, particles_lost and mass_lost_kg); \"top\" is "
+                  "domain.particle_top = \"outflow\"", sides);
+    for (const std::string& side : out) {
+      const auto w = static_cast<std::size_t>(std::find(sides.begin(), sides.end(), side) - sides.begin());
+      if (c.domain.periodic[w / 2]) {
+        r.fail("domain.particle_outflow", fmt::format("the {} side lies on a periodic axis (domain.periodic): it has "
+                                                      "no boundary to leave through", side));
+      }
+      if (w == 3 && ptop == "wall") {
+        r.fail("domain.particle_outflow", "the top is an outflow here but domain.particle_top = \"wall\"");
+      }
+      if (w == 3) {
+        c.dem.walls.top_outflow = true;
+      } else {
+        c.dem.walls.side_outflow[w] = true;
+      }
+    }
+    WallConfig& wl = c.dem.walls;
+    wl.left = !wl.outflow(0) && !c.domain.periodic[0];
+    wl.right = !wl.outflow(1) && !c.domain.periodic[0];
+    wl.bottom = !wl.outflow(2);
+    wl.back = !wl.outflow(4) && !c.domain.periodic[2];
+    wl.front = !wl.outflow(5) && !c.domain.periodic[2];
+  }
 
   if (c.model == Model::Tfm) return;  // the particle keys belong to the discrete model
 
@@ -277,6 +318,19 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.dem.skin = r.number("dem.skin", 0.5 * c.dem.species[0].diameter, "m",
                         "Verlet skin of the neighbour list; the list is rebuilt when a particle has moved half of it",
                         R::non_negative());
+  {
+    // The neighbour search through periodic images (DemSolver) needs a period above two reaches.
+    double d_max = 0.0;
+    for (const Species& sp : c.dem.species) d_max = std::max(d_max, sp.diameter);
+    const double reach = d_max + c.dem.skin;
+    for (int a : {0, 2}) {
+      const double L = a == 0 ? c.domain.width : c.domain.depth;
+      if (c.domain.periodic[static_cast<std::size_t>(a)] && !(L > 2.0 * reach)) {
+        r.fail("domain.periodic", fmt::format("a periodic axis needs a period above 2 (largest diameter + dem.skin) "
+                                              "= {} m; domain.{} is {} m", 2.0 * reach, a == 0 ? "width" : "depth", L));
+      }
+    }
+  }
   const double dt_max = dem_stable_time_step(c.dem);
   if (c.dem.dt > dt_max) {
     r.fail("dem.time_step", fmt::format("{} s is above the stability limit of the stiffest contact; the largest "
@@ -286,6 +340,48 @@ void read_case(CaseReader& r, CaseConfig& c) {
     c.notes.push_back(fmt::format("dem.time_step = {:g} s is above {:.3g} s, the limit of the spin mode of a packed "
                                   "bed with sticking contacts: sticking springs there oscillate until they slide "
                                   "(the paper case steps at 1e-4 s for this reason)", c.dem.dt, dt_bed));
+  }
+
+  // [insertion]: a feed of new particles during the run.
+  {
+    InsertionConfig& in = c.dem.insertion;
+    const std::size_t nd = three_d ? 3 : 2;
+    in.rate = r.number("insertion.rate", 0.0, "1/s", "particles added per second during the run (0: none; or "
+                       "insertion.mass_rate)", R::non_negative());
+    const double mass_rate = r.number("insertion.mass_rate", 0.0, "kg/s", "mass added per second (instead of "
+                                      "insertion.rate: rate = mass_rate / particle mass)", R::non_negative());
+    if (in.rate > 0.0 && mass_rate > 0.0) {
+      r.fail("insertion.mass_rate", "give insertion.rate or insertion.mass_rate, not both");
+    }
+    in.species = static_cast<int>(r.integer("insertion.species", 0, "species of the new particles",
+                                            R::between(0, static_cast<double>(ns - 1))));
+    if (mass_rate > 0.0) in.rate = mass_rate / c.dem.species[static_cast<std::size_t>(in.species)].mass();
+    const std::vector<double> zero(nd, 0.0);
+    const auto lo = r.numbers("insertion.region_min", zero, "m", "low corner of the box the new centres are drawn "
+                              "in (x, y; z in 3D)", nd);
+    const auto hi = r.numbers("insertion.region_max", zero, "m", "high corner of that box", nd);
+    const auto vel = r.numbers("insertion.velocity", zero, "m/s", "velocity of each new particle", nd);
+    in.t_start = r.number("insertion.start_time", 0.0, "s", "the feed starts", R::non_negative());
+    const double t_end = r.number("insertion.end_time", 0.0, "s", "the feed stops (0: at the end of the run)",
+                                  R::non_negative());
+    in.t_end = t_end > 0.0 ? t_end : std::numeric_limits<double>::infinity();
+    in.seed = static_cast<std::uint64_t>(r.integer("insertion.seed", static_cast<std::int64_t>(c.seed) + 1,
+                                                   "seed of the random positions of the new particles",
+                                                   R::non_negative()));
+    in.attempts_per_particle = static_cast<int>(r.integer("insertion.attempts", 50, "random positions tried per "
+                                                          "particle and step before it waits for the next step",
+                                                          R::between(1, 1e6)));
+    const Vec3 ext{c.domain.width, c.domain.height, c.domain.depth};
+    for (std::size_t a = 0; a < nd; ++a) {
+      in.region_lo[static_cast<int>(a)] = lo[a];
+      in.region_hi[static_cast<int>(a)] = hi[a];
+      in.velocity[static_cast<int>(a)] = vel[a];
+      if (in.rate > 0.0 && !(lo[a] >= 0.0 && lo[a] <= hi[a] && hi[a] <= ext[static_cast<int>(a)])) {
+        r.fail("insertion.region_max", fmt::format("the region [{}, {}] on axis {} must lie inside the domain [0, {}] "
+                                                   "with region_min <= region_max", lo[a], hi[a], "xyz"[a],
+                                                   ext[static_cast<int>(a)]));
+      }
+    }
   }
 
   // [particles]
@@ -363,6 +459,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
     }
   }
   c.gas_enabled = r.boolean("gas.enabled", true, "couple the particles to the gas (false: DEM alone, in vacuum)");
+  if (c.gas_enabled && c.domain.any_periodic()) {
+    r.fail("domain.periodic", "periodic axes are implemented for the particles only in this version (the gas "
+                              "solver, its pressure matrix and the deposition have walls on every side): set "
+                              "gas.enabled = false for a periodic DEM case");
+  }
   c.max_overlap_fraction = r.number("dem.max_overlap_fraction", 0.1, "",
                                     "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
 }
@@ -380,6 +481,7 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   t.mu_g = c.gas.mu_g;
   t.gravity = c.domain.gravity_vector<2>();
   t.boundary = c.gas.boundary;
+  t.drag_law = c.coupling.drag_law;
   t.drag_switch = c.coupling.drag_switch;
   t.d_p = r.number("tfm.particle_diameter", 0.004, "m", "particle diameter d_p", R::positive());
   t.rho_s = r.number("tfm.particle_density", 2700.0, "kg/m^3", "particle density rho_s", R::positive());
@@ -676,9 +778,27 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                                   "most {:.3g} s for a Courant number of 0.5 on the inflow and half the Stokes time "
                                   "of the smallest particle)", cc.dem_substeps, cc.dem_substeps * c.dem.dt, gas_dt_max));
   }
-  const std::string sw = r.string("coupling.drag_switch", "sharp", "Ergun to Wen-Yu at eps = 0.8: the paper's step or "
-                                  "a smooth blend", {"sharp", "smooth"});
+  const std::string law = r.string("coupling.drag_law", "ergun-wen-yu", "gas-particle drag law (docs/model.md): the "
+                                   "paper's Eqs. 13-14, Gidaspow (1994), Di Felice (1994), Beetstra et al. (2007) or "
+                                   "Koch & Hill (2001); CFD-DEM and TFM",
+                                   {"ergun-wen-yu", "gidaspow", "di-felice", "beetstra", "koch-hill"});
+  cc.drag_law = law == "gidaspow"    ? DragLaw::Gidaspow
+                : law == "di-felice" ? DragLaw::DiFelice
+                : law == "beetstra"  ? DragLaw::Beetstra
+                : law == "koch-hill" ? DragLaw::KochHill
+                                     : DragLaw::ErgunWenYu;
+  // Gidaspow's law is used with the Huilin-Gidaspow blend (MFIX's GIDASPOW_BLEND); the paper's with its step.
+  const std::string sw = r.string("coupling.drag_switch", cc.drag_law == DragLaw::Gidaspow ? "smooth" : "sharp",
+                                  "Ergun to Wen-Yu at eps = 0.8 (drag_law ergun-wen-yu or gidaspow): a step or the "
+                                  "arctan blend of Huilin & Gidaspow (2003)", {"sharp", "smooth"});
+  r.describe_default("coupling.drag_switch", "\"sharp\"; \"smooth\" for gidaspow");
   cc.drag_switch = sw == "smooth" ? DragSwitch::Smooth : DragSwitch::Sharp;
+  // "sharp" (the resolved default) is harmless for a law without branches; asking for a blend there is an error.
+  const bool switched = cc.drag_law == DragLaw::ErgunWenYu || cc.drag_law == DragLaw::Gidaspow;
+  if (!switched && cc.drag_switch == DragSwitch::Smooth) {
+    r.fail("coupling.drag_switch", fmt::format("the drag law \"{}\" has no Ergun/Wen-Yu branches to blend; "
+                                               "\"smooth\" is for \"ergun-wen-yu\" and \"gidaspow\"", law));
+  }
   cc.pressure_gradient_force = r.boolean("coupling.pressure_force", true, "apply -V_p grad P to each particle");
 
   if (c.model == Model::Tfm) read_tfm(r, c);  // before [bubble]: the U_mf default needs the solids
@@ -797,6 +917,22 @@ void read_probes(CaseReader& r, CaseConfig& c) {
   }
 }
 
+// [averages]: the window of the time-averaged fields (analysis/time_average.hpp, docs/analysis.md "Time averages").
+void read_averages(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  AveragesConfig& a = c.averages;
+  a.t_start = r.number("averages.t_start", 0.0, "s", "first sample of the time averages (averages.vti, .csv)",
+                       R::non_negative());
+  a.t_end = r.number("averages.t_end", 0.0, "s",
+                     "last sample of the time averages; 0: no averages", R::non_negative());
+  a.interval = r.number("averages.interval", 0.01, "s",
+                        "interval of the samples; 0: after every model step (gas step of CFD-DEM, TFM step)",
+                        R::non_negative());
+  if (a.t_end != 0.0 && !(a.t_end > a.t_start))
+    r.fail("averages.t_end", fmt::format("{} s is not after averages.t_start = {} s", a.t_end, a.t_start));
+  a.enabled = a.t_end > a.t_start;
+}
+
 LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) r.set_override(o);
   LoadedCase out;
@@ -804,6 +940,7 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
   read_output(r, out.config);
   read_probes(r, out.config);
+  read_averages(r, out.config);
   r.reject_unknown_keys();
   // What the gas solver and the bubble tracker check when they are built, so that `check` refuses what `run`
   // would (the TFM's own check, tfm::validate, runs in read_tfm).

@@ -479,6 +479,36 @@ std::vector<double> CaseReader::numbers(const std::string& path, const std::vect
   return v;
 }
 
+std::vector<std::string> CaseReader::strings(const std::string& path, const std::vector<std::string>& def,
+                                             const std::string& doc, const std::vector<std::string>& allowed) {
+  std::string range;
+  for (const auto& a : allowed) range += (range.empty() ? "" : ", ") + ("\"" + a + "\"");
+  std::string def_text = "[";
+  for (std::size_t i = 0; i < def.size(); ++i) def_text += (i ? ", \"" : "\"") + def[i] + "\"";
+  def_text += "]";
+  record(path, "array of strings", "", doc, range.empty() ? range : "each of " + range, def_text);
+  std::vector<std::string> v = def;
+  if (const toml::node* n = find(path)) {
+    const auto* a = n->as_array();
+    if (!a) fail(path, fmt::format("expected an array of strings, got {}", node_type_name(*n)));
+    v.clear();
+    for (const auto& e : *a) {
+      const auto* s = e.as_string();
+      if (!s) fail(path, fmt::format("expected an array of strings, got an element of type {}", node_type_name(e)));
+      const std::string x = s->get();
+      if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), x) == allowed.end()) {
+        fail(path, fmt::format("\"{}\" is not one of {}", x, range));
+      }
+      if (std::find(v.begin(), v.end(), x) != v.end()) fail(path, fmt::format("\"{}\" is given twice", x));
+      v.push_back(x);
+    }
+  }
+  toml::array arr;
+  for (const std::string& x : v) arr.push_back(x);
+  insert_at(resolved_, path, arr);
+  return v;
+}
+
 std::size_t CaseReader::table_count(const std::string& path, const std::string& doc) {
   record(path, "array of tables", "", doc, "", "");
   read_.insert(path);

@@ -60,6 +60,9 @@ class CaseReader {
   /// An array of min_size to max_size numbers (gravity: 2 in 2D, 3 in 3D).
   std::vector<double> numbers(const std::string& path, const std::vector<double>& def, const std::string& unit,
                               const std::string& doc, std::size_t min_size, std::size_t max_size);
+  /// An array of strings, each one of `allowed` (when given) and none twice (periodic axes, outflow sides).
+  std::vector<std::string> strings(const std::string& path, const std::vector<std::string>& def, const std::string& doc,
+                                   const std::vector<std::string>& allowed = {});
   /// Number of tables in an array of tables (e.g. [[species]]); its keys are read as "name[i].key".
   std::size_t table_count(const std::string& path, const std::string& doc);
   bool has(const std::string& path) const;

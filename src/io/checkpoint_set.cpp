@@ -69,7 +69,7 @@ std::map<std::string, std::string> leaves(const std::string& text, const std::st
 bool changes_simulation(const std::string& key) {
   static const char* const run_only[] = {"case.name", "case.description", "case.end_time", "case.max_wall_time",
                                          "dem.max_overlap_fraction"};
-  static const char* const sections[] = {"output.", "bubble.", "settle.", "particles."};
+  static const char* const sections[] = {"output.", "bubble.", "settle.", "particles.", "averages."};
   for (const char* k : run_only) {
     if (key == k) return false;
   }

@@ -96,6 +96,10 @@ std::string settled_bed_record(const CaseConfig& c) {
   line("domain.gravity.x", d.domain.gravity.x);
   line("domain.gravity.y", d.domain.gravity.y);
   if (d.walls.top) line("domain.height (top wall)", d.domain.height);
+  // A bed settled across a periodic side is not one settled against walls (only written when periodic, so the
+  // records of the closed beds stay as they were).
+  if (d.domain.periodic[0]) line("domain.periodic.x", 1.0);
+  if (d.domain.periodic[2]) line("domain.periodic.z", 1.0);
   // A 3D bed also depends on its depth and its placement across it.
   if (d.domain.dimension == 3) {
     line("domain.depth", d.domain.depth);
@@ -174,6 +178,10 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
     f.set_attribute("dem", "steps_origin", static_cast<std::int64_t>(s.steps_origin));
     f.set_attribute("dem", "removed_count", static_cast<std::int64_t>(s.removed_count));
     f.set_attribute("dem", "removed_mass", s.removed_mass);
+    f.set_attribute("dem", "inserted_count", static_cast<std::int64_t>(s.feed.inserted));
+    f.set_attribute("dem", "inserted_mass", s.feed.mass);
+    f.set_attribute("dem", "feed_draws", static_cast<std::int64_t>(s.feed.draws));
+    f.set_attribute("dem", "next_id", s.feed.next_id);
 }
 
 template <int Dim>
@@ -271,6 +279,13 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
       s.removed_count = static_cast<std::uint64_t>(f.attribute_int64("dem", "removed_count"));
       s.removed_mass = f.attribute_double("dem", "removed_mass");
     }
+    // Checkpoints from before the feed: nothing inserted, the next id follows the largest (DemSolver::restore).
+    if (f.has_attribute("dem", "inserted_count")) {
+      s.feed.inserted = static_cast<std::uint64_t>(f.attribute_int64("dem", "inserted_count"));
+      s.feed.mass = f.attribute_double("dem", "inserted_mass");
+      s.feed.draws = static_cast<std::uint64_t>(f.attribute_int64("dem", "feed_draws"));
+      s.feed.next_id = f.attribute_int64("dem", "next_id");
+    }
     return s;
 }
 
@@ -328,11 +343,18 @@ class DemModel final : public ModelRun {
   double macro_dt() const override { return sim_.macro_dt(); }
 
   std::vector<std::string> monitor_columns() const override {
-    return {"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
+    std::vector<std::string> c{"kinetic_energy_J", "pressure_drop_Pa", "max_overlap_m", "gas_mass_residual", "solids_mass_kg",
             "gas_mass_balance", "simple_iterations", "min_voidage", "fluid_force_y_N", "gas_reaction_y_N",
             "neighbor_rebuilds", "lacey_index", "particles_lost", "mass_lost_kg",
             // Per metre of depth (over coupling.depth, the slab the monolayer stands for): the TFM's basis.
             "solids_mass_per_depth_kg_m", "kinetic_energy_per_depth_J_m", "linear_solver_fallbacks"};
+    // The feed (insertion), only in a case that has one (the others' monitor.csv stays as it was):
+    // solids_mass_kg = M(0) + mass_inserted_kg - mass_lost_kg.
+    if (config_.dem.insertion.enabled()) {
+      c.push_back("particles_inserted");
+      c.push_back("mass_inserted_kg");
+    }
+    return c;
   }
   std::vector<std::optional<double>> monitor_values() override {
     const ParticleStore<Dim>& p = sim_.dem().particles();
@@ -369,6 +391,10 @@ class DemModel final : public ModelRun {
         l = lacey_index<3>(pos, lower, cell_geometry(sim_.gas().grid()), MixingConfig{});
       }
       if (l.valid) v[11] = l.index;
+    }
+    if (config_.dem.insertion.enabled()) {
+      v.push_back(static_cast<double>(sim_.dem().inserted_count()));
+      v.push_back(sim_.dem().inserted_mass());
     }
     return v;
   }
@@ -476,6 +502,10 @@ class DemModel final : public ModelRun {
         DemConfig vacuum = c.dem;
         vacuum.walls.top = true;
         vacuum.walls.top_outflow = false;
+        // A container while it is filled: walls on the outflow sides too (a periodic axis stays periodic).
+        vacuum.walls.left = vacuum.walls.right = vacuum.walls.bottom = vacuum.walls.back = vacuum.walls.front = true;
+        vacuum.walls.side_outflow = {};
+        vacuum.insertion = InsertionConfig{};
         DemSolver<Dim> settler(vacuum, std::move(p));
         const auto t0 = std::chrono::steady_clock::now();
         SettleResult r;

@@ -24,6 +24,7 @@
 #include "analysis/layer_tracers.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/average_series.hpp"
 #include "io/bubble_series.hpp"
 #include "io/probe_series.hpp"
 #include "io/checkpoint_set.hpp"
@@ -182,9 +183,10 @@ std::string shell_word(const std::string& s) {
 }
 
 /// The results a run writes into its folder: the series files and the folders of frames and checkpoints.
-constexpr std::array<const char*, 9> kResultFiles{"monitor.csv",     "fields.pvd",        "particles.pvd",
-                                                  "bubble.csv",      "cost.json",         "bubbles.csv",
-                                                  "bubble_events.csv", "bubble_frames.csv", "probes.csv"};
+constexpr std::array<const char*, 12> kResultFiles{"monitor.csv",       "fields.pvd",        "particles.pvd",
+                                                   "bubble.csv",        "cost.json",         "bubbles.csv",
+                                                   "bubble_events.csv", "bubble_frames.csv", "probes.csv",
+                                                   "averages.vti",      "averages.csv",      "averages.json"};
 constexpr std::array<const char*, 4> kResultFolders{"checkpoints", "fields", "particles", "tracers"};
 
 /// What in `out` is the result of an earlier run, for the refusal to overwrite it.
@@ -470,6 +472,16 @@ class Run {
         log().warn("[[probe]] given, but the model has no gas fields: no probes.csv");
       }
     }
+    if (cfg_.averages.enabled) {
+      if (fv.has_grid() && fv.eps && fv.has_gas_velocity()) {
+        averages_.emplace(out_, cfg_.averages, fv, restart_ ? &*restart_file_ : nullptr, t_start_);
+        if (restart_ && !averages_->restored()) {
+          log().warn("the checkpoint holds no time averages of this window: they start again at t = {:.6g} s", t_start_);
+        }
+      } else {
+        log().warn("[averages] given, but the model has no gas fields: no averages");
+      }
+    }
     fields_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "fields.pvd", t_cut) : PvdCollection(out_ / "fields.pvd"));
     particles_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "particles.pvd", t_cut)
                                     : PvdCollection(out_ / "particles.pvd"));
@@ -521,6 +533,7 @@ class Run {
   int finish() {
     const double wall_here = wall();
     const double wall_total = wall_before_ + wall_here;
+    if (averages_) averages_->finish();  // a window the run ends inside is written as it stands
     const fs::path final_path = write_checkpoint(stop_reason_.empty() ? "final" : checkpoint_tag(model_->time()), wall_total);
     last_checkpoint_ = final_path;
     const CostInfo cost = model_->cost();
@@ -563,6 +576,7 @@ class Run {
       probes_->sample(probe_rows_.interval == 0.0 ? t : probe_rows_.stamp(t), model_->fields());
       probe_rows_.advance(t, dt_);
     }
+    if (averages_) averages_->observe(t, dt_, model_->fields(), model_->particles());
     if (monitors_.due(t, dt_)) {
       std::vector<std::optional<double>> row{monitors_.stamp(t)};
       for (auto& v : model_->monitor_values()) row.push_back(v);
@@ -659,6 +673,7 @@ class Run {
     model_->save(f);
     if (bubbles_) save_bubble_state(f, bubbles_->state());
     if (population_) population_->save(f);
+    if (averages_) averages_->save(f);
     if (tracers_) save_tracers(f, *tracers_);
     f.commit();
     return path;
@@ -751,6 +766,7 @@ class Run {
   std::optional<BubbleTracker> bubbles_;
   std::optional<BubbleSeries> population_;
   std::optional<ProbeSeries> probes_;
+  std::optional<AverageSeries> averages_;
   std::optional<CsvWriter> monitor_, bubble_csv_;
   std::optional<PvdCollection> fields_pvd_, particles_pvd_;
   fs::path last_checkpoint_;

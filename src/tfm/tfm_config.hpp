@@ -51,6 +51,7 @@ struct TfmConfig {
   double rho_g = 1.205;        ///< [kg/m^3], constant (incompressible gas)
   double mu_g = 1.8e-5;        ///< [Pa s]
   Vec2 gravity{0.0, -9.81};    ///< [m/s^2]
+  DragLaw drag_law = DragLaw::ErgunWenYu;
   DragSwitch drag_switch = DragSwitch::Sharp;
   // Initial bed (Table 1): uniform voidage up to the packed height, gas above.
   double eps_initial = 0.431;

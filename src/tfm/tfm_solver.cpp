@@ -191,12 +191,13 @@ TfmSolver::TfmSolver(const TfmConfig& config)
   // Pressure from the steady gas momentum balance of every face (Eq. 17 without inertia), integrated down
   // from the top: in a bed at rest the drag then carries exactly what the gas flow can carry.
   const double g = std::abs(config_.gravity.y);
+  const DragBetaFn beta_of = drag_beta_function(DragModel{config_.drag_law, config_.drag_switch});
   auto drop_across = [&](int i, int j) {  // P(below) - P(above) across horizontal face j
     const double eg = j == ny ? s_.eps(i, ny - 1) : 0.5 * (s_.eps(i, j - 1) + s_.eps(i, j));
     auto beta_at = [&](int jc) {
       DragInput in{std::min(s_.eps(i, jc), 1.0 - kEpsSFloor), config_.d_p, config_.rho_g, config_.mu_g,
                    0.5 * (vg_interstitial(i, jc) + s_.vg(i, jc + 1))};
-      return beta_ergun_wen_yu(in, config_.drag_switch);
+      return beta_of(in);
     };
     const double beta = j == ny ? beta_at(ny - 1) : 0.5 * (beta_at(j - 1) + beta_at(j));
     return config_.rho_g * g * grid_.dy + beta * s_.vg(i, j) * grid_.dy / eg;
@@ -258,6 +259,7 @@ void TfmSolver::compute_cell_closures_of() {
   const double dx = grid_.dx, dy = grid_.dy;
   Field2 usc(nx, ny), vsc(nx, ny);
   solids_velocity_cells(usc, vsc);
+  const DragBetaFn beta_of = drag_beta_function(DragModel{c.drag_law, c.drag_switch});  // chosen once
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const double eps = s_.eps(i, j);
@@ -266,7 +268,7 @@ void TfmSolver::compute_cell_closures_of() {
       const double slip = std::hypot(usc(i, j) - ugc, vsc(i, j) - vgc);
       // Eq. 13 with the shared drag law; the floor keeps beta / (eps_s rho_s) finite in empty cells.
       DragInput in{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip};
-      beta_c_(i, j) = beta_ergun_wen_yu(in, c.drag_switch);
+      beta_c_(i, j) = beta_of(in);
 
       double mu = 0.0, lambda = 0.0, theta = 0.0;
       if constexpr (R == SolidsRheology::ConstantViscosity) {
