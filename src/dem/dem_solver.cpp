@@ -98,9 +98,20 @@ template <int Dim>
 DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move(config)), p_(std::move(particles)) {
   pair_params_ = make_pair_params(config_);
   wall_params_ = make_wall_params(config_);
-  double d_max = 0.0;
-  for (const Species& s : config_.species) d_max = std::max(d_max, s.diameter);
+  const std::size_t ns = config_.n_species();
+  for (std::size_t a = 0; a < ns; ++a) {
+    for (std::size_t b = 0; b < ns; ++b) {
+      pair_damping_per_root_mass_.push_back(damping_from_restitution(
+          1.0, config_.stiffness, config_.pair_params(static_cast<int>(a), static_cast<int>(b)).restitution));
+    }
+    wall_damping_per_root_mass_.push_back(damping_from_restitution(1.0, config_.stiffness, config_.wall[a].restitution));
+  }
+  // Cells of the largest particle that can be present (a species' largest size, or a larger one read from a file)
+  // plus the skin: every pair within reach is then in neighbouring cells.
+  double d_max = p_.max_diameter();
+  for (const Species& s : config_.species) d_max = std::max(d_max, s.d_max());
   cell_size_ = d_max + config_.skin;
+  sized_ = p_.has_own_sizes(config_.species);
   periodic_ = config_.domain.periodic_box<Dim>();
   if (config_.domain.periodic[1]) {
     throw_input_error("the y axis cannot be periodic: gravity, the inlet and the outlet lie along it");
@@ -251,16 +262,22 @@ double DemSolver<Dim>::compute_forces(double dt) {
   // With one species every contact has the same diameter: the largest overlap fraction is the largest overlap over
   // it, taken once after the loops; only a mixture pays for a division per contact (5% of the force loop).
   // Periodic axes take the minimum image of each separation; the closed box keeps its loop without that test.
+  // Particles of their own sizes take the mixed loop (overlap per contact) with the dashpot per pair.
   const bool mixed = config_.n_species() > 1;
   const bool periodic = periodic_.any();
+  const bool sized = sized_;
   return with_contact_law(config_.contact, [&]<class Law>(Law) {
-    if (periodic) return mixed ? compute_forces_of<Law, true, true>(dt) : compute_forces_of<Law, false, true>(dt);
-    return mixed ? compute_forces_of<Law, true, false>(dt) : compute_forces_of<Law, false, false>(dt);
+    if (periodic) {
+      if (sized) return compute_forces_of<Law, true, true, true>(dt);
+      return mixed ? compute_forces_of<Law, true, true, false>(dt) : compute_forces_of<Law, false, true, false>(dt);
+    }
+    if (sized) return compute_forces_of<Law, true, false, true>(dt);
+    return mixed ? compute_forces_of<Law, true, false, false>(dt) : compute_forces_of<Law, false, false, false>(dt);
   });
 }
 
 template <int Dim>
-template <class Law, bool Mixed, bool Periodic>
+template <class Law, bool Mixed, bool Periodic, bool Sized>
 double DemSolver<Dim>::compute_forces_of(double dt) {
   const std::size_t n = p_.size();
   const Vec<Dim> L = config_.domain.extent<Dim>();
@@ -283,6 +300,8 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   Spin<Dim>* const roll = Law::kRollingHistory ? nbr_.rolling.data() : nullptr;
   // Ai et al. 2011 Eq. 17: the rolling inertia of one partner, I + m r^2.
   auto roll_inertia = [&](std::size_t i) { return 1.0 / IINV[i] + M[i] * R[i] * R[i]; };
+  // Only the paper's constant dashpot depends on the species' mass; the other dampings read m_eff per contact.
+  constexpr bool kSizedDashpot = Sized && std::is_same_v<typename Law::DampingPart, PaperDamping>;
   auto pos = [&](std::size_t i) {
     Vec<Dim> v;
     for (int a = 0; a < Dim; ++a) v[a] = X[a][i];
@@ -352,15 +371,24 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
       // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
       const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
-      const ContactParams& pp =
-          Mixed ? pair_params_[si * ns + static_cast<std::size_t>(p_.species[j])] : pair_params_[0];
+      const std::size_t pair = Mixed ? si * ns + static_cast<std::size_t>(p_.species[j]) : 0;
       ContactKinematics<Dim> kin{nrm, overlap, v_rel};
       if constexpr (Law::kNeedsPairSize) {
         kin.r_eff = ri * R[j] / rsum;
         kin.m_eff = M[i] * M[j] / (M[i] + M[j]);
         if constexpr (Law::kRolling) kin.i_roll = 1.0 / (1.0 / roll_inertia(i) + 1.0 / roll_inertia(j));
       }
-      const ContactForce<Dim> cf = Law::template force<Dim>(pp, kin, dt, nbr_.history[k]);
+      const ContactForce<Dim> cf = [&] {
+        if constexpr (kSizedDashpot) {
+          // Eq. 8 on this pair's reduced mass: the restitution of the input for every pair of sizes.
+          ContactParams pp = pair_params_[pair];
+          pp.eta_n = pair_damping_per_root_mass_[pair] * std::sqrt(reduced_mass(M[i], M[j]));
+          pp.eta_t = pp.eta_n;
+          return Law::template force<Dim>(pp, kin, dt, nbr_.history[k]);
+        } else {
+          return Law::template force<Dim>(pair_params_[pair], kin, dt, nbr_.history[k]);
+        }
+      }();
       nbr_.history[km] = -nbr_.history[k];
       entry_force_[k] = cf.f;
       entry_force_[km] = -cf.f;
@@ -426,14 +454,23 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       const double lever = ri - overlap;  // to the contact point on the wall plane
       // Velocity, spin and species are read only here, by the few particles touching a wall.
       const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
-      const ContactParams& wp = wall_params_[Mixed ? static_cast<std::size_t>(p_.species[i]) : 0];
+      const std::size_t sw = Mixed ? static_cast<std::size_t>(p_.species[i]) : 0;
       ContactKinematics<Dim> kin{nrm, overlap, v_rel};
       if constexpr (Law::kNeedsPairSize) {
         kin.r_eff = ri;
         kin.m_eff = M[i];
         if constexpr (Law::kRolling) kin.i_roll = roll_inertia(i);
       }
-      const ContactForce<Dim> cf = Law::template force<Dim>(wp, kin, dt, xi_w);
+      const ContactForce<Dim> cf = [&] {
+        if constexpr (kSizedDashpot) {
+          ContactParams wp = wall_params_[sw];
+          wp.eta_n = wall_damping_per_root_mass_[sw] * std::sqrt(M[i]);  // Eq. 8, the wall fixed
+          wp.eta_t = wp.eta_n;
+          return Law::template force<Dim>(wp, kin, dt, xi_w);
+        } else {
+          return Law::template force<Dim>(wall_params_[sw], kin, dt, xi_w);
+        }
+      }();
       for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
       f += cf.f;
       torque += lever * cross(nrm, cf.f_t);
@@ -633,13 +670,18 @@ std::size_t DemSolver<Dim>::insert_due() {
   const double t = std::min(time_, in.t_end) - in.t_start;
   const auto due = static_cast<std::uint64_t>(std::floor(in.rate * t));
   if (due <= feed_.inserted) return 0;
-  const Species& sp = config_.species[static_cast<std::size_t>(in.species)];
-  const double r = sp.radius();
+  const Species& species = config_.species[static_cast<std::size_t>(in.species)];
   Vec<Dim> vel;
   for (int a = 0; a < Dim; ++a) vel[a] = in.velocity[a];
   std::size_t added = 0;
   std::uint64_t tries = static_cast<std::uint64_t>(std::max(in.attempts_per_particle, 1)) * (due - feed_.inserted);
   while (feed_.inserted < due && tries-- > 0) {
+    // A species with a size distribution: the k-th fed particle's size from a counter-based stream of its own
+    // (k = feed_.inserted, in the checkpoint), so a restart feeds the same sizes.
+    const Species sp = species.sized() ? species.of_diameter(size_quantile(
+                                             species.size, feed_uniform(in.seed ^ 0x5bd1e995ull, feed_.inserted)))
+                                       : species;
+    const double r = sp.radius();
     Vec<Dim> x;
     for (int a = 0; a < Dim; ++a) {
       const double u = feed_uniform(in.seed, feed_.draws++);
@@ -666,6 +708,7 @@ std::size_t DemSolver<Dim>::insert_due() {
     ++added;
   }
   if (added > 0) need_rebuild_ = true;
+  if (added > 0 && species.sized()) sized_ = true;
   return added;
 }
 
@@ -752,6 +795,10 @@ void DemSolver<Dim>::restore(State s) {
     }
   }
   mirror_.clear();  // linked again at the next force evaluation
+  sized_ = p_.has_own_sizes(config_.species);
+  double d_max = p_.max_diameter();
+  for (const Species& sp : config_.species) d_max = std::max(d_max, sp.d_max());
+  cell_size_ = d_max + config_.skin;
 }
 
 template class DemSolver<2>;

@@ -126,11 +126,14 @@ class DemSolver {
     double removed_mass;
     FeedState feed;
     const std::vector<Spin<Dim>>& wall_roll;
+    bool own_sizes;  ///< the particles' sizes are state (has_own_sizes)
   };
   StateView view() const {
     return {p_,           nbr_,         build_,        time_,          steps_,        rebuilds_, need_rebuild_,
-            time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,        wall_roll_};
+            time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,        wall_roll_, sized_};
   }
+  /// Whether some particle's size differs from its species' diameter (a size distribution, or a file's sizes).
+  bool has_own_sizes() const { return sized_; }
   void restore(State s);
   const List& neighbors() const { return nbr_; }
 
@@ -140,7 +143,10 @@ class DemSolver {
  private:
   DemStepInfo advance(double h);
   double compute_forces(double dt);
-  template <class Law, bool Mixed, bool Periodic>
+  /// Law: the composed contact law (contact_law.hpp); Mixed: species looked up per contact, overlap judged per
+  /// contact; Periodic: minimum-image separations; Sized: particles have their own sizes, so the paper's dashpot
+  /// (Eq. 8) is taken on each pair's own reduced mass.
+  template <class Law, bool Mixed, bool Periodic, bool Sized>
   double compute_forces_of(double dt);
   void rebuild();
   void link_mirrors();
@@ -191,6 +197,11 @@ class DemSolver {
   Store p_;
   std::vector<ContactParams> pair_params_;
   std::vector<ContactParams> wall_params_;
+  /// Eq. 8 per unit square root of mass, eta / sqrt(m_eff), per species pair and per species on a wall, for beds
+  /// whose particles have their own sizes (sized_).
+  std::vector<double> pair_damping_per_root_mass_;
+  std::vector<double> wall_damping_per_root_mass_;
+  bool sized_ = false;  ///< some particle's size differs from its species' diameter
   List nbr_;
   std::array<std::vector<double>, Dim> build_;
   // The previous list during a rebuild (kept to reuse its memory).

@@ -20,7 +20,7 @@ struct Lattice {
 template <int Dim>
 Lattice placement_lattice(const DemConfig& dem, const PackingConfig& cfg) {
   double d_max = 0.0;
-  for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
+  for (const Species& s : dem.species) d_max = std::max(d_max, s.d_max());
   const double site = d_max + 2.0 * cfg.min_gap;  // half a gap of margin on each side, one gap of jitter
   Lattice l{site, static_cast<std::int64_t>(std::floor((cfg.x_max - cfg.x_min) / site + 1e-9)),
             static_cast<std::int64_t>(std::floor((cfg.y_max - cfg.y_min) / site + 1e-9)), 1};
@@ -38,7 +38,7 @@ std::int64_t random_placement_capacity(const DemConfig& dem, const PackingConfig
 template <int Dim>
 ParticleStore<Dim> place_random(const DemConfig& dem, const PackingConfig& cfg) {
   double d_max = 0.0;
-  for (const Species& s : dem.species) d_max = std::max(d_max, s.diameter);
+  for (const Species& s : dem.species) d_max = std::max(d_max, s.d_max());
   const Lattice lat = placement_lattice<Dim>(dem, cfg);
   const double site = lat.site;
   const double w = cfg.x_max - cfg.x_min;
@@ -80,11 +80,17 @@ ParticleStore<Dim> place_random(const DemConfig& dem, const PackingConfig& cfg) 
     }
     for (; k < cfg.count; ++k) species[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(cfg.species_fraction.size() - 1);
   }
+  // Sizes from a stream of their own, drawn in id order and only for species with a distribution: the sites and
+  // jitter of a bed of fixed sizes are those of the same seed without this stream.
+  std::mt19937_64 size_rng(cfg.seed ^ 0x9e3779b97f4a7c15ULL);
+  auto size_uniform = [&size_rng]() { return static_cast<double>(size_rng() >> 11) * 0x1.0p-53; };
   ParticleStore<Dim> p;
   p.reserve(static_cast<std::size_t>(cfg.count));
   for (std::int64_t k = 0; k < cfg.count; ++k) {
     const std::int64_t s = site_index[static_cast<std::size_t>(k)];
-    const Species& sp = dem.species[static_cast<std::size_t>(species[static_cast<std::size_t>(k)])];
+    const Species& species_k = dem.species[static_cast<std::size_t>(species[static_cast<std::size_t>(k)])];
+    const Species sp = species_k.sized() ? species_k.of_diameter(size_quantile(species_k.size, size_uniform()))
+                                         : species_k;
     // Jitter inside the site keeping half the gap to its edges, so neighbours stay at least min_gap apart.
     const double free = site - sp.diameter - cfg.min_gap;
     const double x = cfg.x_min + (static_cast<double>(s % nx) * site) + 0.5 * cfg.min_gap + sp.radius() + uniform() * free;

@@ -21,19 +21,38 @@
 #include <vector>
 
 #include "core/vec.hpp"
+#include "dem/size_distribution.hpp"
 
 namespace fluidbed {
 
-/// Particle species: mass and inertia are those of a sphere (the paper's 2D bed of spheres).
+/// Particle species: mass and inertia are those of a sphere (the paper's 2D bed of spheres). A species may place
+/// its particles with a size distribution (`size`); each particle then keeps its own diameter, and `diameter` is
+/// the distribution's number mean, the species' representative size.
 struct Species {
   double diameter = 0.004;  ///< m
   double density = 2700.0;  ///< kg/m^3
+  /// Sizes of the randomly placed particles; law Fixed (the default): all `diameter`.
+  SizeDistribution size{};
 
   double radius() const { return 0.5 * diameter; }
   double volume() const { return std::numbers::pi * diameter * diameter * diameter / 6.0; }
   double mass() const { return density * volume(); }
   /// Solid sphere: I = (2/5) m r^2.
   double inertia() const { return 0.4 * mass() * radius() * radius(); }
+
+  bool sized() const { return size.law != SizeLaw::Fixed; }
+  /// Smallest and largest diameter a particle of this species can have, m.
+  double d_min() const { return sized() ? size.d_min : diameter; }
+  double d_max() const { return sized() ? size.d_max : diameter; }
+  /// The distribution of the placed sizes (a fixed one at `diameter` for law Fixed).
+  SizeDistribution distribution() const { return sized() ? size : fixed_size(diameter); }
+  /// The same material at diameter d (a fixed size): what one particle of the species is.
+  Species of_diameter(double d) const {
+    Species s = *this;
+    s.diameter = d;
+    s.size = SizeDistribution{};
+    return s;
+  }
 };
 
 /// Number of spin components: one (about z) in 2D, three in 3D.
@@ -175,7 +194,8 @@ struct ParticleStore : ParticleAxes<Dim> {
     for_each_array([n](const std::string&, auto& a, ArrayRole) { a.reserve(n); });
   }
 
-  /// Append a particle: at rest by default, forces, drag and wall springs zero.
+  /// Append a particle of species s at its diameter s.diameter (`of_diameter` gives a particle its own size): at
+  /// rest by default, forces, drag and wall springs zero.
   void add(std::int64_t id_, std::int32_t species_, const Species& s, Vec<Dim> pos, Vec<Dim> vel = {},
            Spin<Dim> w = {}, std::int32_t layer_ = 0) {
     for_each_array([](const std::string&, auto& a, ArrayRole) { a.emplace_back(); });
@@ -188,10 +208,28 @@ struct ParticleStore : ParticleAxes<Dim> {
       velocity(a)[i] = vel[a];
     }
     set_spin(i, w);
+    set_size(i, s);
+  }
+  /// Radius, mass and inertia of particle i: a sphere of s.diameter and s.density.
+  void set_size(std::size_t i, const Species& s) {
     radius[i] = s.radius();
     mass[i] = s.mass();
     inv_mass[i] = 1.0 / s.mass();
     inv_inertia[i] = 1.0 / s.inertia();
+  }
+  /// Largest particle diameter in the store (0 when empty), m.
+  double max_diameter() const {
+    double r = 0.0;
+    for (double x : radius) r = r > x ? r : x;
+    return 2.0 * r;
+  }
+  /// Whether any particle's size differs from its species' `diameter` (a distribution, or sizes read from a file):
+  /// then the sizes are state that files and checkpoints must carry.
+  bool has_own_sizes(const std::vector<Species>& s) const {
+    for (std::size_t i = 0; i < size(); ++i) {
+      if (2.0 * radius[i] != s[static_cast<std::size_t>(species[i])].diameter) return true;
+    }
+    return false;
   }
 
   Vec<Dim> pos(std::size_t i) const {

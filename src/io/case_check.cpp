@@ -10,6 +10,8 @@
 #include "dem/contact_model.hpp"
 #include "fluid/drag.hpp"
 #include "io/case_loader.hpp"
+#include "io/csv.hpp"
+#include "io/dem_model.hpp"
 
 namespace fluidbed {
 
@@ -60,9 +62,12 @@ std::string cell_text(const CaseGrid& g) {
 }  // namespace
 
 EquivalentContact equivalent_contact(const DemConfig& dem, int a, int b) {
-  const Species& sa = dem.species[static_cast<std::size_t>(a)];
+  // Each species by its smallest particle: the lightest, whose contacts are the shortest.
+  const Species& spa = dem.species[static_cast<std::size_t>(a)];
+  const Species sa = spa.of_diameter(spa.d_min());
   const bool wall = b < 0;
-  const Species& sb = wall ? sa : dem.species[static_cast<std::size_t>(b)];
+  const Species sb = wall ? sa : dem.species[static_cast<std::size_t>(b)].of_diameter(
+                                     dem.species[static_cast<std::size_t>(b)].d_min());
   const double m_eff = wall ? sa.mass() : reduced_mass(sa.mass(), sb.mass());
   const double e = wall ? dem.wall[static_cast<std::size_t>(a)].restitution : dem.pair_params(a, b).restitution;
   const ContactModelConfig& m = dem.contact;
@@ -119,6 +124,14 @@ BedMixture bed_mixture(const DemConfig& dem, const std::vector<double>& fraction
   double s2 = 0.0, s3 = 0.0, m3 = 0.0;
   for (std::size_t s = 0; s < dem.n_species(); ++s) {
     const double f = s < fraction.size() ? fraction[s] : 0.0;
+    if (dem.species[s].sized()) {
+      // The species' own number moments <d^2>, <d^3>.
+      const SizeMoments m = size_moments(dem.species[s].size);
+      s2 += f * m.m2;
+      s3 += f * m.m3;
+      m3 += f * m.m3 * dem.species[s].density;
+      continue;
+    }
     const double d = dem.species[s].diameter;
     s2 += f * d * d;
     s3 += f * d * d * d;
@@ -222,6 +235,65 @@ void check_gas_plausible(const CaseReader& r, const GasConfig& g, std::vector<st
   }
 }
 
+std::vector<SpeciesSizes> species_sizes(const CaseConfig& c) {
+  const DemConfig& dem = c.dem;
+  std::vector<SpeciesSizes> out(dem.n_species());
+  if (c.particles.source == ParticleSource::File) {
+    // The bed is the file's: its particles as they are.
+    const auto rows = read_particles_csv(case_relative_path(c.source_path, c.particles.file), c.domain.dimension);
+    std::vector<double> s1(out.size(), 0.0), s2(out.size(), 0.0), s3(out.size(), 0.0);
+    for (SpeciesSizes& z : out) {
+      z.from_file = true;
+      z.d_min = 1e300;
+      z.d_max = 0.0;
+    }
+    for (const ParticleCsvRow& row : rows) {
+      const auto a = static_cast<std::size_t>(row.species);
+      if (a >= out.size()) continue;
+      const double d = row.diameter > 0.0 ? row.diameter : dem.species[a].diameter;
+      SpeciesSizes& z = out[a];
+      ++z.count;
+      s1[a] += d;
+      s2[a] += d * d;
+      s3[a] += d * d * d;
+      z.d_min = std::min(z.d_min, d);
+      z.d_max = std::max(z.d_max, d);
+    }
+    for (std::size_t a = 0; a < out.size(); ++a) {
+      SpeciesSizes& z = out[a];
+      z.what = z.d_min < z.d_max ? "sizes of the file" : "one size";
+      if (z.count == 0) {
+        z.d_min = z.d_max = z.mean = z.d32 = dem.species[a].diameter;
+        continue;
+      }
+      z.mean = s1[a] / static_cast<double>(z.count);
+      z.d32 = s3[a] / s2[a];
+    }
+    return out;
+  }
+  // Random placement: the counts it places (species by cumulative fraction, as place_random assigns them) and the
+  // requested distribution's moments.
+  const std::vector<double>& frac = c.particles.packing.species_fraction;
+  const std::int64_t n = c.particles.packing.count;
+  double acc = 0.0;
+  std::int64_t placed = 0;
+  for (std::size_t a = 0; a < out.size(); ++a) {
+    acc += a < frac.size() ? frac[a] : (a == 0 ? 1.0 : 0.0);
+    const std::int64_t end = a + 1 == out.size() ? n : std::min<std::int64_t>(n, std::llround(acc * static_cast<double>(n)));
+    SpeciesSizes& z = out[a];
+    z.count = static_cast<std::size_t>(std::max<std::int64_t>(0, end - placed));
+    placed = std::max(placed, end);
+    const Species& sp = dem.species[a];
+    const SizeMoments m = size_moments(sp.distribution());
+    z.what = sp.sized() ? std::string(size_law_name(sp.size.law)) + " (requested)" : "fixed";
+    z.mean = m.m1;
+    z.d32 = sp.sized() ? m.d32() : sp.diameter;
+    z.d_min = sp.d_min();
+    z.d_max = sp.d_max();
+  }
+  return out;
+}
+
 std::string describe_case(const CaseConfig& c) {
   std::string s;
   auto line = [&s](const std::string& what, const std::string& value) { s += fmt::format("  {:<44} {}\n", what, value); };
@@ -248,13 +320,20 @@ std::string describe_case(const CaseConfig& c) {
     const std::vector<double>& frac = c.particles.packing.species_fraction;
     const std::int64_t n = c.particles.packing.count;
     double bed_mass = 0.0, bed_area = 0.0;
+    const std::vector<SpeciesSizes> sizes = species_sizes(c);
     for (std::size_t a = 0; a < dem.n_species(); ++a) {
       const Species& sp = dem.species[a];
       const double f = a < frac.size() ? frac[a] : 0.0;
-      bed_mass += static_cast<double>(n) * f * sp.mass();
-      bed_area += static_cast<double>(n) * f *
-                  (three_d ? std::numbers::pi * sp.diameter * sp.diameter * sp.diameter / 6.0
-                           : std::numbers::pi * sp.diameter * sp.diameter / 4.0);
+      if (sp.sized()) {
+        const SizeMoments m = size_moments(sp.size);
+        bed_mass += static_cast<double>(n) * f * sp.density * std::numbers::pi * m.m3 / 6.0;
+        bed_area += static_cast<double>(n) * f * (three_d ? std::numbers::pi * m.m3 / 6.0 : std::numbers::pi * m.m2 / 4.0);
+      } else {
+        bed_mass += static_cast<double>(n) * f * sp.mass();
+        bed_area += static_cast<double>(n) * f *
+                    (three_d ? std::numbers::pi * sp.diameter * sp.diameter * sp.diameter / 6.0
+                             : std::numbers::pi * sp.diameter * sp.diameter / 4.0);
+      }
       std::string v = fmt::format("d = {} m, rho = {} kg/m^3, mass {:.4g} kg, {:.3g}% by number", sp.diameter,
                                   sp.density, sp.mass(), 100.0 * f);
       if (sinks && sp.density > rho_g) {
@@ -262,10 +341,13 @@ std::string describe_case(const CaseConfig& c) {
                          ergun_minimum_fluidisation_velocity(kDemEpsMf, sp.diameter, sp.density, rho_g, mu_g, g));
       }
       line(fmt::format("species {}", a), v);
+      const SpeciesSizes& z = sizes[a];
+      line(fmt::format("species {} sizes", a),
+           fmt::format("{}: {} particles{}, mean d = {:.4g} m, d32 = {:.4g} m, min {:.4g} m, max {:.4g} m",
+                       z.what, z.count, z.from_file ? " in the file" : "", z.mean, z.d32, z.d_min, z.d_max));
     }
-    const double m_light = std::min_element(dem.species.begin(), dem.species.end(), [](const Species& x, const Species& y) {
-                             return x.mass() < y.mass();
-                           })->mass();
+    double m_light = 1e300;  // the lightest particle any species places
+    for (const Species& sp : dem.species) m_light = std::min(m_light, sp.of_diameter(sp.d_min()).mass());
     const ContactModelConfig& law = dem.contact;
     line("contact law", fmt::format("normal {}, damping {}, tangential {}, rolling {}", to_string(law.normal),
                                     to_string(law.damping), to_string(law.tangential), to_string(law.rolling)));

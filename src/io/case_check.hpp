@@ -50,6 +50,16 @@ struct BedMixture {
 };
 BedMixture bed_mixture(const DemConfig& dem, const std::vector<double>& fraction);
 
+/// The particle sizes of each species as `check` reports them: for a random placement the count it places and the
+/// requested distribution (mean, Sauter d32 = <d^3>/<d^2>, cut-offs); for a particle file its rows' sizes.
+struct SpeciesSizes {
+  std::string what;        ///< "fixed", "<law> (requested)", "sizes of the file" or "one size"
+  std::size_t count = 0;
+  double mean = 0.0, d32 = 0.0, d_min = 0.0, d_max = 0.0;  ///< m
+  bool from_file = false;
+};
+std::vector<SpeciesSizes> species_sizes(const CaseConfig& c);
+
 /// Voidage at minimum fluidisation of the discrete model's bed (the paper's eps_mf, about 0.43).
 inline constexpr double kDemEpsMf = 0.43;
 /// Ergun U_mf of the case's bed (DEM: the mixture at kDemEpsMf; TFM: the solids at tfm.eps_initial), the default of

@@ -30,11 +30,12 @@ double dem_stable_time_step(const DemConfig& dem) {
       dt = std::min(dt, 2.0 / w0 * (std::sqrt(1.0 + zeta * zeta) - zeta));
     }
   };
+  // Each species by its smallest particle: the lightest, whose contacts are the shortest.
   for (std::size_t a = 0; a < dem.n_species(); ++a) {
-    const Species& sa = dem.species[a];
+    const Species sa = dem.species[a].of_diameter(dem.species[a].d_min());
     const double rot_a = sa.radius() * sa.radius() / sa.inertia();
     for (std::size_t b = 0; b < dem.n_species(); ++b) {
-      const Species& sb = dem.species[b];
+      const Species sb = dem.species[b].of_diameter(dem.species[b].d_min());
       const double rot_b = sb.radius() * sb.radius() / sb.inertia();
       limit(1.0 / sa.mass() + 1.0 / sb.mass(), 1.0 / sa.mass() + 1.0 / sb.mass() + rot_a + rot_b,
             equivalent_contact(dem, static_cast<int>(a), static_cast<int>(b)));
@@ -48,7 +49,7 @@ double dem_packed_bed_time_step(const DemConfig& dem) {
   const double z = dem.domain.dimension == 3 ? 12.0 : 6.0;
   double dt = 1e300;
   for (std::size_t a = 0; a < dem.n_species(); ++a) {
-    const Species& s = dem.species[a];
+    const Species s = dem.species[a].of_diameter(dem.species[a].d_min());  // its lightest particle
     const EquivalentContact ec = equivalent_contact(dem, static_cast<int>(a), static_cast<int>(a));
     // The spin block of the stiffness is k_t r^2 / I times the contact graph's signless Laplacian (top eigenvalue
     // about 2 Z); the single dashpot (Eq. 3) has the same structure, hence zeta from the same factor.
@@ -104,6 +105,98 @@ std::pair<double, double> read_contact_law(CaseReader& r, DemConfig& dem) {
   m.wall_material.poisson_ratio = r.number("contact.wall_poisson_ratio", 0.25, "", "Poisson ratio of the walls",
                                            R::Range{-1.0, 0.5, true, false});
   return {mu_r, mu_rw};
+}
+
+// The size of one species' particles: a fixed diameter (the paper), or a distribution of the randomly placed ones
+// (issue 14, item 3). With a distribution, Species::diameter is its number mean.
+void read_species_size(CaseReader& r, const std::string& p, Species& sp) {
+  using R = CaseReader;
+  const std::string law = r.string(p + "size_distribution", "fixed", "sizes of the randomly placed particles, by "
+                                   "number: fixed (all `diameter`), uniform (d_min..d_max), normal (mean, std), "
+                                   "log-normal (median, sigma), both cut at d_min and d_max, or list (diameters, "
+                                   "fractions)", {"fixed", "uniform", "normal", "log-normal", "list"});
+  SizeDistribution& z = sp.size;
+  z = SizeDistribution{};
+  if (law == "fixed") {
+    sp.diameter = r.number(p + "diameter", 0.004, "m", "particle diameter (size_distribution = \"fixed\")", R::positive());
+    return;
+  }
+  if (r.has(p + "diameter")) {
+    r.fail(p + "diameter", fmt::format("a species with size_distribution = \"{}\" takes its sizes from the "
+                                       "distribution; its diameter is the distribution's mean", law));
+  }
+  auto cut_offs = [&](double lo, double hi) {
+    z.d_min = r.number(p + "d_min", lo, "m", "smallest diameter placed (cut-off); default: 3 standard deviations "
+                       "below the mean (normal) or the median / exp(3 sigma) (log-normal)", R::positive());
+    z.d_max = r.number(p + "d_max", hi, "m", "largest diameter placed (cut-off); default: 3 standard deviations "
+                       "above the mean (normal) or the median exp(3 sigma) (log-normal)", R::positive());
+    if (!(z.d_max > z.d_min)) {
+      r.fail(p + "d_max", fmt::format("{} m is not above d_min = {} m", z.d_max, z.d_min));
+    }
+  };
+  if (law == "uniform") {
+    z.law = SizeLaw::Uniform;
+    z.d_min = r.required_number(p + "d_min", "m", "smallest diameter placed (cut-off)", R::positive());
+    z.d_max = r.required_number(p + "d_max", "m", "largest diameter placed (cut-off)", R::positive());
+    if (!(z.d_max > z.d_min)) r.fail(p + "d_max", fmt::format("{} m is not above d_min = {} m", z.d_max, z.d_min));
+  } else if (law == "normal") {
+    z.law = SizeLaw::Normal;
+    z.mean = r.required_number(p + "mean", "m", "mean diameter of the normal distribution (before its cut-offs)",
+                               R::positive());
+    z.std = r.required_number(p + "std", "m", "standard deviation of the normal distribution's diameter",
+                              R::positive());
+    cut_offs(z.mean - 3.0 * z.std, z.mean + 3.0 * z.std);
+    if (z.d_min <= 0.0) r.fail(p + "std", "mean - 3 std is not positive: give d_min");
+  } else if (law == "log-normal") {
+    z.law = SizeLaw::LogNormal;
+    z.median = r.required_number(p + "median", "m", "median diameter exp(mu) of the log-normal distribution (before "
+                                 "its cut-offs)", R::positive());
+    z.sigma = r.required_number(p + "sigma", "", "standard deviation of ln d of the log-normal distribution",
+                                R::positive());
+    cut_offs(z.median * std::exp(-3.0 * z.sigma), z.median * std::exp(3.0 * z.sigma));
+  } else {
+    z.law = SizeLaw::List;
+    z.diameters = r.numbers(p + "diameters", {}, "m", "the sizes of a list distribution");
+    z.fractions = r.numbers(p + "fractions", {}, "", "fraction of each size of `diameters` (by number or by mass, see "
+                            "fraction_basis); they add up to 1");
+    const std::string basis = r.string(p + "fraction_basis", "number", "what `fractions` are: number fractions or "
+                                       "mass fractions (equal density: turned into number fractions ~ f / d^3)",
+                                       {"number", "mass"});
+    if (z.diameters.empty()) r.fail(p + "diameters", "size_distribution = \"list\" needs at least one diameter");
+    if (z.fractions.size() != z.diameters.size()) {
+      r.fail(p + "fractions", fmt::format("{} fractions for {} diameters", z.fractions.size(), z.diameters.size()));
+    }
+    double sum = 0.0;
+    for (std::size_t k = 0; k < z.diameters.size(); ++k) {
+      if (!(z.diameters[k] > 0.0)) r.fail(p + "diameters", fmt::format("{} m is not a positive diameter", z.diameters[k]));
+      if (!(z.fractions[k] >= 0.0)) r.fail(p + "fractions", fmt::format("{} is negative", z.fractions[k]));
+      sum += z.fractions[k];
+    }
+    if (std::abs(sum - 1.0) > 1e-9) r.fail(p + "fractions", fmt::format("the fractions add up to {}, not 1", sum));
+    if (basis == "mass") {
+      double n = 0.0;
+      for (std::size_t k = 0; k < z.diameters.size(); ++k) {
+        z.fractions[k] /= z.diameters[k] * z.diameters[k] * z.diameters[k];
+        n += z.fractions[k];
+      }
+      for (double& f : z.fractions) f /= n;
+    }
+    z.d_min = *std::min_element(z.diameters.begin(), z.diameters.end());
+    z.d_max = *std::max_element(z.diameters.begin(), z.diameters.end());
+  }
+  sp.diameter = size_moments(z).m1;
+}
+
+// The plausibility of a species' smallest and largest particle, named by the key that sets each.
+void check_species_plausible(const CaseReader& r, const std::string& p, const Species& sp, const DomainConfig& domain,
+                             const std::optional<CaseGrid>& cell) {
+  if (!sp.sized()) {
+    check_particle_plausible(r, p + "diameter", sp.diameter, p + "density", sp.density, domain, cell);
+    return;
+  }
+  const bool list = sp.size.law == SizeLaw::List;
+  check_particle_plausible(r, p + (list ? "diameters" : "d_min"), sp.d_min(), p + "density", sp.density, domain, cell);
+  check_particle_plausible(r, p + (list ? "diameters" : "d_max"), sp.d_max(), p + "density", sp.density, domain, cell);
 }
 
 void read_case(CaseReader& r, CaseConfig& c) {
@@ -209,7 +302,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   std::vector<double> fraction(ns, 1.0 / static_cast<double>(ns));
   for (std::size_t s = 0; s < ns; ++s) {
     const std::string p = fmt::format("species[{}].", s);
-    c.dem.species[s].diameter = r.number(p + "diameter", 0.004, "m", "particle diameter", R::positive());
+    read_species_size(r, p, c.dem.species[s]);
     c.dem.species[s].density = r.number(p + "density", 2700.0, "kg/m^3", "particle density", R::positive());
     fraction[s] = r.number(p + "fraction", 1.0 / static_cast<double>(ns), "",
                            "number fraction of the randomly placed particles", R::between(0.0, 1.0));
@@ -226,8 +319,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   // Before any rule that an implausible unit would trip in a less telling way (a time step, a packing).
   for (std::size_t s = 0; s < ns; ++s) {
     const std::string p = fmt::format("species[{}].", s);
-    check_particle_plausible(r, p + "diameter", c.dem.species[s].diameter, p + "density", c.dem.species[s].density,
-                             c.domain, std::nullopt);
+    check_species_plausible(r, p, c.dem.species[s], c.domain, std::nullopt);
   }
 
   // [contact]
@@ -356,7 +448,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
   const std::string source = r.string("particles.source", "random",
                                       "random: place at random (then settle, see [settle]); file: read a CSV "
                                       "id,x,y,vx,vy,omega,species (3D: id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,"
-                                      "species)",
+                                      "species), optionally a last column diameter (m) per particle",
                                       {"random", "file"});
   c.particles.source = source == "file" ? ParticleSource::File : ParticleSource::Random;
   c.particles.file = r.string("particles.file", "", "CSV file of particles (particles.source = \"file\"), "
@@ -661,8 +753,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   if (c.model == Model::Dem && c.gas_enabled) {
     for (std::size_t s = 0; s < c.dem.n_species(); ++s) {
       const std::string p = fmt::format("species[{}].", s);
-      check_particle_plausible(r, p + "diameter", c.dem.species[s].diameter, p + "density", c.dem.species[s].density,
-                               c.domain, c.grid);
+      check_species_plausible(r, p, c.dem.species[s], c.domain, c.grid);
       if (!(c.dem.species[s].density > g.rho_g)) {
         r.fail(p + "density", fmt::format("particles of {} kg/m^3 are not heavier than the gas ({} kg/m^3): they do "
                                           "not form a bed", c.dem.species[s].density, g.rho_g));
@@ -1105,6 +1196,11 @@ std::string case_keys_markdown() {
     }
   };
   merge(load_case_text("case.name = \"keys\"\ncase.model = \"tfm\"\ninlet.jet = [{centre = 0.31}]\n", "keys.toml").keys);
+  // One species of each size distribution: their keys.
+  merge(load_case_text("case.name = \"keys\"\nspecies = [{size_distribution = \"uniform\", d_min = 0.003, d_max = 0.004}, "
+                       "{size_distribution = \"normal\", mean = 0.004, std = 0.0002}, {size_distribution = \"log-normal\", "
+                       "median = 0.004, sigma = 0.05}, {size_distribution = \"list\", diameters = [0.004], "
+                       "fractions = [1.0]}]\n", "keys.toml").keys);
   // A 3D case with a jet of each shape: the keys of the depth.
   merge(load_case_text("case.name = \"keys\"\ncase.dimension = 3\ndomain.depth = 0.1\nspecies = [{diameter = 0.004}]\n"
                        "inlet.jet = [{centre = 0.31}, {centre = 0.31, shape = \"rectangle\"}, "

@@ -238,9 +238,23 @@ std::vector<std::size_t> ParticleArrays::order_by_id() const {
 
 void write_particles_csv(const std::filesystem::path& path, const ParticleArrays& p, Sync sync) {
   const bool three_d = p.dimension == 3;
-  std::string out = std::string(particle_csv_header_of(p.dimension)) + "\n";
+  const bool sized = p.own_sizes && p.radius.size() == p.size();
+  std::string out = std::string(particle_csv_header_of(p.dimension)) +
+                    (sized ? std::string(",") + particle_csv_diameter_column : std::string()) + "\n";
   out.reserve(out.size() + p.size() * (three_d ? 240 : 140));
   for (const std::size_t k : p.order_by_id()) {
+    if (sized) {
+      // The same row, then the diameter.
+      if (three_d) {
+        out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{:.17g}\n",
+                           p.id[k], p.x[0][k], p.x[1][k], p.x[2][k], p.v[0][k], p.v[1][k], p.v[2][k], p.omega[0][k],
+                           p.omega[1][k], p.omega[2][k], p.species[k], 2.0 * p.radius[k]);
+      } else {
+        out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{:.17g}\n", p.id[k], p.x[0][k], p.x[1][k],
+                           p.v[0][k], p.v[1][k], p.omega[2][k], p.species[k], 2.0 * p.radius[k]);
+      }
+      continue;
+    }
     if (three_d) {
       out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", p.id[k],
                          p.x[0][k], p.x[1][k], p.x[2][k], p.v[0][k], p.v[1][k], p.v[2][k], p.omega[0][k],
@@ -281,7 +295,7 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
                                            "species"};
   const bool three_d = dimension == 3;
   const char* const* names = three_d ? names3 : names2;
-  const std::size_t ncol = three_d ? std::size(names3) : std::size(names2);
+  std::size_t ncol = three_d ? std::size(names3) : std::size(names2);
   const char* const header_text = particle_csv_header_of(dimension);
   const std::string file = path.string();
   auto fail = [&](std::size_t row, std::size_t column, const std::string& what) -> void {
@@ -309,7 +323,9 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
                              three_d ? 2 : 3, joined, dimension, header_text));
     }
   }
-  for (std::size_t c = 0; c < std::max(header.size(), ncol); ++c) {
+  // An optional last column: each particle's diameter.
+  const bool sized = header.size() == ncol + 1 && trim(header[ncol]) == particle_csv_diameter_column;
+  for (std::size_t c = 0; c < std::max(header.size(), ncol) && !(sized && c == ncol); ++c) {
     if (c >= header.size()) {
       fail(1, c + 1, fmt::format("missing header column '{}' (expected '{}')", names[c], header_text));
     }
@@ -322,6 +338,8 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
     }
   }
   if (lines.size() == 1) fail(2, 1, "no particle rows after the header");
+  const std::size_t nvalues = ncol + (sized ? 1 : 0);
+  auto name_of = [&](std::size_t c) { return c < ncol ? names[c] : particle_csv_diameter_column; };
 
   std::vector<ParticleCsvRow> rows;
   rows.reserve(lines.size() - 1);
@@ -331,17 +349,17 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
     const std::size_t r = l + 1;
     if (trim(lines[l]).empty()) fail(r, 1, "empty row");
     const std::vector<std::string_view> cells = split_cells(lines[l]);
-    if (cells.size() < ncol) {
+    if (cells.size() < nvalues) {
       fail(r, cells.size() + 1,
-           fmt::format("missing value for '{}' (the row has {} columns, {} expected)", names[cells.size()],
-                       cells.size(), ncol));
+           fmt::format("missing value for '{}' (the row has {} columns, {} expected)", name_of(cells.size()),
+                       cells.size(), nvalues));
     }
-    if (cells.size() > ncol) {
-      fail(r, ncol + 1, fmt::format("extra value '{}' (the row has {} columns, {} expected)", cells[ncol],
-                                    cells.size(), ncol));
+    if (cells.size() > nvalues) {
+      fail(r, nvalues + 1, fmt::format("extra value '{}' (the row has {} columns, {} expected)", cells[nvalues],
+                                       cells.size(), nvalues));
     }
-    for (std::size_t c = 0; c < ncol; ++c) {
-      if (cells[c].empty()) fail(r, c + 1, fmt::format("empty value for '{}'", names[c]));
+    for (std::size_t c = 0; c < nvalues; ++c) {
+      if (cells[c].empty()) fail(r, c + 1, fmt::format("empty value for '{}'", name_of(c)));
     }
 
     auto parse_integer = [&](std::size_t c, std::int64_t lo, std::int64_t hi) {
@@ -359,11 +377,11 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
       std::errc ec{};
       if (!parse_double(cells[c], v, ec)) {
         if (ec == std::errc::result_out_of_range) {
-          fail(r, c + 1, fmt::format("{} '{}' is out of the range of a double", names[c], cells[c]));
+          fail(r, c + 1, fmt::format("{} '{}' is out of the range of a double", name_of(c), cells[c]));
         }
-        fail(r, c + 1, fmt::format("{} '{}' is not a number", names[c], cells[c]));
+        fail(r, c + 1, fmt::format("{} '{}' is not a number", name_of(c), cells[c]));
       }
-      if (!std::isfinite(v)) fail(r, c + 1, fmt::format("{} '{}' is not finite", names[c], cells[c]));
+      if (!std::isfinite(v)) fail(r, c + 1, fmt::format("{} '{}' is not finite", name_of(c), cells[c]));
       return v;
     };
 
@@ -387,6 +405,10 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
       row.vy = parse_real(4);
       row.omega = parse_real(5);
       row.species = static_cast<std::int32_t>(parse_integer(6, 0, std::numeric_limits<std::int32_t>::max()));
+    }
+    if (sized) {
+      row.diameter = parse_real(ncol);
+      if (!(row.diameter > 0.0)) fail(r, ncol + 1, fmt::format("diameter {} is not positive (m)", cells[ncol]));
     }
     const auto [it, inserted] = first_row_of_id.emplace(row.id, r);
     if (!inserted) fail(r, 1, fmt::format("duplicate id {} (first in row {})", row.id, it->second));

@@ -1,7 +1,7 @@
 #pragma once
 // CSV time series (monitor.csv, bubble.csv, tracers) that survive a kill and continue after a restart,
-// and the particle CSV format (2D: id,x,y,vx,vy,omega,species; 3D: id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,species)
-// written by runs and read by case files.
+// and the particle CSV format (2D: id,x,y,vx,vy,omega,species; 3D: id,x,y,z,vx,vy,vz,omega_x,omega_y,omega_z,species;
+// either with a last column diameter where particles have their own sizes) written by runs and read by case files.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -69,6 +69,7 @@ struct ParticleCsvRow {
   double z = 0.0;             ///< m (3D)
   double vz = 0.0;            ///< m/s (3D)
   double omega_x = 0.0, omega_y = 0.0;  ///< rad/s, spin about x and y (3D)
+  double diameter = 0.0;      ///< m; 0 in a file without the diameter column: the species' diameter
 };
 
 /// The exact header of a particle CSV file: 2D, and 3D.
@@ -78,6 +79,8 @@ inline constexpr const char* particle_csv_header_3d = "id,x,y,z,vx,vy,vz,omega_x
 inline const char* particle_csv_header_of(int dimension) {
   return dimension == 3 ? particle_csv_header_3d : particle_csv_header;
 }
+/// The optional last column of a particle CSV file: each particle's own diameter, m.
+inline constexpr const char* particle_csv_diameter_column = "diameter";
 
 /// Storage slots of `particles` in increasing id order (ties in storage order), for output that does not
 /// depend on how the store happens to be sorted.
@@ -90,11 +93,11 @@ void write_particles_csv(const std::filesystem::path& path, const ParticleStore<
 void write_particles_csv(const std::filesystem::path& path, const ParticleArrays& particles,
                          Sync sync = Sync::Durable);
 
-/// Read and validate a particle CSV file of `dimension` (rows in file order). Throws Error(BadInput,
-/// "<file>: row R, column C: ...") on the first problem, R being the line number (the header is row 1):
-/// wrong header (a file of the other dimension is named as such), missing or extra values, a value that is not a
-/// finite number, a non-integer or negative id, a non-integer or negative species, a duplicate id, no particle
-/// rows.
+/// Read and validate a particle CSV file of `dimension` (rows in file order), with or without the last column
+/// diameter. Throws Error(BadInput, "<file>: row R, column C: ...") on the first problem, R being the line number
+/// (the header is row 1): wrong header (a file of the other dimension is named as such), missing or extra values, a
+/// value that is not a finite number, a non-integer or negative id, a non-integer or negative species, a diameter
+/// that is not positive, a duplicate id, no particle rows.
 std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path, int dimension = 2);
 
 /// The checks of a particle file against its case: species defined (`n_species`), centres inside the domain

@@ -29,7 +29,9 @@ ParticleStore<Dim> particles_from_csv(const std::string& path, const DemConfig& 
   ParticleStore<Dim> p;
   p.reserve(rows.size());
   for (const ParticleCsvRow& row : rows) {
-    const Species& s = dem.species[static_cast<std::size_t>(row.species)];
+    const Species& species = dem.species[static_cast<std::size_t>(row.species)];
+    // A row with a diameter is a particle of its own size; one without has its species' diameter.
+    const Species s = row.diameter > 0.0 ? species.of_diameter(row.diameter) : species;
     if constexpr (Dim == 2) {
       p.add(row.id, row.species, s, {row.x, row.y}, {row.vx, row.vy}, row.omega);
     } else {
@@ -61,6 +63,24 @@ std::string settled_bed_record(const CaseConfig& c) {
   for (std::size_t k = 0; k < d.species.size(); ++k) {
     line(fmt::format("species[{}].diameter", k), d.species[k].diameter);
     line(fmt::format("species[{}].density", k), d.species[k].density);
+    // A size distribution, where there is one (a bed of fixed sizes keeps the record it had before distributions).
+    const SizeDistribution& z = d.species[k].size;
+    if (z.law == SizeLaw::Fixed) continue;
+    s += fmt::format("species[{}].size_distribution = {}\n", k, size_law_name(z.law));
+    line(fmt::format("species[{}].d_min", k), z.d_min);
+    line(fmt::format("species[{}].d_max", k), z.d_max);
+    if (z.law == SizeLaw::Normal) {
+      line(fmt::format("species[{}].mean", k), z.mean);
+      line(fmt::format("species[{}].std", k), z.std);
+    }
+    if (z.law == SizeLaw::LogNormal) {
+      line(fmt::format("species[{}].median", k), z.median);
+      line(fmt::format("species[{}].sigma", k), z.sigma);
+    }
+    for (std::size_t j = 0; j < z.diameters.size(); ++j) {
+      line(fmt::format("species[{}].diameters[{}]", k, j), z.diameters[j]);
+      line(fmt::format("species[{}].number_fractions[{}]", k, j), z.fractions[j]);
+    }
   }
   line("contact.stiffness", d.stiffness);
   line("contact.tangential_stiffness_ratio", d.tangential_stiffness_ratio);
@@ -153,6 +173,12 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
     p.for_each_array([&](const std::string& name, const auto& a, ArrayRole role) {
       if (role == ArrayRole::State) f.write("dem/" + name, a);
     });
+    // Particles of their own sizes keep them (the species' diameters restore every other bed, as they always have).
+    if (s.own_sizes) {
+      std::vector<double> d(p.size());
+      for (std::size_t i = 0; i < d.size(); ++i) d[i] = 2.0 * p.radius[i];
+      f.write("dem/diameter", d);
+    }
     for (std::size_t a = 0; a < s.build.size(); ++a) f.write(std::string("dem/") + kAxis[a] + "_build", s.build[a]);
     f.write("dem/nbr_offset", std::vector<std::int64_t>(s.neighbors.offset.begin(), s.neighbors.offset.end()));
     f.write("dem/nbr_partner", std::vector<std::int64_t>(s.neighbors.partner.begin(), s.neighbors.partner.end()));
@@ -229,6 +255,16 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
                                       f.path().string(), id[i], species[i]));
       }
       p.add(id[i], species[i], config_.dem.species[static_cast<std::size_t>(species[i])], {}, {}, {}, layer[i]);
+    }
+    if (f.has("dem/diameter")) {
+      std::vector<double> d = f.read_double("dem/diameter");
+      if (d.size() != id.size()) {
+        throw_input_error(fmt::format("{}: dem/diameter has {} values for {} particles", f.path().string(), d.size(), id.size()));
+      }
+      for (std::size_t i = 0; i < d.size(); ++i) {
+        if (!(d[i] > 0.0)) throw_input_error(fmt::format("{}: particle {} has diameter {}", f.path().string(), id[i], d[i]));
+        p.set_size(i, config_.dem.species[static_cast<std::size_t>(species[i])].of_diameter(d[i]));
+      }
     }
     auto read = [&](const std::string& name, std::vector<double>& dst) {
       std::vector<double> v = f.read_double("dem/" + name);
@@ -469,7 +505,11 @@ class DemModel final : public ModelRun {
     }
     return f;
   }
-  std::optional<ParticleArrays> particles() const override { return particle_arrays(sim_.dem().particles()); }
+  std::optional<ParticleArrays> particles() const override {
+    ParticleArrays a = particle_arrays(sim_.dem().particles());
+    a.own_sizes = sim_.dem().has_own_sizes();
+    return a;
+  }
 
   void save(Hdf5File& f) const override {
     save_dem<Dim>(f, sim_.dem().view());
@@ -567,10 +607,12 @@ class DemModel final : public ModelRun {
         log.info("settled in vacuum for {:.3f} s ({} steps, {:.1f} s wall): kinetic energy {:.3g} J per particle{}",
                  r.time, r.steps, wall, r.kinetic_energy_per_particle,
                  r.converged ? "" : " (max_time reached before the threshold)");
-        write_particles_csv(fs::path(out_dir) / "settled.csv", particle_arrays(p));
+        ParticleArrays settled = particle_arrays(p);
+        settled.own_sizes = p.has_own_sizes(c.dem.species);
+        write_particles_csv(fs::path(out_dir) / "settled.csv", settled);
         if (!c.settle.cache.empty()) {
           fs::create_directories(cache.parent_path());
-          write_particles_csv(cache, particle_arrays(p));
+          write_particles_csv(cache, settled);
           write_file_atomic(settled_bed_record_path(cache), settled_bed_record(c));
           log.info("saved the settled bed to {}", cache.string());
         }

@@ -20,6 +20,9 @@ struct ParticleArrays {
   std::span<const double> radius;       ///< m; may be empty for a writer that does not need it
   std::span<const std::int32_t> species;
   std::span<const std::int32_t> layer;  ///< initial colour layer; may be empty (written as 0)
+  /// The particles have their own sizes (not all their species' diameter): the particle CSV then carries a
+  /// diameter column (from `radius`), so that the file restores them.
+  bool own_sizes = false;
 
   std::size_t size() const { return id.size(); }
   /// Storage slots in increasing id order (ties in storage order).

@@ -96,6 +96,13 @@ expect 2 "final.h5: the checkpoint is at t = 0.02 s, at or past the end time 0.0
   --restart "$WORK/cfd-split/checkpoints/final.h5"
 check "cfd: final.h5 not overwritten" cmp "$WORK/final-before.h5" "$WORK/cfd-split/checkpoints/final.h5"
 
+# Particles of their own sizes (issue 14): a log-normal species and a fixed lighter one; the sizes travel in the
+# checkpoint (dem/diameter) and the particle CSVs (diameter column), and the restart is bit-identical.
+write_cfd_case "$WORK/poly.toml" poly \
+  'species = [{size_distribution = "log-normal", median = 0.0035, sigma = 0.1}, {diameter = 0.004, density = 1500.0}]'
+restart_case poly "$WORK/poly.toml" 0.02
+check "poly: particles CSVs carry the diameter column" grep -q ',species,diameter$' "$WORK/poly-split/particles/000004.csv"
+
 # DEM alone (no gas: no fields, particles only); 400 steps of the default 2e-4 s.
 cat >"$WORK/dem.toml" <<'TOML'
 case.name = "dem"
