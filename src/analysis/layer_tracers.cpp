@@ -94,7 +94,15 @@ void BallTracers<Dim>::advance(const std::array<CellView<Dim>, Dim>& velocity, d
     // Paper, Section 3 (Fig. 4b/c): the ball takes the solids velocity of the cell it is in, no collisions.
     for (int a = 0; a < Dim; ++a) {
       const double lo = geometry_.origin[a], hi = geometry_.origin[a] + geometry_.length(a);
-      coord(a)[k] = std::clamp(coord(a)[k] + velocity[static_cast<std::size_t>(a)][c] * dt, lo, hi);
+      const double moved = coord(a)[k] + velocity[static_cast<std::size_t>(a)][c] * dt;
+      if (periodic_[static_cast<std::size_t>(a)]) {
+        const double L = hi - lo;
+        double w = moved - L * std::floor((moved - lo) / L);
+        if (w >= hi) w -= L;  // rounding of a tiny negative offset up to the period
+        coord(a)[k] = w;
+      } else {
+        coord(a)[k] = std::clamp(moved, lo, hi);
+      }
     }
   }
 }

@@ -40,9 +40,12 @@ class BallTracers {
               std::vector<std::int32_t> layers);
 
   /// x_a += u_a dt along every axis with the solids velocity components (velocity[a] along axis a) of the cell
-  /// holding the ball (piecewise constant, no collisions, as the paper); the centre is then clamped to the domain.
+  /// holding the ball (piecewise constant, no collisions, as the paper); the centre is then clamped to the domain,
+  /// or wrapped into it along a periodic axis (set_periodic).
   /// Throws Error(BadInput) when a velocity field's cells differ from the tracers' grid.
   void advance(const std::array<CellView<Dim>, Dim>& velocity, double dt);
+  /// Axis a of the domain is periodic: a ball leaving one side re-enters at the other.
+  void set_periodic(int a, bool on) { periodic_[static_cast<std::size_t>(a)] = on; }
 
   std::size_t size() const { return x.size(); }
   const CellGeometry<Dim>& geometry() const { return geometry_; }
@@ -57,6 +60,7 @@ class BallTracers {
 
  private:
   CellGeometry<Dim> geometry_;
+  std::array<bool, Dim> periodic_{};
 };
 
 /// The 2D balls on a Grid2 moved by Field2 velocities, as the 2D models hand them over.

@@ -21,6 +21,9 @@ struct Grid {
   Vec<Dim> h{};       ///< cell size per axis, m
   Vec<Dim> origin{};  ///< low corner of the domain, m
   int ghost = 1;      ///< ghost layers around `owned`
+  /// Periodic axes: the domain's two sides along such an axis are one plane, so there is no physical boundary
+  /// there (at_domain_side is false) and the ghosts beyond it hold the values of the opposite side.
+  std::array<bool, Dim> periodic{};
 
   /// The whole box [0, extent] split into n cells per axis, owned entirely by this process.
   static Grid uniform(const Vec<Dim>& extent, const Index<Dim>& n, int ghost_layers = 1) {
@@ -63,9 +66,24 @@ struct Grid {
     for (int a = 0; a < Dim; ++a) c[a] = cell(a, x[a]);
     return c;
   }
-  /// Whether the owned block touches the domain's side (a physical boundary, not a neighbour rank).
+  /// Whether the owned block touches the domain's side (a physical boundary, not a neighbour rank nor the
+  /// opposite side of a periodic axis).
   bool at_domain_side(int a, bool high) const {
+    if (periodic[static_cast<std::size_t>(a)]) return false;
     return high ? owned.hi[a] == domain.hi[a] : owned.lo[a] == domain.lo[a];
+  }
+  bool any_periodic() const {
+    bool any = false;
+    for (int a = 0; a < Dim; ++a) any = any || periodic[static_cast<std::size_t>(a)];
+    return any;
+  }
+  /// Cell or face index i along axis a mapped into [domain.lo, domain.hi) on a periodic axis (unchanged on the
+  /// others): the period is the number of cells, so face n of a periodic axis is face 0.
+  int wrap(int a, int i) const {
+    if (!periodic[static_cast<std::size_t>(a)]) return i;
+    const int n = domain.extent(a);
+    const int r = (i - domain.lo[a]) % n;
+    return domain.lo[a] + (r < 0 ? r + n : r);
   }
 };
 

@@ -16,7 +16,8 @@ CellWeights<Dim> cell_weights(const Grid<Dim>& g, const Field<Dim>& layout, Void
     return cw;
   }
   // Multilinear weights between the 2^Dim surrounding cell centres; an index outside the domain is clamped, which
-  // folds the weight of the missing cell into the boundary cell.
+  // folds the weight of the missing cell into the boundary cell, or wrapped on a periodic axis (the cell beyond
+  // the plane is the one at the other end).
   std::array<int, Dim> lo{}, hi{};
   std::array<double, Dim> frac{};
   for (int a = 0; a < Dim; ++a) {
@@ -24,8 +25,13 @@ CellWeights<Dim> cell_weights(const Grid<Dim>& g, const Field<Dim>& layout, Void
     const double ff = std::floor(f);
     frac[a] = std::clamp(f - ff, 0.0, 1.0);
     const int i0 = static_cast<int>(ff);
-    lo[a] = std::clamp(i0, g.domain.lo[a], g.domain.hi[a] - 1);
-    hi[a] = std::clamp(i0 + 1, g.domain.lo[a], g.domain.hi[a] - 1);
+    if (g.periodic[static_cast<std::size_t>(a)]) {
+      lo[a] = g.wrap(a, i0);
+      hi[a] = g.wrap(a, i0 + 1);
+    } else {
+      lo[a] = std::clamp(i0, g.domain.lo[a], g.domain.hi[a] - 1);
+      hi[a] = std::clamp(i0 + 1, g.domain.lo[a], g.domain.hi[a] - 1);
+    }
   }
   // Corner k takes the high neighbour along axis a when bit a of k is set (axis 0 fastest, as the 2D code had it).
   for (int k = 0; k < CellWeights<Dim>::kMax; ++k) {

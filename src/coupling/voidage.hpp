@@ -17,7 +17,7 @@ namespace fluidbed {
 
 /// Cells (entries of a cell field on the grid's owned box, as Field<Dim>::index gives them) and weights (summing
 /// to 1) that a point shares its volume with; weights that would fall outside the domain are folded back into the
-/// boundary cells, so no volume is lost at walls.
+/// boundary cells, so no volume is lost at walls, and wrap to the opposite side on a periodic axis (Grid::periodic).
 template <int Dim>
 struct CellWeights {
   static constexpr int kMax = 1 << Dim;

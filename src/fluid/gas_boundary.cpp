@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/periodic_halo.hpp"
 
 namespace fluidbed {
 
@@ -412,6 +413,7 @@ void fill_velocity_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, co
           fill_wall_tangential(ua, e, high, kind, speed);
         }
       }
+    fill_periodic_ghosts(grid, ua);
     comm.exchange_halo(ua);
   }
 }
@@ -427,6 +429,7 @@ void fill_pressure_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, co
         fill_zero_gradient(p, e, high);
       }
     }
+  fill_periodic_ghosts(grid, p);
   comm.exchange_halo(p);
 }
 

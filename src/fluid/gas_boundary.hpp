@@ -76,7 +76,8 @@ double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid2& grid, doubl
 
 // ---- Ghost layers of the gas unknowns. Each function fills the ghosts of one side (axis e, `high`) of a field;
 // the caller applies it only where Grid::at_domain_side says the side is physical, so a sub-domain's internal
-// sides are left to Comm::exchange_halo.
+// sides are left to Comm::exchange_halo. A periodic axis has no physical side (Grid::at_domain_side is false there):
+// fill_velocity_ghosts and fill_pressure_ghosts copy its ghosts from the opposite side (fill_periodic_ghosts).
 
 /// Tangential velocity beyond a wall, layer k mirrored about the side onto the k-th layer inside: u_g = 2 u_wall - u
 /// (no-slip: the mean of the pair is the wall's speed) or u_g = u (slip: no shear across the wall).

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/periodic_halo.hpp"
 #include "fluid/stencil_matrix.hpp"
 
 namespace fluidbed {
@@ -142,9 +143,15 @@ double multilinear(const Field<Dim>& f, const Vec<Dim>& first, const Vec<Dim>& h
 }
 
 /// Component b of the cell-centred pressure gradient at cell c (storage offset k in p): central inside,
-/// one-sided in the outer layers.
+/// one-sided in the outer layers, central across the plane of a periodic axis.
 template <int Dim>
 inline double cell_gradient(const Grid<Dim>& g, const Field<Dim>& p, const Index<Dim>& c, std::size_t k, int b) {
+  if (g.periodic[static_cast<std::size_t>(b)]) {
+    Index<Dim> lo = c, hi = c;
+    lo[b] = g.wrap(b, c[b] - 1);
+    hi[b] = g.wrap(b, c[b] + 1);
+    return (p[hi] - p[lo]) / (2 * g.h[b]);
+  }
   const int lo = std::max(c[b] - 1, g.domain.lo[b]);
   const int hi = std::min(c[b] + 1, g.domain.hi[b] - 1);
   if (!(hi > lo)) return 0.0;
@@ -154,14 +161,16 @@ inline double cell_gradient(const Grid<Dim>& g, const Field<Dim>& p, const Index
 }
 
 /// Copy the box values of `in` into `cell` (the grid's cells with ghosts) and fill the ghost layer of each side
-/// with the adjacent cell: the zero-gradient condition of the cell inputs at walls, inlet and outlet.
+/// with the adjacent cell: the zero-gradient condition of the cell inputs at walls, inlet and outlet; across a
+/// periodic axis the ghosts hold the opposite side's cells.
 template <int Dim>
-void load_cells(const Comm& comm, const Field<Dim>& in, Field<Dim>& cell) {
+void load_cells(const Grid<Dim>& g, const Comm& comm, const Field<Dim>& in, Field<Dim>& cell) {
   const IndexBox<Dim>& b = cell.box();
   for_each(b, [&](const Index<Dim>& c) { cell[c] = in[c]; });
   for (int a = 0; a < Dim; ++a)
     for (bool high : {false, true})
       for_each(b.outside(a, high), [&](const Index<Dim>& c) { cell[c] = cell[shifted<Dim>(c, a, high ? -1 : 1)]; });
+  fill_periodic_ghosts(g, cell);
   comm.exchange_halo(cell);
 }
 
@@ -193,7 +202,12 @@ void copy_interior(const Field<2>& f, Field2& out) {
 template <int Dim>
 std::unique_ptr<StructuredSolver<Dim>> make_pressure_backend(const Grid<Dim>& g, const GasConfig& c, PressureSolverKind kind) {
   switch (c.pressure_solver) {
-    case PressureBackend::HyprePfmg: return make_hypre_structured_solver<Dim>(g, c.pressure_solver_tolerance);
+    case PressureBackend::HyprePfmg:
+      if (g.any_periodic()) {
+        throw_input_error("gas.pressure_solver = \"hypre-pfmg\" does not take periodic axes (domain.periodic) in this "
+                          "version: use \"eigen\" or \"eigen-cg\"");
+      }
+      return make_hypre_structured_solver<Dim>(g, c.pressure_solver_tolerance);
     case PressureBackend::EigenCg:
       return make_eigen_structured_solver<Dim>(g, PressureSolverKind::ConjugateGradient, c.pressure_solver_tolerance);
     case PressureBackend::Eigen: break;
@@ -269,14 +283,26 @@ void GasSolver<Dim>::Impl::setup() {
   m.d = Field<Dim>(faces, grid.ghost);
   m.id.assign(m.d.data().size(), -1);
   m.where.clear();
-  // Unknowns: the faces strictly inside along d, and the outlet's top faces (normal velocity free there).
+  // Unknowns: the faces strictly inside along d, and the outlet's top faces (normal velocity free there). On a
+  // periodic d the n + 1 stored faces hold n unknowns, 0 to n - 1: face n is face 0 (the same plane), kept as a
+  // tied copy so that every loop over faces reads it as on a walled axis.
+  const bool periodic_d = grid.periodic[static_cast<std::size_t>(d)];
   IndexBox<Dim> unknown = faces;
-  unknown.lo[d] += 1;
+  if (!periodic_d) unknown.lo[d] += 1;
   if (!(d == 1 && outlet)) unknown.hi[d] -= 1;
   for_each_along(unknown, d, [&](const Index<Dim>& c) {
     m.id[m.d.index(c)] = static_cast<int>(m.where.size());
     m.where.push_back(c);
   });
+  // The tied face and the ghosts beyond a periodic side are their images inside: numbered as those, so that the
+  // stencil's neighbour across the plane is the unknown at the other end of the row (the matrix wraps).
+  if (grid.any_periodic()) {
+    for_each(m.d.allocated(), [&](const Index<Dim>& c) {
+      Index<Dim> w = c;
+      for (int a = 0; a < Dim; ++a) w[a] = grid.wrap(a, c[a]);
+      if (w != c) m.id[m.d.index(c)] = m.id[m.d.index(w)];
+    });
+  }
   const int n = static_cast<int>(m.where.size());
   // Faces beyond the sides are ghosts: fixed values, numbered -1 like the boundary faces.
   const auto get = [&](const Index<Dim>& c) { return m.id[m.d.index(c)]; };
@@ -312,6 +338,7 @@ void GasSolver<Dim>::Impl::mass_fluxes() {
     const Field<Dim>& u = f.u[a];
     Field<Dim>& m = mflux[a];
     for_each(m.box(), [&](const Index<Dim>& c) { m[c] = cfg.rho_g * e[c] * u[c] * area; });
+    fill_periodic_ghosts(grid, m);  // the stencils of the first faces read the flux across the periodic plane
   }
 }
 
@@ -404,6 +431,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
   // The walls (and the distributor, and the lid or outlet) across the component: axis e, tangential kind, speed.
   struct Across {
     int e;
+    bool periodic;         // no side along e: the neighbours across the periodic plane are unknowns
     double h;
     double area;
     bool low_noslip;       // the low side is a no-slip wall (the distributor: bottom_wall)
@@ -416,6 +444,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
     const WallKind side = e == 0 ? bc.side_walls : bc.front_back_walls;
     Across& x = across[static_cast<std::size_t>(k++)];
     x.e = e;
+    x.periodic = grid.periodic[static_cast<std::size_t>(e)];
     x.h = grid.h[e];
     x.area = face_area(grid, e);
     x.low_noslip = (e == 1 ? bc.bottom_wall : side) == WallKind::NoSlip;
@@ -438,6 +467,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
   }
   const Off sfd = sf[d];
   const Off scd = sc[d];
+  const bool periodic_d = grid.periodic[static_cast<std::size_t>(d)];
   double* const P = phi.data().data();
   const double* const P_old = phi_old.data().data();
   const double* const EF = eps_face.data().data();
@@ -457,6 +487,8 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
     const Off kc = static_cast<Off>(eps_cell.index(c));  // the cell above it along d, in the cell layout
     const int a = c[d];
     const bool half = outlet_top && a == cells.hi[d];  // outlet face: half control volume inside the domain
+    // Offset of the face k steps along d (two steps reach past the single ghost layer: wrapped on a periodic d).
+    const auto along = [&](int k) { return static_cast<Off>(periodic_d ? grid.wrap(d, a + k) - a : k) * sfd; };
     const double vol = vol_full * (half ? 0.5 : 1.0);
     const double ef = EF[kf];
     double b_src = 0.0;
@@ -481,7 +513,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
       // Beyond the boundary face the ghost repeats it (zero gradient), so there the limiter sees no slope.
       if (scheme != ConvectionScheme::Upwind && !half) {
         const bool fwd = fm > 0.0;
-        const double phi_far = P[kf + (fwd ? -2 : 1) * sfd];
+        const double phi_far = P[kf + along(fwd ? -2 : 1)];
         const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf - sfd], P[kf])
                               : tvd::correction<Law>(phi_far, P[kf], P[kf - sfd]);
         b_src += fm * cc;
@@ -493,7 +525,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
       add(1, kf + sfd, dp + std::max(-fp, 0.0));
       if (scheme != ConvectionScheme::Upwind) {
         const bool fwd = fp > 0.0;
-        const double phi_far = P[kf + (fwd ? -1 : 2) * sfd];
+        const double phi_far = P[kf + along(fwd ? -1 : 2)];
         const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf], P[kf + sfd])
                               : tvd::correction<Law>(phi_far, P[kf + sfd], P[kf]);
         b_src -= fp * cc;
@@ -511,12 +543,12 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
         const Off smd = sm[d];
         const Off sme = sm[static_cast<std::size_t>(e)];
         const double fs = 0.5 * (ME[ke - smd] + ME[ke]);
-        if (b > cells.lo[e]) {
+        if (x.periodic || b > cells.lo[e]) {
           const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd - sce] + E[kc - sce]);
           add(2 + 2 * k, kf - sfe, mu * e_corner * x.area / x.h + std::max(fs, 0.0));
           if (scheme != ConvectionScheme::Upwind) {
             const bool fwd = fs > 0.0;
-            const int far = fwd ? b - 2 : b + 1;
+            const int far = x.periodic ? grid.wrap(e, fwd ? b - 2 : b + 1) : fwd ? b - 2 : b + 1;
             if (far >= cells.lo[e] && far < cells.hi[e]) {
               const double phi_far = P[kf + (far - b) * sfe];
               const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf - sfe], P[kf])
@@ -530,12 +562,12 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
           sum_nb += coeff;
         }
         const double fn = 0.5 * (ME[ke - smd + sme] + ME[ke + sme]);
-        if (b < cells.hi[e] - 1) {
+        if (x.periodic || b < cells.hi[e] - 1) {
           const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd + sce] + E[kc + sce]);
           add(3 + 2 * k, kf + sfe, mu * e_corner * x.area / x.h + std::max(-fn, 0.0));
           if (scheme != ConvectionScheme::Upwind) {
             const bool fwd = fn > 0.0;
-            const int far = fwd ? b - 1 : b + 2;
+            const int far = x.periodic ? grid.wrap(e, fwd ? b - 1 : b + 2) : fwd ? b - 1 : b + 2;
             if (far >= cells.lo[e] && far < cells.hi[e]) {
               const double phi_far = P[kf + (far - b) * sfe];
               const double cc = fwd ? tvd::correction<Law>(phi_far, P[kf], P[kf + sfe])
@@ -564,7 +596,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
           const Off smd = sm[d];
           const Off sme = sm[static_cast<std::size_t>(e)];
           const auto corner_eps = [&](int j) {
-            if (j > cells.lo[e] && j < cells.hi[e]) {
+            if (x.periodic || (j > cells.lo[e] && j < cells.hi[e])) {
               const Off lo = kc + (j - 1 - b) * sce;  // cell (a, j - 1) along (d, e)
               return 0.25 * (E[lo - scd] + E[lo] + E[lo - scd + sce] + E[lo + sce]);
             }
@@ -572,8 +604,8 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
           };
           // The across face's area over the along spacing (1 in 2D, where the face is as long as the cell).
           const double lever = x.area / h_al;
-          const bool low_open = b > cells.lo[e] || x.low_noslip;
-          const bool high_open = b < cells.hi[e] - 1 || x.high_noslip_wall;
+          const bool low_open = x.periodic || b > cells.lo[e] || x.low_noslip;
+          const bool high_open = x.periodic || b < cells.hi[e] - 1 || x.high_noslip_wall;
           if (high_open) b_src += mu * corner_eps(b + 1) * (O[ke + sme] - O[ke - smd + sme]) * lever;
           if (low_open) b_src -= mu * corner_eps(b) * (O[ke] - O[ke - smd]) * lever;
         }
@@ -612,6 +644,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
     throw_simulation_error(fmt::format("gas {} momentum: linear solve failed{}: {}", kComponent[d], at, res.why));
   }
   for (int r = 0; r < n; ++r) phi[m.where[static_cast<std::size_t>(r)]] = m.x[r] + m.dx[r];
+  fill_periodic_ghosts(grid, m.d);  // the tied face's d, for the pressure-correction coefficient there
 }
 
 template <int Dim>
@@ -632,6 +665,18 @@ GasSolver<Dim>::GasSolver(const Grid<Dim>& grid, const GasConfig& config, Pressu
   }
   // The stencils read one layer of ghosts beyond every side.
   if (grid.ghost < 1) throw_input_error("gas: the grid needs at least one ghost layer");
+  // A periodic axis: x or z (y carries the distributor and the outlet), on one process, and at least 3 cells so
+  // that a row's two neighbours across the plane are distinct unknowns.
+  for (int a = 0; a < Dim; ++a) {
+    if (!grid.periodic[static_cast<std::size_t>(a)]) continue;
+    if (a == 1) throw_input_error("gas: the vertical axis (y) cannot be periodic");
+    if (grid.n(a) < 3) {
+      throw_input_error(fmt::format("gas: a periodic axis needs at least 3 cells ({} has {})", a == 0 ? "x" : "z",
+                                    grid.n(a)));
+    }
+    if (grid.owned.lo[a] != grid.domain.lo[a] || grid.owned.hi[a] != grid.domain.hi[a])
+      throw_input_error("gas: a periodic axis must lie whole on one process in this version");
+  }
   impl_ = std::make_unique<Impl>(grid, config, pressure_solver, comm);
   Impl& s = *impl_;
   s.outlet = config.boundary.top == TopBoundary::PressureOutlet;
@@ -682,15 +727,15 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
   });
   const GasConfig& cfg = s.cfg;
   // The cell inputs with their ghosts (zero gradient at the domain's sides), then on the faces.
-  load_cells(comm, eps_old, s.work);
+  load_cells(g, comm, eps_old, s.work);
   for (int a = 0; a < Dim; ++a) cells_to_faces(s.work, a, s.eps_f_old[a]);
-  load_cells(comm, beta, s.work);
+  load_cells(g, comm, beta, s.work);
   for (int a = 0; a < Dim; ++a) cells_to_faces(s.work, a, s.beta_f[a]);
   for (int a = 0; a < Dim; ++a) {
-    load_cells(comm, us[a], s.work);
+    load_cells(g, comm, us[a], s.work);
     cells_to_faces(s.work, a, s.us_f[a]);
   }
-  load_cells(comm, eps_new, s.eps_cell);
+  load_cells(g, comm, eps_new, s.eps_cell);
   for (int a = 0; a < Dim; ++a) cells_to_faces(s.eps_cell, a, s.eps_f[a]);
   s.u_old = s.f.u;
   // Boundary values: walls, and the inlet's superficial velocity turned into the interstitial face velocity.
@@ -750,11 +795,12 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
           "that is no longer finite or usable; remedy: reduce the time step, check the inlet and jet velocities",
           t_new, dt, it, e.what()));
     }
+    fill_periodic_ghosts(g, s.p_corr);  // face 0 of a periodic axis is corrected by the last cell's p'
     const Field<Dim>& pc = s.p_corr;
     for_each(cells, [&](const Index<Dim>& c) { s.f.p[c] += cfg.relax_pressure * pc[c]; });
     for (int a = 0; a < Dim; ++a) {
       IndexBox<Dim> inner = cells.faces(a);
-      inner.lo[a] += 1;
+      if (!g.periodic[static_cast<std::size_t>(a)]) inner.lo[a] += 1;
       inner.hi[a] -= 1;
       const Field<Dim>& dd = s.mom[a].d;
       Field<Dim>& u = s.f.u[a];

@@ -45,7 +45,7 @@ template <int Dim>
 class EigenStructuredSolver final : public StructuredSolver<Dim> {
  public:
   EigenStructuredSolver(const Grid<Dim>& grid, PressureSolverKind kind, double cg_tolerance)
-      : cells_(grid.owned), kind_(kind) {
+      : cells_(grid.owned), periodic_(grid.periodic), kind_(kind) {
     if (!(grid.owned == grid.domain))
       throw_input_error("pressure correction: the Eigen backend solves on one process (owned box = domain)");
     const int n = static_cast<int>(cells_.count());
@@ -56,6 +56,12 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
       for (int a = 0; a < Dim; ++a) {
         nbr[static_cast<std::size_t>(2 * a)] = c[a] > cells_.lo[a] ? row(shifted<Dim>(c, a, -1)) : -1;
         nbr[static_cast<std::size_t>(2 * a + 1)] = c[a] < cells_.hi[a] - 1 ? row(shifted<Dim>(c, a, 1)) : -1;
+        if (periodic_[static_cast<std::size_t>(a)]) {
+          // The neighbour across the periodic plane: the cell at the other end of the row.
+          if (c[a] == cells_.lo[a]) nbr[static_cast<std::size_t>(2 * a)] = row(shifted<Dim>(c, a, cells_.extent(a) - 1));
+          if (c[a] == cells_.hi[a] - 1)
+            nbr[static_cast<std::size_t>(2 * a + 1)] = row(shifted<Dim>(c, a, 1 - cells_.extent(a)));
+        }
       }
       nb[static_cast<std::size_t>(row(c))] = nbr;
     });
@@ -69,7 +75,7 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
   const char* name() const override { return "eigen"; }
 
   void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override {
-    const bool has_boundary = couples_to_boundary(cells_, coeff);
+    const bool has_boundary = couples_to_boundary<Dim>(cells_, coeff, periodic_);
     // Pinning the first cell of an all-Neumann problem: drop its couplings from both its row and its neighbours'
     // rows, which keeps the matrix symmetric (the pinned value is zero, so the dropped terms vanish).
     const bool pin = !has_boundary;
@@ -90,7 +96,9 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
         double diag = 0.0;
         for (int a = 0; a < Dim; ++a) {
           const double lo = coeff[a][c];
-          const double hi = coeff[a][shifted<Dim>(c, a, 1)];
+          // On a periodic axis the last face is the first one (the same plane, tied by fill_periodic_ghosts).
+          const bool wraps = periodic_[static_cast<std::size_t>(a)] && c[a] == b.hi[a] - 1;
+          const double hi = coeff[a][wraps ? shifted<Dim>(c, a, 1 - b.extent(a)) : shifted<Dim>(c, a, 1)];
           off[static_cast<std::size_t>(2 * a)] = -lo;
           off[static_cast<std::size_t>(2 * a + 1)] = -hi;
           diag = a == 0 ? lo + hi : diag + lo + hi;
@@ -102,8 +110,11 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
             diag = 1.0;
             rb = 0.0;
           } else {
-            for (int a = 0; a < Dim; ++a)
+            for (int a = 0; a < Dim; ++a) {
               if (c == shifted<Dim>(b.lo, a, 1)) off[static_cast<std::size_t>(2 * a)] = 0.0;
+              if (periodic_[static_cast<std::size_t>(a)] && c == shifted<Dim>(b.lo, a, b.extent(a) - 1))
+                off[static_cast<std::size_t>(2 * a + 1)] = 0.0;
+            }
           }
         }
         if (!(diag > 0.0)) diag = 1.0;  // a cell with no open face: p' is free, keep it at zero
@@ -179,6 +190,7 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
   }
 
   IndexBox<Dim> cells_;
+  std::array<bool, Dim> periodic_{};
   PressureSolverKind kind_;
   StencilMatrix a_;
   Eigen::SimplicialLDLT<StencilMatrix::Matrix> ldlt_;

@@ -3,6 +3,7 @@
 // 2 Dim face coefficients. A structured problem (one coefficient per cell face, cells of a box), so that a
 // structured multigrid library (hypre's PFMG/SMG take exactly this) can replace the first backend, Eigen's sparse
 // Cholesky, without touching the solvers. Reused by the gas solver and the two-fluid model.
+#include <array>
 #include <memory>
 
 #include "core/field.hpp"
@@ -20,7 +21,8 @@ enum class PressureSolverKind {
 /// A symmetric cell-centred problem on the cells of a grid's owned box: for every cell P,
 /// sum over its faces f of a_f (x_P - x_nb(f)) = rhs_P, with a_f = coeff[axis][face]. A coefficient on a face of
 /// the domain's boundary couples to x = 0 beyond it (a fixed-pressure boundary); zero there is an impermeable
-/// face. If no boundary face has a coefficient the system is singular and the domain's first cell is pinned to 0.
+/// face. On a periodic axis of the grid (Grid::periodic) face 0 couples the first cell to the last (the last face
+/// is the same plane and is not read). If no boundary face has a coefficient the system is singular and the domain's first cell is pinned to 0.
 template <int Dim>
 class StructuredSolver {
  public:
@@ -36,12 +38,15 @@ class StructuredSolver {
 };
 
 /// Whether any face on the boundary of `cells` has a coefficient (a fixed-pressure face); without one the problem
-/// is singular and every backend pins the first cell.
+/// is singular and every backend pins the first cell. The faces of a periodic axis couple the two sides' cells
+/// to each other, not to a fixed pressure, and do not count.
 template <int Dim>
-bool couples_to_boundary(const IndexBox<Dim>& cells, const FaceFields<Dim>& coeff) {
+bool couples_to_boundary(const IndexBox<Dim>& cells, const FaceFields<Dim>& coeff,
+                         const std::array<bool, Dim>& periodic = {}) {
   bool any = false;
   for (int a = 0; a < Dim; ++a)
     for (bool high : {false, true}) {
+      if (periodic[static_cast<std::size_t>(a)]) continue;
       IndexBox<Dim> side = cells.inside(a, high);
       if (high) {
         side.lo[a] += 1;

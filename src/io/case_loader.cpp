@@ -519,11 +519,6 @@ void read_case(CaseReader& r, CaseConfig& c) {
     }
   }
   c.gas_enabled = r.boolean("gas.enabled", true, "couple the particles to the gas (false: DEM alone, in vacuum)");
-  if (c.gas_enabled && c.domain.any_periodic()) {
-    r.fail("domain.periodic", "periodic axes are implemented for the particles only in this version (the gas "
-                              "solver, its pressure matrix and the deposition have walls on every side): set "
-                              "gas.enabled = false for a periodic DEM case");
-  }
   c.max_overlap_fraction = r.number("dem.max_overlap_fraction", 0.1, "",
                                     "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
 }
@@ -776,6 +771,21 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                                   "with hypre)", {"eigen", "eigen-cg", "hypre-pfmg"});
   g.pressure_solver = ps == "hypre-pfmg" ? PressureBackend::HyprePfmg
                       : ps == "eigen-cg" ? PressureBackend::EigenCg : PressureBackend::Eigen;
+  // The periodic gas (GasSolver's rules, here so that `check` refuses what `run` would).
+  if (c.model == Model::Dem && c.gas_enabled && c.domain.any_periodic()) {
+    if (g.pressure_solver == PressureBackend::HyprePfmg) {
+      r.fail("gas.pressure_solver", "hypre-pfmg does not take periodic axes (domain.periodic) in this version: use "
+                                    "eigen or eigen-cg");
+    }
+    if (c.domain.periodic[0] && c.grid.nx < 3) {
+      r.fail("grid.cell_width", fmt::format("{} m leaves {} cells across the periodic width {} m; a periodic axis "
+                                            "needs at least 3", dx, c.grid.nx, c.domain.width));
+    }
+    if (c.domain.periodic[2] && c.grid.nz < 3) {
+      r.fail("grid.cell_depth", fmt::format("{} cells across the periodic depth {} m; a periodic axis needs at "
+                                            "least 3", c.grid.nz, c.domain.depth));
+    }
+  }
   g.relax_velocity = r.number("gas.relax_velocity", 0.8, "", "momentum under-relaxation", R::Range{0.0, 1.0, true, false});
   g.relax_pressure = r.number("gas.relax_pressure", 1.0, "", "pressure under-relaxation", R::Range{0.0, 1.0, true, false});
   g.max_simple_iterations = static_cast<int>(r.integer("gas.max_iterations", 200, "SIMPLE iterations per gas step at most",

@@ -369,13 +369,21 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
     return s;
 }
 
+/// The gas grid of the case: the [grid] cells, periodic along the domain's periodic axes.
+template <int Dim>
+Grid<Dim> gas_grid(const CaseConfig& c) {
+  Grid<Dim> g = c.grid.grid_of<Dim>();
+  for (int a = 0; a < Dim; ++a) g.periodic[static_cast<std::size_t>(a)] = c.domain.periodic[static_cast<std::size_t>(a)];
+  return g;
+}
+
 template <int Dim>
 class DemModel final : public ModelRun {
  public:
   DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
       : config_(c),
         sim_(DemSolver<Dim>(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore<Dim>{}),
-             c.gas_enabled ? std::optional<GasSolver<Dim>>(GasSolver<Dim>(c.grid.grid_of<Dim>(), c.gas)) : std::nullopt,
+             c.gas_enabled ? std::optional<GasSolver<Dim>>(GasSolver<Dim>(gas_grid<Dim>(c), c.gas)) : std::nullopt,
              c.coupling),
         log_(&log) {
     if (fresh) sim_.initialize();

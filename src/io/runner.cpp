@@ -426,6 +426,7 @@ class Run {
       const double h = fv.eps ? bed_surface_height(fv.grid2(), fv.field2(fv.eps)).value_or(0.0) : 0.0;
       if (h > 0.0) tracers_.emplace(fv.grid2(), h, cfg_.particles.layers);
     }
+    if (tracers_) tracers_->set_periodic(0, cfg_.domain.periodic[0]);  // balls cross a periodic side too
     if (fv.has_grid() && fv.eps && fv.has_gas_velocity()) {
       bubbles_.emplace(cfg_.bubble);
       if (restart_ && restart_file_->has("bubble/tracked")) bubbles_->restore(load_bubble_state(*restart_file_));

@@ -71,6 +71,24 @@ TEST(CellTracers, PiecewiseConstantVelocityAndClampedToDomain) {
   for (std::size_t k = 0; k < tr.size(); ++k) EXPECT_EQ(tr.x[k], 0.0);
 }
 
+TEST(CellTracers, WrapAcrossAPeriodicSide) {
+  // Periodic in x: a ball that moves u n dt = 0.65 m in a 0.6 m wide bed ends where it started plus 0.05 m, modulo
+  // the period, inside [0, 0.6); the same round-off bound as UniformVelocityMovesEveryBallByVt. y stays clamped.
+  const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
+  CellTracers tr(g, 0.1, 1);
+  tr.set_periodic(0, true);
+  const CellTracers start = tr;
+  const Field2 us(g.nx, g.ny, 0.65), vs(g.nx, g.ny, -1.0);
+  for (int n = 0; n < 1000; ++n) tr.advance(us, vs, 1e-3);
+  for (std::size_t k = 0; k < tr.size(); ++k) {
+    EXPECT_GE(tr.x[k], 0.0);
+    EXPECT_LT(tr.x[k], g.width());
+    const double want = std::fmod(start.x[k] + 0.05, 0.6);
+    EXPECT_NEAR(std::remainder(tr.x[k] - want, 0.6), 0.0, 1e-12) << "ball " << k;
+    EXPECT_EQ(tr.y[k], 0.0);
+  }
+}
+
 TEST(AssignLayers, ByInitialHeight) {
   ParticleStore<2> p;
   const Species s;
