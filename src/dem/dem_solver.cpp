@@ -401,7 +401,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
         // The rolling torque acts on i and, reversed, on j (Ai et al. 2011 Eq. 11: w_r = omega_i - omega_j).
         Spin<Dim> unused{};
         Spin<Dim>& m_k = Law::kRollingHistory ? roll[k] : unused;
-        const Spin<Dim> tr = Law::template rolling_torque<Dim>(pp, kin, cf, wi - spin(j), dt, m_k);
+        const Spin<Dim> tr = Law::template rolling_torque<Dim>(pair_params_[pair], kin, cf, wi - spin(j), dt, m_k);
         if constexpr (Law::kRollingHistory) roll[km] = -roll[k];
         entry_torque_[k] += tr;
         entry_torque_[km] -= tr;
@@ -477,7 +477,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       if constexpr (Law::kRolling) {
         Spin<Dim> unused{};
         Spin<Dim>& m_k = Law::kRollingHistory ? wall_roll_[i * (2 * Dim) + w] : unused;
-        torque += Law::template rolling_torque<Dim>(wp, kin, cf, spin(i), dt, m_k);
+        torque += Law::template rolling_torque<Dim>(wall_params_[sw], kin, cf, spin(i), dt, m_k);
       }
       max_ov = std::max(max_ov, overlap);
       if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * ri));
