@@ -31,7 +31,7 @@ expect 0 "OK" "restitution 1 with constant viscosity passes" \
 out=$WORK/paper
 run_ok "paper case to 0.05 s" run "$PAPER" --end-time 0.05 --out "$out"
 check "monitor.csv has the documented TFM columns" bash -c "head -1 '$out/monitor.csv' | grep -qx \
-'time_s,kinetic_energy_J,pressure_drop_Pa,max_overlap_m,gas_mass_residual,solids_mass_kg,solids_mass_per_depth_kg_m,kinetic_energy_per_depth_J_m,time_step_s,min_voidage,max_solids_speed_m_s,granular_temperature_bed_max_m2_s2,granular_temperature_solids_mean_m2_s2,linear_solver_fallbacks,wall_s'"
+'time_s,kinetic_energy_J,pressure_drop_Pa,max_overlap_m,gas_mass_residual,solids_mass_kg,solids_mass_per_depth_kg_m,kinetic_energy_per_depth_J_m,time_step_s,min_voidage,max_solids_speed_m_s,granular_temperature_bed_max_m2_s2,granular_temperature_solids_mean_m2_s2,linear_solver_fallbacks,inlet_velocity_m_s,wall_s'"
 # Solids mass: 0.6 m x 0.54 m at eps = 0.431, 2700 kg/m^3: 497.76 kg per metre of depth, 1.991 kg in the 4 mm slab.
 check "solids mass per depth and per 4 mm slab" /usr/bin/python3 - "$out/monitor.csv" <<'PY'
 import csv, sys
