@@ -141,6 +141,11 @@ BedMixture bed_mixture(const DemConfig& dem, const std::vector<double>& fraction
   return {s3 / s2, m3 / s3};
 }
 
+std::string bed_minimum_fluidisation_label(const CaseConfig& c) {
+  if (c.coupling.drag_law == DragLaw::ErgunWenYu && c.coupling.drag_switch == DragSwitch::Sharp) return "Ergun U_mf";
+  return "U_mf of the case's drag law";
+}
+
 std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c) {
   const double g = -c.domain.gravity.y;
   double eps = kDemEpsMf, d = 0.0, rho = 0.0;
@@ -156,7 +161,14 @@ std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c) {
   if (!(g > 0.0 && eps > 0.0 && eps < 1.0 && d > 0.0 && rho > c.gas.rho_g && c.gas.rho_g > 0.0 && c.gas.mu_g > 0.0)) {
     return std::nullopt;
   }
-  return ergun_minimum_fluidisation_velocity(eps, d, rho, c.gas.rho_g, c.gas.mu_g, g);
+  // The paper's law is Ergun below eps = 0.8: its closed form. Any other law (or the smooth blend): the U at which
+  // that law's fixed-bed pressure gradient carries the bed (drag.hpp), so check and the U_th/U_mf ratio use the
+  // drag the run will use.
+  const DragModel model{c.coupling.drag_law, c.coupling.drag_switch};
+  if (model.law == DragLaw::ErgunWenYu && model.blend == DragSwitch::Sharp) {
+    return ergun_minimum_fluidisation_velocity(eps, d, rho, c.gas.rho_g, c.gas.mu_g, g);
+  }
+  return minimum_fluidisation_velocity(model, eps, d, rho, c.gas.rho_g, c.gas.mu_g, g);
 }
 
 void check_domain_plausible(const CaseReader& r, const DomainConfig& domain) {
@@ -443,7 +455,7 @@ std::string describe_case(const CaseConfig& c) {
       line("mixture", fmt::format("Sauter mean diameter d32 = {:.4g} m, volume-mean density {:.4g} kg/m^3", mix.d32, mix.rho));
     }
     if (const auto u = bed_minimum_fluidisation_velocity(c)) {
-      line(fmt::format("Ergun U_mf at eps_mf = {}", kDemEpsMf),
+      line(fmt::format("{} at eps_mf = {}", bed_minimum_fluidisation_label(c), kDemEpsMf),
            fmt::format("{:.3f} m/s{}", *u, dem.n_species() > 1 ? " (the mixture's d32 and density)" : ""));
     }
     // The solver's data per particle (docs/performance.md, section 4) with E = 6 list entries (a packed bed):
@@ -537,7 +549,7 @@ std::string describe_case(const CaseConfig& c) {
   if (c.model == Model::Tfm) {
     const tfm::TfmConfig& t = c.tfm;
     line("solids", fmt::format("d = {} m, rho_s = {} kg/m^3, eps_initial = {}, eps* = {}", t.d_p, t.rho_s, t.eps_initial, t.eps_star));
-    if (const auto u = bed_minimum_fluidisation_velocity(c)) line("Ergun U_mf at eps_initial", fmt::format("{:.3f} m/s", *u));
+    if (const auto u = bed_minimum_fluidisation_velocity(c)) line(bed_minimum_fluidisation_label(c) + " at eps_initial", fmt::format("{:.3f} m/s", *u));
     if (sinks) line("terminal velocity (Eq. 14)", fmt::format("{:.3f} m/s", terminal_velocity(t.d_p, t.rho_s, t.rho_g, t.mu_g, g)));
     line("bed weight per area", fmt::format("{:.0f} Pa", (1.0 - t.eps_initial) * (t.rho_s - t.rho_g) * g * t.packed_height));
     line("memory estimate", fmt::format("{:.2f} MB", static_cast<double>(c.grid.cells()) * 40 * 8 / 1e6));

@@ -65,6 +65,8 @@ inline constexpr double kDemEpsMf = 0.43;
 /// Ergun U_mf of the case's bed (DEM: the mixture at kDemEpsMf; TFM: the solids at tfm.eps_initial), the default of
 /// bubble.u_mf; empty where the bed has none (no downward gravity, solids not heavier than the gas).
 std::optional<double> bed_minimum_fluidisation_velocity(const CaseConfig& c);
+/// What bed_minimum_fluidisation_velocity is, in words ("Ergun U_mf" for the paper's law).
+std::string bed_minimum_fluidisation_label(const CaseConfig& c);
 
 /// Plausibility of the domain (width, height, and depth in 3D): larger than any bed is an error naming the likely
 /// unit slip.

@@ -1040,7 +1040,8 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                     "0.43; TFM: at tfm.eps_initial)", R::positive());
   r.describe_default("bubble.u_mf", "Ergun U_mf");
   if (!u_mf_given && (c.model == Model::Tfm || c.gas_enabled)) {
-    c.notes.push_back(u_ergun ? fmt::format("bubble.u_mf not given: {:.4g} m/s, the Ergun U_mf of the bed", b.u_mf)
+    c.notes.push_back(u_ergun ? fmt::format("bubble.u_mf not given: {:.4g} m/s, the {} of the bed", b.u_mf,
+                                            bed_minimum_fluidisation_label(c))
                               : fmt::format("bubble.u_mf not given and the bed has no Ergun U_mf (no downward gravity): "
                                             "{} m/s", b.u_mf));
   }
