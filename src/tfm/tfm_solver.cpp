@@ -291,7 +291,8 @@ void TfmSolver<Dim>::for_each_bottom(F&& f) const {
 
 template <int Dim>
 double TfmSolver<Dim>::drag(const DragInput& in) const {
-  // Eq. 13 with the shared drag law: the one place the TFM evaluates beta.
+  // Eq. 13 with the shared drag law, outside the step's loops (the initial pressure); the closures' cell loop is
+  // compiled for the law instead (compute_closures_of).
   return beta_of_(in);
 }
 
@@ -379,11 +380,15 @@ void TfmSolver<Dim>::mask_trace_solids_velocity() {
 
 template <int Dim>
 void TfmSolver<Dim>::compute_closures() {
-  with_rheology(config_.rheology, [this](auto r) { compute_closures_of<decltype(r)::value>(); });
+  // Rheology and drag law chosen once per step; the cell loop is compiled for the pair.
+  with_rheology(config_.rheology, [this](auto r) {
+    with_drag_law(DragModel{config_.drag_law, config_.drag_switch},
+                  [this](auto law) { compute_closures_of<decltype(r)::value, decltype(law)>(); });
+  });
 }
 
 template <int Dim>
-template <SolidsRheology R>
+template <SolidsRheology R, class DragLawT>
 void TfmSolver<Dim>::compute_closures_of() {
   const TfmConfig& c = config_;
   const GranularMaterial mat{c.d_p, c.rho_s, c.e};
@@ -414,7 +419,7 @@ void TfmSolver<Dim>::compute_closures_of() {
       slip = std::hypot(rel[0], rel[1], rel[2]);
     }
     // The floor keeps beta / (eps_s rho_s) finite in empty cells.
-    beta_c_[cell] = drag(DragInput{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip});
+    beta_c_[cell] = DragLawT::beta(DragInput{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip});
 
     double mu = 0.0, lambda = 0.0, theta = 0.0;
     if constexpr (R == SolidsRheology::ConstantViscosity) {
