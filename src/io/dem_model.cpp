@@ -390,20 +390,24 @@ class DemModel final : public ModelRun {
   }
 
   double time() const override { return sim_.time(); }
+  double last_step() const override { return last_step_; }
   void advance(double t_end) override {
     // A step that ends within this fraction of a step of t_end is the last one: round-off of n dt, not a step.
     constexpr double kLand = 1e-9;
     const double full = sim_.macro_dt();
     const double remaining = t_end - sim_.time();
+    last_step_ = 0.0;
     if (remaining <= kLand * full) {
       if (remaining > 0.0) sim_.dem().land_time(t_end);
       return;
     }
     if (remaining < full * (1.0 - kLand)) {
       sim_.advance(remaining);  // the shortened last step; the clock's origin moves to t_end
+      last_step_ = remaining;
       sim_.dem().set_time(t_end, sim_.dem().step_count());
     } else {
       sim_.advance(full);
+      last_step_ = full;
       // n dt within round-off of t_end reads t_end; the clock keeps its origin, so a continuation runs on as
       // the uninterrupted run does.
       if (remaining <= full * (1.0 + kLand)) sim_.dem().land_time(t_end);
@@ -703,6 +707,7 @@ class DemModel final : public ModelRun {
   std::vector<double> p_view_;  ///< the gas pressure without its ghosts, as the writers and observers take it
   int loss_level_ = 0;
   std::uint64_t lost_seen_ = 0;
+  double last_step_ = 0.0;  ///< of the last advance(), s
 };
 
 }  // namespace

@@ -70,6 +70,10 @@ class ModelRun {
   /// One macro step: a gas step with its DEM sub-steps, a DEM step alone, or a TFM step. The step never goes
   /// past `t_end` (the run's end time): a model shortens its last step to land on it.
   virtual void advance(double t_end) = 0;
+  /// Length of the last advance() as the model stepped it (its dt, not the clock's difference): the clock may be
+  /// set to t_end on landing, so the difference of times would round differently in a run that stops there and in
+  /// one that runs on, and the cell tracers advected with it would not restart bit for bit.
+  virtual double last_step() const = 0;
   /// Time step of advance(), s: half of it is the slack of output scheduling; 0 for a model whose adaptive steps
   /// land on the output times themselves.
   virtual double macro_dt() const = 0;

@@ -509,9 +509,11 @@ class Run {
           throw_simulation_error(fmt::format("t = {:.9g} s: the model did not advance (internal error)", t));
         }
         if (tracers_) {
-          // The step actually taken: the two-fluid model's step is adaptive.
+          // The step the model took (the two-fluid model's step is adaptive), not the clock's difference.
           const FieldView fv = model_->fields();
-          if (fv.has_solids_velocity()) tracers_->advance(fv.field2(fv.us[0]), fv.field2(fv.us[1]), t - t_before);
+          if (fv.has_solids_velocity()) {
+            tracers_->advance(fv.field2(fv.us[0]), fv.field2(fv.us[1]), model_->last_step());
+          }
         }
         observe(t);
         if (checkpoints_.due(t, dt_) && !landed(t)) periodic_checkpoint(t);

@@ -19,6 +19,7 @@ class TfmModel final : public ModelRun {
   explicit TfmModel(const CaseConfig& c) : config_(c), solver_(c.tfm) { refresh(); }
 
   double time() const override { return solver_.time(); }
+  double last_step() const override { return last_dt_; }
   void advance(double t_end) override {
     // Land exactly on every scheduled output time (monitor rows, frames, checkpoints), so that each is written
     // at its instant and a restarted run schedules the same steps.

@@ -32,6 +32,9 @@ restart_case() {
 write_cfd_case "$WORK/cfd.toml" cfd
 sed -i 's/^particles.fill_height = 0.1$/particles.fill_height = 0.06/' "$WORK/cfd.toml"
 restart_case cfd "$WORK/cfd.toml" 0.02
+# A half time that the DEM clock (origin + n dt) does not hit exactly: the run to T/2 lands its clock on T/2, and
+# the cell tracers must still advance by the step the model took, as in the uninterrupted run.
+restart_case cfd-land "$WORK/cfd.toml" 0.06 --set output.interval=0.01
 
 # A restart from an earlier checkpoint into a folder that already holds later outputs replaces them: the series
 # are cut at the checkpoint time and rewritten, with no time twice and the same final state. The full run above
