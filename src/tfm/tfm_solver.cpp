@@ -192,7 +192,6 @@ Grid<Dim> validated_grid(const TfmConfig& c) {
 template <int Dim>
 TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     : config_(config), grid_(validated_grid<Dim>(config)), w_(std::make_unique<Work>()) {
-  beta_of_ = drag_beta_function(DragModel{config_.drag_law, config_.drag_switch});
   const IndexBox<Dim>& cells = grid_.domain;
   Work& w = *w_;
   {
@@ -261,6 +260,7 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
   // from the top: in a bed at rest the drag then carries exactly what the gas flow can carry.
   const double g = std::abs(config_.domain.gravity.y);
   const int ny = grid_.n(kUp);
+  const DragBetaFn beta_of = drag_beta_function(DragModel{config_.drag_law, config_.drag_switch});  // Eq. 13
   for_each_bottom([&](const Index<Dim>& bottom) {
     auto cell = [&](int j) { return with<Dim>(bottom, kUp, j); };
     auto drop_across = [&](int j) {  // P(below) - P(above) across the face j
@@ -268,7 +268,7 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
       auto beta_at = [&](int jc) {
         DragInput in{std::min(s_.eps[cell(jc)], 1.0 - kEpsSFloor), config_.d_p, config_.rho_g, config_.mu_g,
                      0.5 * (vg_interstitial(cell(jc)) + s_.ug[kUp][cell(jc + 1)])};
-        return drag(in);
+        return beta_of(in);
       };
       const double beta = j == ny ? beta_at(ny - 1) : 0.5 * (beta_at(j - 1) + beta_at(j));
       return config_.rho_g * g * dy + beta * s_.ug[kUp][cell(j)] * dy / eg;
@@ -287,13 +287,6 @@ template <int Dim>
 template <class F>
 void TfmSolver<Dim>::for_each_bottom(F&& f) const {
   for_each(grid_.domain.inside(kUp, false), f);
-}
-
-template <int Dim>
-double TfmSolver<Dim>::drag(const DragInput& in) const {
-  // Eq. 13 with the shared drag law, outside the step's loops (the initial pressure); the closures' cell loop is
-  // compiled for the law instead (compute_closures_of).
-  return beta_of_(in);
 }
 
 template <int Dim>

@@ -141,9 +141,6 @@ class TfmSolver {
   void close_gas_continuity(double dt);
 
   // Pieces the stages share.
-  double drag(const DragInput& in) const;
-  /// The case's drag law, chosen once at construction (never switched per cell).
-  DragBetaFn beta_of_ = nullptr;
   double vg_interstitial(const Index<Dim>& c) const;
   double mu_corner(const Index<Dim>& k, int p, int q) const;
   void outflow(Eigen::VectorXd& out_g, Eigen::VectorXd& out_s) const;
