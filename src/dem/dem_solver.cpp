@@ -780,6 +780,14 @@ void DemSolver<Dim>::restore(State s) {
   rebuilds_ = s.rebuilds;
   time_origin_ = s.time_origin;
   steps_origin_ = s.steps_origin;
+  // A restart that changes dem.time_step (--allow-changed): the saved origin counts steps of the old step, so the
+  // clock would jump back; it restarts from the saved time. With the same step the origin is kept, so the restart
+  // continues the uninterrupted run's clock bit for bit.
+  const double clock = time_origin_ + static_cast<double>(steps_ - steps_origin_) * config_.dt;
+  if (std::abs(clock - time_) > 1e-12 * (std::abs(time_) + config_.dt)) {
+    time_origin_ = time_;
+    steps_origin_ = steps_;
+  }
   removed_count_ = s.removed_count;
   removed_mass_ = s.removed_mass;
   feed_ = s.feed;

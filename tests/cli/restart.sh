@@ -63,6 +63,17 @@ expect 2 "changes inlet.jet\[0\].velocity" "cfd: restart with another jet is ref
   "$WORK/cfd.toml" --out "$WORK/cfd-jet" --quiet --set 'inlet.jet[0].velocity=25' --restart "$WORK/mid.h5"
 expect 2 "changes dem.time_step" "cfd: restart with another time step is refused" "$FLUIDBED" run \
   "$WORK/cfd.toml" --out "$WORK/cfd-dt" --quiet --set dem.time_step=5e-5 --restart "$WORK/mid.h5"
+# Accepted, another time step continues the clock from the checkpoint's time: it used to count the saved steps
+# with the new step, so the clock jumped back and the run stopped with "the model did not advance".
+expect 0 "" "cfd: --allow-changed dem.time_step continues" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-dt" \
+  --quiet --set dem.time_step=5e-5 --allow-changed dem.time_step --restart "$WORK/mid.h5"
+check "cfd: after another time step the monitor's clock rises from T/2 to T" python3 - "$WORK/cfd-dt/monitor.csv" \
+  "$WORK/mid.h5" 0.02 <<'PY'
+import sys
+rows = [float(l.split(",")[0]) for l in open(sys.argv[1]).read().splitlines()[1:]]
+assert all(b > a for a, b in zip(rows, rows[1:])), "the clock went back"
+assert abs(rows[-1] - float(sys.argv[3])) < 1e-12, f"ended at {rows[-1]}"
+PY
 expect 0 "" "cfd: --allow-changed contact.stiffness continues anyway" "$FLUIDBED" run "$WORK/cfd.toml" \
   --out "$WORK/cfd-stiff" --quiet --set contact.stiffness=900 --allow-changed contact.stiffness --restart "$WORK/mid.h5"
 expect 0 "" "cfd: --allow-changed inlet (a whole section)" "$FLUIDBED" run "$WORK/cfd.toml" --out "$WORK/cfd-jet" \
