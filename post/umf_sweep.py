@@ -39,13 +39,15 @@ def hold_mean(monitor, t0, t1):
 
 
 def umf_from_decreasing(u, dp, plateau_tol=0.15):
-    """U_mf from the decreasing branch: the fluidised levels are those within plateau_tol of the highest level's
-    dp (their mean is the plateau); the fixed-bed levels, the others, are fitted by Ergun's form dp = a U + b U^2
-    (viscous and inertial terms; for the paper's 4 mm particles the inertial one dominates, so a line would not
-    do); U_mf solves a U + b U^2 = plateau. Returns (U_mf, plateau, a, b) or None when a branch has no level."""
+    """U_mf from the decreasing branch: the fluidised levels are those whose dp is at least (1 - plateau_tol)
+    times the highest level's (their mean is the plateau; one-sided, since a bubbling or slugging level whose mean
+    lands above the top level's is still fluidised, while a fixed bed below U_mf carries less than its weight); the
+    fixed-bed levels, the others, are fitted by Ergun's form dp = a U + b U^2 (viscous and inertial terms; for the
+    paper's 4 mm particles the inertial one dominates, so a line would not do); U_mf solves a U + b U^2 = plateau.
+    Returns (U_mf, plateau, a, b) or None when a branch has no level."""
     u, dp = np.asarray(u, float), np.asarray(dp, float)
     top = dp[np.argmax(u)]
-    fluid = np.abs(dp - top) <= plateau_tol * abs(top)
+    fluid = dp >= (1.0 - plateau_tol) * top
     fixed = ~fluid & (u > 0)
     if not fluid.any() or not fixed.any():
         return None
