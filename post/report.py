@@ -1046,6 +1046,13 @@ def ensemble_table2(runs, groups):
             nose = member_values(members, "rise_velocity_m_s", t)
             lines.append(f"| {t} | {mean_std(gas)} | {mean_std(uc)} | {mean_std((gas - uc) / u_mf)} | "
                          f"{mean_std(nose)} |")
+        # The bubble's events per member, as bubble_events does for one run (n: members where it happened).
+        det = np.array([float(t) if t else np.nan for t in (detachment_time(r.bubble) if r.bubble is not None
+                                                             else None for r in members)])
+        eru = np.array([float(t) if t else np.nan for t in (first_time_where(r.bubble, "erupted", "1")
+                                                             if r.bubble is not None else None for r in members)])
+        lines += ["", "| detachment time (s) | first eruption time (s) |", "|---|---|",
+                  f"| {mean_std(det, '.3f')} | {mean_std(eru, '.3f')} |"]
         lines.append("")
     return lines
 
