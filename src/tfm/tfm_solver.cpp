@@ -11,6 +11,7 @@
 #include "fluid/drag.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "fluid/structured_solver_hypre.hpp"
+#include "tfm/band_pressure_solver.hpp"
 #include "tfm/packing_limiter.hpp"
 
 namespace fluidbed::tfm {
@@ -212,7 +213,12 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     case PressureBackend::EigenCg:
       w.pressure = make_eigen_structured_solver<Dim>(grid_, PressureSolverKind::ConjugateGradient, kPressureTolerance);
       break;
-    case PressureBackend::Eigen: w.pressure = make_eigen_structured_solver<Dim>(grid_); break;
+    case PressureBackend::Eigen:
+      // The direct solve: a band factorisation where the rows couple within a narrow band (2D), else Eigen's
+      // sparse Cholesky.
+      w.pressure = make_band_structured_solver<Dim>(grid_);
+      if (!w.pressure) w.pressure = make_eigen_structured_solver<Dim>(grid_);
+      break;
   }
   for (FaceFields<Dim>* f : {&w.g0, &w.s0, &w.dg, &w.ds, &w.gs, &w.ss, &w.eg, &w.es, &w.a, &w.fs, &w.fs_unlimited,
                              &w.fs_corr, &w.fg_shift}) {
