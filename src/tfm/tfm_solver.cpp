@@ -174,6 +174,7 @@ struct TfmSolver<Dim>::Work {
   std::unique_ptr<StructuredSolver<Dim>> pressure;  // shared with the gas solver (src/fluid)
   StencilMatrix e_matrix;  // solids-fraction correction, (2 Dim + 1)-point pattern fixed at construction
   CheckedSparseSolver solids_solver;
+  ImplicitTransportWork<Dim> transport;  // the implicit solids continuity's matrix, solver and work arrays
 };
 
 namespace {
@@ -818,7 +819,7 @@ void TfmSolver<Dim>::solids_continuity(double dt) {
   // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
   try {
     advance_scalar_implicit(grid_, c.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, dt, c.mass_corrections, w.fs,
-                            c.linear_max_iterations, &linear_fallbacks_);
+                            c.linear_max_iterations, &linear_fallbacks_, &w.transport);
   } catch (const Error& e) {
     throw_simulation_error(fmt::format("{}: {}. Remedy: {}", step_label(dt), e.what(), remedy()));
   }
