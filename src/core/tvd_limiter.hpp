@@ -53,7 +53,7 @@ inline double psi(Limiter limiter, double r) {
 /// High-order correction added to the upwind value on a face: 0.5 psi(r) (phi_D - phi_C),
 /// r = (phi_C - phi_U) / (phi_D - phi_C), C the upwind cell, D the downwind one, U the cell upwind of C.
 template <class Law>
-double correction(double phi_U, double phi_C, double phi_D) {
+[[gnu::always_inline]] inline double correction(double phi_U, double phi_C, double phi_D) {
   if constexpr (!Law::high_order) {
     return 0.0;
   } else {
@@ -68,7 +68,7 @@ double correction(double phi_U, double phi_C, double phi_D) {
 /// Face value between cells L (lower index) and R for a face velocity `vel` (positive from L to R);
 /// phi_LL lies before L and phi_RR after R.
 template <class Law>
-double face_value(double vel, double phi_LL, double phi_L, double phi_R, double phi_RR) {
+[[gnu::always_inline]] inline double face_value(double vel, double phi_LL, double phi_L, double phi_R, double phi_RR) {
   if (vel >= 0.0) return phi_L + correction<Law>(phi_LL, phi_L, phi_R);
   return phi_R + correction<Law>(phi_RR, phi_R, phi_L);
 }

@@ -11,6 +11,7 @@
 #include "fluid/drag.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "fluid/structured_solver_hypre.hpp"
+#include "tfm/band_pressure_solver.hpp"
 #include "tfm/packing_limiter.hpp"
 
 namespace fluidbed::tfm {
@@ -40,11 +41,28 @@ Index<Dim> with(Index<Dim> c, int a, int value) {
   return c;
 }
 
+// The low face of a momentum cell along axis 0 or 1 is the high face of the cell before it along that axis: its
+// flux (the same operands, so the same bits) is carried from the earlier call instead of being limited twice.
+// Axis 0 needs the last cell, axis 1 the cell of the line before (one slot per position along axis 0).
+template <int Dim>
+struct FluxCarry {
+  struct Slot {
+    Index<Dim> next{};  // the face whose low flux this holds
+    double flux = 0.0;
+    bool valid = false;
+  };
+  Slot along0;
+  std::vector<Slot> along1;
+  int i0 = 0;  // the first position along axis 0
+  FluxCarry(int lo0, int n0) : along1(static_cast<std::size_t>(n0)), i0(lo0) {}
+  Slot& slot(int a, const Index<Dim>& f) { return a == 0 ? along0 : along1[static_cast<std::size_t>(f[0] - i0)]; }
+};
+
 // Advective term (U . grad) u_d of velocity component d at its face f, TVD face values, in the advective form
 // div(U u_d) - u_d div(U) so that it vanishes for a uniform field; the transport velocity of each face of the
 // momentum cell is the mean of the two faces it joins. Ghost layers stand in for the clamped stencil.
 template <int Dim, int d, class Law>
-double advect(const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& f) {
+double advect(const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& f, FluxCarry<Dim>& carry) {
   // Offsets from the face's storage slot (the hottest stencil of the momentum predictor).
   const Field<Dim>& u = vel[d];
   const double* pu = u.data().data() + u.index(f);
@@ -63,7 +81,16 @@ double advect(const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& 
       v_lo = 0.5 * (pv[-sd] + pv[0]);
     }
     const double f_hi = v_hi * tvd::face_value<Law>(v_hi, pu[-su], pu[0], pu[su], pu[2 * su]);
-    const double f_lo = v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
+    double f_lo;
+    if (a < 2) {
+      typename FluxCarry<Dim>::Slot& c = carry.slot(a, f);
+      f_lo = c.valid && c.next == f ? c.flux : v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
+      c.next = shifted<Dim>(f, a, 1);
+      c.flux = f_hi;
+      c.valid = true;
+    } else {
+      f_lo = v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
+    }
     const double t_flux = (f_hi - f_lo) / g.h[a], t_div = (v_hi - v_lo) / g.h[a];
     flux = a == 0 ? t_flux : flux + t_flux;
     div = a == 0 ? t_div : div + t_div;
@@ -173,6 +200,7 @@ struct TfmSolver<Dim>::Work {
   std::unique_ptr<StructuredSolver<Dim>> pressure;  // shared with the gas solver (src/fluid)
   StencilMatrix e_matrix;  // solids-fraction correction, (2 Dim + 1)-point pattern fixed at construction
   CheckedSparseSolver solids_solver;
+  ImplicitTransportWork<Dim> transport;  // the implicit solids continuity's matrix, solver and work arrays
 };
 
 namespace {
@@ -212,7 +240,12 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     case PressureBackend::EigenCg:
       w.pressure = make_eigen_structured_solver<Dim>(grid_, PressureSolverKind::ConjugateGradient, kPressureTolerance);
       break;
-    case PressureBackend::Eigen: w.pressure = make_eigen_structured_solver<Dim>(grid_); break;
+    case PressureBackend::Eigen:
+      // The direct solve: a band factorisation where the rows couple within a narrow band (2D), else Eigen's
+      // sparse Cholesky.
+      w.pressure = make_band_structured_solver<Dim>(grid_);
+      if (!w.pressure) w.pressure = make_eigen_structured_solver<Dim>(grid_);
+      break;
   }
   for (FaceFields<Dim>* f : {&w.g0, &w.s0, &w.dg, &w.ds, &w.gs, &w.ss, &w.eg, &w.es, &w.a, &w.fs, &w.fs_unlimited,
                              &w.fs_corr, &w.fg_shift}) {
@@ -539,6 +572,8 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
   IndexBox<Dim> faces = cells.faces(d);
   faces.lo[d] += 1;
   faces.hi[d] -= (d == kUp && top_open) ? 0 : 1;
+  // for_each runs along axis 0 fastest, then axis 1.
+  FluxCarry<Dim> carry_g(faces.lo[0], faces.extent(0)), carry_s(faces.lo[0], faces.extent(0));
   for_each(faces, [&](const Index<Dim>& f) {
     const bool top = d == kUp && f[d] == cells.hi[d];
     const Index<Dim> lo = shifted<Dim>(f, d, -1);  // the cell below the face; f names the one above
@@ -547,7 +582,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
     const double beta = top ? beta_c_[lo] : 0.5 * (beta_c_[lo] + beta_c_[f]);
     const double p_above = top ? 2.0 * c.boundary.top_pressure - p[lo] : p[f];
     const double dpdx = (p_above - p[lo]) / h[d];
-    const double adv_g = advect<Dim, d, Law>(w.g0, grid_, f);
+    const double adv_g = advect<Dim, d, Law>(w.g0, grid_, f, carry_g);
     const double a_g = eg * rho_g / dt;
     const double rhs_g = a_g * w.g0[d][f] - eg * rho_g * adv_g + eg * rho_g * grav - eg * dpdx;
     if (top || !(std::min(1.0 - eps[lo], 1.0 - eps[f]) > kEpsSTrace)) {
@@ -589,7 +624,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
       visc += (shear[1] - shear[0]) / h[b];
     }
     visc += diag * s0[d][f];
-    const double adv_s = advect<Dim, d, Law>(s0, grid_, f);
+    const double adv_s = advect<Dim, d, Law>(s0, grid_, f, carry_s);
     const double a_s = es * rho_s / dt;
     const double rhs_s = a_s * s0[d][f] - es * rho_s * adv_s + es * rho_s * grav - es * dpdx - dpsdx + visc;
     const FaceSolve fsol = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
@@ -812,7 +847,7 @@ void TfmSolver<Dim>::solids_continuity(double dt) {
   // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
   try {
     advance_scalar_implicit(grid_, c.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, dt, c.mass_corrections, w.fs,
-                            c.linear_max_iterations, &linear_fallbacks_);
+                            c.linear_max_iterations, &linear_fallbacks_, &w.transport);
   } catch (const Error& e) {
     throw_simulation_error(fmt::format("{}: {}. Remedy: {}", step_label(dt), e.what(), remedy()));
   }

@@ -2,6 +2,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -144,9 +145,15 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
 template <int Dim>
 Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi_old,
                                    const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
-                                   int linear_max_iterations, int* fallbacks) {
+                                   int linear_max_iterations, int* fallbacks, ImplicitTransportWork<Dim>* work) {
   const IndexBox<Dim>& box = g.domain;
   const int n = static_cast<int>(box.count());
+  std::unique_ptr<ImplicitTransportWork<Dim>> local;  // a caller without its own buffers gets fresh ones
+  if (!work) {
+    local = std::make_unique<ImplicitTransportWork<Dim>>();
+    work = local.get();
+  }
+  ImplicitTransportWork<Dim>& w = *work;
   // Row of the neighbour across the face on side `high` of axis a (wrapped when periodic), -1 beyond a boundary.
   std::array<int, Dim> row_stride{};
   for (int a = 0, st = 1; a < Dim; ++a) {
@@ -160,41 +167,86 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
     if (!vel.periodic[a]) return -1;
     return p + (high ? -(m - 1) : (m - 1)) * row_stride[a];
   };
-  // Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume.
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(n) * (2 * Dim + 1));
-  Eigen::VectorXd diag = Eigen::VectorXd::Constant(n, 1.0 / dt);
-  auto add_face = [&](int p, int nb, double flux_out) {
-    // flux_out: velocity / length leaving cell p through this face. A boundary face takes the cell's own value
-    // (zero-gradient ghost), so it always lands on the diagonal.
-    if (flux_out > 0.0 || nb < 0) {
-      diag[p] += flux_out;
-    } else {
-      trip.emplace_back(p, nb, flux_out);
+  // A periodic axis of one or two cells meets the same neighbour through both faces (or the cell itself): the
+  // entries then add up, which the fixed pattern (one slot per face) does not do.
+  bool fixed_pattern = true;
+  for (int a = 0; a < Dim; ++a) fixed_pattern = fixed_pattern && !(vel.periodic[a] && box.extent(a) <= 2);
+  // Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume. A boundary face takes the
+  // cell's own value (zero-gradient ghost), so it always lands on the diagonal; flux_out is the velocity / length
+  // leaving the cell through the face.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> tmat;
+  if (fixed_pattern) {
+    if (!w.built || !(w.box == box) || w.periodic != vel.periodic) {
+      std::vector<std::array<int, 2 * Dim>> nb(static_cast<std::size_t>(n));
+      int p = 0;
+      for_each(box, [&](const Index<Dim>& c) {
+        for (int a = 0; a < Dim; ++a) {
+          nb[static_cast<std::size_t>(p)][2 * a] = neighbour(c, p, a, false);
+          nb[static_cast<std::size_t>(p)][2 * a + 1] = neighbour(c, p, a, true);
+        }
+        ++p;
+      });
+      w.matrix.build(n, nb);
+      w.box = box;
+      w.periodic = vel.periodic;
+      w.built = true;
     }
-  };
-  int row = 0;
-  for_each(box, [&](const Index<Dim>& c) {
-    const int p = row++;  // for_each runs in row order
-    for (int a = 0; a < Dim; ++a) {
-      add_face(p, neighbour(c, p, a, true), vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a]);
-      add_face(p, neighbour(c, p, a, false), -vel.at(a, c) / g.h[a]);
-    }
-  });
-  for (int p = 0; p < n; ++p) trip.emplace_back(p, p, diag[p]);
-  Eigen::SparseMatrix<double, Eigen::RowMajor> mat(n, n);
-  mat.setFromTriplets(trip.begin(), trip.end());
+    int p = 0;
+    for_each(box, [&](const Index<Dim>& c) {
+      double diag = 1.0 / dt;
+      std::array<double, 2 * Dim> off{};
+      for (int a = 0; a < Dim; ++a) {
+        for (bool high : {true, false}) {
+          const double flux_out = high ? vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a] : -vel.at(a, c) / g.h[a];
+          if (flux_out > 0.0 || neighbour(c, p, a, high) < 0) {
+            diag += flux_out;
+          } else {
+            off[2 * a + (high ? 1 : 0)] = flux_out;
+          }
+        }
+      }
+      w.matrix.set_row(p++, diag, off);
+    });
+  } else {
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(static_cast<std::size_t>(n) * (2 * Dim + 1));
+    Eigen::VectorXd diag = Eigen::VectorXd::Constant(n, 1.0 / dt);
+    auto add_face = [&](int p, int nb, double flux_out) {
+      if (flux_out > 0.0 || nb < 0) {
+        diag[p] += flux_out;
+      } else {
+        trip.emplace_back(p, nb, flux_out);
+      }
+    };
+    int row = 0;
+    for_each(box, [&](const Index<Dim>& c) {
+      const int p = row++;  // for_each runs in row order
+      for (int a = 0; a < Dim; ++a) {
+        add_face(p, neighbour(c, p, a, true), vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a]);
+        add_face(p, neighbour(c, p, a, false), -vel.at(a, c) / g.h[a]);
+      }
+    });
+    for (int p = 0; p < n; ++p) trip.emplace_back(p, p, diag[p]);
+    tmat.resize(n, n);
+    tmat.setFromTriplets(trip.begin(), trip.end());
+  }
+  const StencilMatrix::Matrix& mat = fixed_pattern ? w.matrix.matrix() : tmat;
 
-  CheckedSparseSolver solver;
+  CheckedSparseSolver& solver = w.solver;
   solver.set_tolerance(1e-12);
   solver.set_max_iterations(linear_max_iterations);
 
+  if (w.rhs.size() != n) {
+    w.rhs.resize(n);
+    w.x.resize(n);
+  }
   Field<Dim> phi(box, kGhost);
   for_each(box, [&](const Index<Dim>& c) { phi[c] = phi_old[c]; });
   fill_cell_ghosts(phi, vel.periodic);
   Field<Dim> corr_div(box, kGhost);
-  FaceFields<Dim> phi_f;
-  Eigen::VectorXd rhs(n), x(n);
+  FaceFields<Dim>& phi_f = w.phi_f;  // its ghost faces are never written: they stay zero
+  Eigen::VectorXd& rhs = w.rhs;
+  Eigen::VectorXd& x = w.x;
   for (int pass = 0; pass <= corrections; ++pass) {
     // Deferred correction: the limited part of the face flux, lagged, moves to the right-hand side.
     corr_div.fill(0.0);
@@ -284,7 +336,7 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   template Field<D> advance_scalar_implicit<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,    \
                                                double, int);                                                        \
   template Field<D> advance_scalar_implicit<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,    \
-                                               double, int, FaceFluxes<D>&, int, int*);
+                                               double, int, FaceFluxes<D>&, int, int*, ImplicitTransportWork<D>*);
 FLUIDBED_TVD_INSTANTIATE(2)
 FLUIDBED_TVD_INSTANTIATE(3)
 #undef FLUIDBED_TVD_INSTANTIATE

@@ -2,12 +2,14 @@
 // Convection of a cell-centred scalar by face velocities on the staggered grid in Dim = 2 or 3 dimensions, with the
 // shared TVD limiter family (paper section 2.2.1: upwind flux plus a limited 0.5|U|(phi_i - phi_{i-1}) correction).
 // Fields carry kGhost ghost layers; stencils read them and never clamp (fill_cell_ghosts writes them).
+#include <Eigen/Core>
 #include <array>
 #include <type_traits>
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/tvd_limiter.hpp"
+#include "fluid/stencil_matrix.hpp"
 
 namespace fluidbed::tfm {
 
@@ -75,10 +77,24 @@ Field<Dim> conservative_update(const Grid<Dim>& grid, const Field<Dim>& phi_old,
 /// checked (CheckedSparseSolver: BiCGSTAB, a sparse LU when it stops short; at most `linear_max_iterations`
 /// BiCGSTAB iterations, 0 for Eigen's default); a solve neither answers is a simulation error. `fallbacks`, when
 /// given, counts the solves the LU answered. phi_old's ghosts are not read.
+/// What advance_scalar_implicit keeps from one call to the next (matrix pattern, solver, work arrays), so that a
+/// step allocates nothing: one per convected scalar. The results do not depend on it.
+template <int Dim>
+struct ImplicitTransportWork {
+  IndexBox<Dim> box{};
+  std::array<bool, Dim> periodic{};
+  bool built = false;
+  StencilMatrix matrix;
+  CheckedSparseSolver solver;
+  FaceFields<Dim> phi_f;
+  Eigen::VectorXd rhs, x;
+};
+
 template <int Dim>
 Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi_old,
                                    const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
-                                   int linear_max_iterations = 0, int* fallbacks = nullptr);
+                                   int linear_max_iterations = 0, int* fallbacks = nullptr,
+                                   ImplicitTransportWork<Dim>* work = nullptr);
 /// The same step without the fluxes.
 template <int Dim>
 Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi_old,
