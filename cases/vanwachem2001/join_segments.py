@@ -4,11 +4,11 @@
 The run of docs/validation.md stepped 2e-5 s to t = 1.19888 s (segment 1, RUN1/probes-start.csv) and was
 continued from there at 2.4e-5 s (segment 2, RUN2/probes.csv). A restart with another dem.time_step labels the
 clock as the DEM step count times the new step, so segment 2's labels run OFFSET s ahead of the simulated time
-(printed by this script's caller from the first restart: 0.239968 s; README). This script writes
+(0.239768 s for the validation run: ../README.md, "The validation run"). This script writes
 time_s (the simulated time), then the chosen columns at 7 significant digits, segment 1 up to its end and segment 2
 after it; bed_bed_height_m is empty in segment 1 (the probe was added at the restart).
 
-Usage: join_segments.py RUN1/probes-start.csv RUN2/probes.csv --offset 0.239968 --out results/probes.csv
+Usage: join_segments.py RUN1/probes-start.csv RUN2/probes.csv --offset 0.239768 --out results/probes.csv
 """
 import argparse
 import csv

@@ -7,7 +7,9 @@ prints the mean, the standard deviation, the dominant frequency of the Welch PSD
 height, the oscillation period twice: 1 / the PSD peak, and the mean spacing of the upward zero crossings of the
 detrended, lightly smoothed signal (with hysteresis, so noise about zero does not count as crossings).
 
-Usage: post.py RUN [--t0 1.0] [--t1 END] [--segment 2.0] [--csv spectra.csv] [--png figure.png] [--json out.json]
+Usage: post.py RUN [--t0 1.0] [--t1 END] [--segment 2.0] [--offset S] [--csv spectra.csv] [--png figure.png]
+               [--json out.json]
+(--offset: subtract S from time_s first, for a run continued at another time step: results/README.md.)
 (--png needs matplotlib: /usr/bin/python3 on the development machine.)
 """
 import argparse
@@ -86,12 +88,13 @@ def main():
     ap.add_argument("--t0", type=float, default=1.0, help="start of the analysed window, s (default 1)")
     ap.add_argument("--t1", type=float, default=float("inf"), help="end of the window, s (default: the run's end)")
     ap.add_argument("--segment", type=float, default=2.0, help="Welch segment length, s (bin = 1 / segment)")
+    ap.add_argument("--offset", type=float, default=0.0, help="subtract this from time_s, s (default 0)")
     ap.add_argument("--csv", help="write the spectra: frequency_Hz, then one PSD column per signal")
     ap.add_argument("--png", help="time series and spectra, one figure")
     ap.add_argument("--json", help="the numbers printed, as JSON")
     a = ap.parse_args()
     cols = read_probes(os.path.join(a.run, "probes.csv"))
-    t = cols["time_s"]
+    t = cols["time_s"] - a.offset
     t1 = min(a.t1, float(np.nanmax(t)))
     results = {}
     for name, label, unit in SIGNALS:
