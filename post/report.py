@@ -653,28 +653,39 @@ def uniform_signal(t, v):
 
 
 def figure_probes(runs, path, notes):
-    """Probe time series: every pressure and pressure-drop column of every probes.csv (top), voidage (bottom)."""
-    fig, (ax_p, ax_e) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    """Probe time series: every pressure and pressure-drop column of every probes.csv (top), voidage (middle), and
+    the bed height of any bed_height probe (bottom, only where a run has one)."""
+    heights = any(run.probes is not None and any(n.endswith("_bed_height_m") for n in run.probes) for run in runs)
+    fig, axes = plt.subplots(3 if heights else 2, 1, figsize=(7, 8 if heights else 6), sharex=True)
+    ax_p, ax_e = axes[0], axes[1]
     drawn = 0
     for run in runs:
         if run.probes is None:
             continue
         t = numeric(run.probes, "time_s")
         for name in run.probes:
-            if name == "time_s" or not (name.endswith("_p_Pa") or name.endswith("_dp_Pa") or name.endswith("_eps")):
+            if name.endswith("_bed_height_m"):
+                ax = axes[2]
+            elif name.endswith("_eps"):
+                ax = ax_e
+            elif name.endswith("_p_Pa") or name.endswith("_dp_Pa"):
+                ax = ax_p
+            else:
                 continue
             v = numeric(run.probes, name)
             ok = np.isfinite(t) & np.isfinite(v)
             if ok.any():
-                (ax_e if name.endswith("_eps") else ax_p).plot(t[ok], v[ok], lw=0.8, label=f"{run.label} {name}")
+                ax.plot(t[ok], v[ok], lw=0.8, label=f"{run.label} {name}")
                 drawn += 1
     if drawn == 0:
         plt.close(fig)
         return "no run has a probes.csv (the case has no [[probe]])"
     ax_p.set_ylabel("pressure (Pa)")
     ax_e.set_ylabel("voidage")
-    ax_e.set_xlabel("time (s)")
-    for ax in (ax_p, ax_e):
+    if heights:
+        axes[2].set_ylabel("bed height (m)")
+    axes[-1].set_xlabel("time (s)")
+    for ax in axes:
         ax.grid(alpha=0.3)
         if ax.lines:
             ax.legend(fontsize=7)

@@ -30,12 +30,45 @@ double plane_mean(const CellView<Dim>& f, double y) {
   return sum / (static_cast<double>(g.n[0]) * nz);
 }
 
+template <int Dim>
+double bed_height(const CellView<Dim>& eps, double solids_fraction) {
+  const CellGeometry<Dim>& g = eps.geometry;
+  const int nz = Dim == 3 ? g.n[Dim - 1] : 1;
+  const auto row_solids = [&](int j) {
+    double sum = 0.0;
+    for (int k = 0; k < nz; ++k)
+      for (int i = 0; i < g.n[0]; ++i) {
+        Index<Dim> c{};
+        c[0] = i;
+        c[1] = j;
+        if constexpr (Dim == 3) c[2] = k;
+        sum += eps[c];
+      }
+    return 1.0 - sum / (static_cast<double>(g.n[0]) * nz);
+  };
+  // From the top down, so voids inside the bed (bubbles) below the surface do not count.
+  double above = 0.0;
+  for (int j = g.n[1] - 1; j >= 0; --j) {
+    const double s = row_solids(j);
+    if (s >= solids_fraction) {
+      if (j == g.n[1] - 1) return g.face(1, g.n[1]);
+      return g.centre(1, j) + g.h[1] * (s - solids_fraction) / (s - above);
+    }
+    above = s;
+  }
+  return 0.0;
+}
+
 std::vector<std::string> probe_columns(const std::vector<ProbeSpec>& probes, int dimension, bool solids) {
   static constexpr const char* axis[3] = {"x", "y", "z"};
   std::vector<std::string> cols;
   for (const ProbeSpec& p : probes) {
     if (p.kind == ProbeKind::PressureDrop) {
       cols.push_back(p.name + "_dp_Pa");
+      continue;
+    }
+    if (p.kind == ProbeKind::BedHeight) {
+      cols.push_back(p.name + "_bed_height_m");
       continue;
     }
     cols.push_back(p.name + "_p_Pa");
@@ -57,6 +90,10 @@ std::vector<double> sample_probes(const std::vector<ProbeSpec>& probes, const Pr
       row.push_back(plane_mean<Dim>(view(fields.p), p.height) - plane_mean<Dim>(view(fields.p), p.height_top));
       continue;
     }
+    if (p.kind == ProbeKind::BedHeight) {
+      row.push_back(bed_height<Dim>(view(fields.eps), p.solids_fraction));
+      continue;
+    }
     std::array<double, Dim> x{};
     for (int a = 0; a < Dim; ++a) x[a] = p.position[a];
     const auto read = [&](const double* v) {
@@ -73,6 +110,8 @@ std::vector<double> sample_probes(const std::vector<ProbeSpec>& probes, const Pr
 
 template double plane_mean<2>(const CellView<2>&, double);
 template double plane_mean<3>(const CellView<3>&, double);
+template double bed_height<2>(const CellView<2>&, double);
+template double bed_height<3>(const CellView<3>&, double);
 template std::vector<double> sample_probes<2>(const std::vector<ProbeSpec>&, const ProbeFields<2>&);
 template std::vector<double> sample_probes<3>(const std::vector<ProbeSpec>&, const ProbeFields<3>&);
 

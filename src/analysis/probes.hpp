@@ -16,6 +16,7 @@ enum class ProbeKind {
   Point,         ///< the fields interpolated (bi-/trilinear) at `position`
   Plane,         ///< the fields' mean over the horizontal line (2D) or plane (3D) at height `height`
   PressureDrop,  ///< mean pressure at `height` minus mean pressure at `height_top` (Pa, > 0 for a fluidised bed)
+  BedHeight,     ///< highest height where the cross-section mean solids fraction falls to `solids_fraction` (m)
 };
 
 /// One probe of the case file ([[probe]]).
@@ -25,6 +26,7 @@ struct ProbeSpec {
   std::array<double, 3> position{};      ///< m, Point (z ignored in 2D)
   double height = 0.0;                   ///< m above the bottom, Plane and the lower tap of PressureDrop
   double height_top = 0.0;               ///< m, the upper tap of PressureDrop
+  double solids_fraction = 0.3;          ///< BedHeight's threshold of the mean solids fraction 1 - eps
 };
 
 /// The probes of a case and their sampling.
@@ -54,9 +56,15 @@ struct ProbeFields {
 template <int Dim>
 double plane_mean(const CellView<Dim>& f, double y);
 
+/// Bed height from the voidage: the highest y at which the cross-section mean solids fraction 1 - eps, linear in
+/// height between the rows of cell centres, falls to `solids_fraction` (exact for a profile linear between
+/// centres). The top of the column when its top row is still that dense; 0 when no row is (no bed).
+template <int Dim>
+double bed_height(const CellView<Dim>& eps, double solids_fraction);
+
 /// probes.csv header columns after time_s, per probe in order: Point and Plane `NAME_p_Pa,NAME_eps,NAME_ug_x_m_s,
 /// NAME_ug_y_m_s[,NAME_ug_z_m_s][,NAME_us_x_m_s,NAME_us_y_m_s[,NAME_us_z_m_s]]` (us with `solids`), PressureDrop
-/// `NAME_dp_Pa`.
+/// `NAME_dp_Pa`, BedHeight `NAME_bed_height_m`.
 std::vector<std::string> probe_columns(const std::vector<ProbeSpec>& probes, int dimension, bool solids);
 
 /// The values of one probes.csv row after time_s, in probe_columns() order.

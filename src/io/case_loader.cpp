@@ -1113,9 +1113,14 @@ void read_probes(CaseReader& r, CaseConfig& c) {
     const std::string p = fmt::format("probe[{}].", k);
     ProbeSpec s;
     const std::string kind = r.string(p + "kind", "point", "point (fields at position), plane (the mean over the "
-                                      "horizontal line, 3D plane, at height) or pressure_drop (mean pressure at "
-                                      "height minus at height_top)", {"point", "plane", "pressure_drop"});
-    s.kind = kind == "plane" ? ProbeKind::Plane : kind == "pressure_drop" ? ProbeKind::PressureDrop : ProbeKind::Point;
+                                      "horizontal line, 3D plane, at height), pressure_drop (mean pressure at "
+                                      "height minus at height_top) or bed_height (the highest height where the "
+                                      "cross-section mean solids fraction falls to solids_fraction)",
+                                      {"point", "plane", "pressure_drop", "bed_height"});
+    s.kind = kind == "plane"           ? ProbeKind::Plane
+             : kind == "pressure_drop" ? ProbeKind::PressureDrop
+             : kind == "bed_height"    ? ProbeKind::BedHeight
+                                       : ProbeKind::Point;
     s.name = r.string(p + "name", fmt::format("probe{}", k), "column prefix in probes.csv");
     if (s.name.empty() || s.name.find_first_of(", \t\n\"") != std::string::npos)
       r.fail(p + "name", "a probe name is a column prefix: no commas, spaces or quotes");
@@ -1128,6 +1133,10 @@ void read_probes(CaseReader& r, CaseConfig& c) {
       const double extent[3] = {c.domain.width, c.domain.height, c.domain.depth};
       for (std::size_t a = 0; a < dims; ++a)
         if (!(x[a] >= 0.0 && x[a] <= extent[a])) r.fail(p + "position", "the point lies outside the domain");
+    } else if (s.kind == ProbeKind::BedHeight) {
+      s.solids_fraction = r.number(p + "solids_fraction", 0.3, "", "bed_height: the cross-section mean solids "
+                                   "fraction 1 - eps that marks the bed surface (about half a packed bed's)",
+                                   R::Range{0.0, 1.0, true, true});
     } else {
       s.height = r.required_number(p + "height", "m", "height of a plane probe, lower tap of a pressure drop",
                                    R::between(0.0, c.domain.height));

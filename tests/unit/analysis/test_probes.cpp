@@ -105,5 +105,57 @@ TEST(Probes, NoSolidsVelocityLeavesItsColumnsOut) {
   EXPECT_EQ(probe_columns(probes, 2, false).size(), 4u);
 }
 
+// Bed height on a synthetic bed: packed (eps = 0.4) below y = 0.2 m, a surface zone where eps rises linearly to 1
+// at y = 0.3 m, freeboard above; a bubble row (eps = 0.9) at y = 0.09 m lies inside the bed; eps varies across x
+// (and z) with zero cross-section mean. The mean solids fraction 1 - eps is linear between the cell centres that
+// bracket a threshold in the surface zone, so the linear interpolation is exact: for threshold s the height is
+// 0.2 + 0.1 (0.6 - s) / 0.6, to rounding (1e-12 m).
+template <int Dim>
+void check_bed_height() {
+  CellGeometry<Dim> g;
+  g.n[0] = nx;
+  g.n[1] = ny;
+  if constexpr (Dim == 3) g.n[2] = nz;
+  g.h.fill(h);
+  g.origin.fill(0.0);
+  const auto mean_eps = [](double y) {
+    if (std::abs(y - 0.09) < 0.5 * h) return 0.9;
+    return y < 0.2 ? 0.4 : y > 0.3 ? 1.0 : 0.4 + 0.6 * (y - 0.2) / 0.1;
+  };
+  std::vector<double> eps(g.cells());
+  for (std::size_t q = 0; q < eps.size(); ++q) {
+    const Index<Dim> c = g.cell_of(q);
+    double across = 0.02 * (g.centre(0, c[0]) - 0.5 * g.length(0));
+    if constexpr (Dim == 3) across += 0.01 * (g.centre(2, c[2]) - 0.5 * g.length(2));
+    eps[q] = mean_eps(g.centre(1, c[1])) + across;
+  }
+  const CellView<Dim> view{g, eps.data()};
+  for (const double s : {0.5, 0.3, 0.2, 0.1}) {
+    const double exact = 0.2 + 0.1 * (0.6 - s) / 0.6, computed = bed_height<Dim>(view, s);
+    std::printf("%dD bed height at solids fraction %.2f: exact %.15g computed %.15g error %.3g\n", Dim, s, exact,
+                computed, computed - exact);
+    EXPECT_NEAR(computed, exact, 1e-12) << s;
+  }
+  // Denser than any row: no bed; a column full to the top: its top.
+  EXPECT_EQ(bed_height<Dim>(view, 0.7), 0.0);
+  std::vector<double> full(g.cells(), 0.4);
+  EXPECT_DOUBLE_EQ(bed_height<Dim>(CellView<Dim>{g, full.data()}, 0.3), ny * h);
+  // Through sample_probes: one column, the same value.
+  ProbeFields<Dim> f;
+  f.geometry = g;
+  f.eps = eps.data();
+  f.p = eps.data();
+  for (int a = 0; a < Dim; ++a) f.ug[a] = eps.data();
+  ProbeSpec bed{ProbeKind::BedHeight, "bed", {}, 0.0, 0.0, 0.3};
+  const std::vector<ProbeSpec> probes{bed};
+  ASSERT_EQ(probe_columns(probes, Dim, false), std::vector<std::string>{"bed_bed_height_m"});
+  const std::vector<double> row = sample_probes<Dim>(probes, f);
+  ASSERT_EQ(row.size(), 1u);
+  EXPECT_NEAR(row[0], 0.2 + 0.1 * 0.3 / 0.6, 1e-12);
+}
+
+TEST(Probes, BedHeight2D) { check_bed_height<2>(); }
+TEST(Probes, BedHeight3D) { check_bed_height<3>(); }
+
 }  // namespace
 }  // namespace fluidbed
