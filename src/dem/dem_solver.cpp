@@ -258,26 +258,46 @@ void DemSolver<Dim>::link_mirrors() {
   if (nbr_.entries() > std::numeric_limits<std::uint32_t>::max()) {
     throw_simulation_error("neighbour list too long for 32-bit entry links");
   }
-  mirror_.resize(nbr_.entries());
-  int missing = 0;
+  // The half list: each particle's entries of higher-slot partners (the pairs it evaluates), with the partner's
+  // entry of the same pair; counted first, so the half list is in list order.
+  upper_offset_.assign(n + 1, 0);
   const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t c = 0;
+    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) c += nbr_.partner[k] > i ? 1 : 0;
+    upper_offset_[i + 1] = c;
+  }
+  for (std::size_t i = 0; i < n; ++i) upper_offset_[i + 1] += upper_offset_[i];
+  upper_entry_.resize(upper_offset_[n]);
+  upper_mirror_.resize(upper_offset_[n]);
+  int missing = 0;
 #pragma omp parallel for schedule(static) reduction(max : missing)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
+    std::size_t u = upper_offset_[i];
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       const std::size_t j = nbr_.partner[k];
+      if (j <= i) continue;
       bool found = false;
       for (std::size_t q = nbr_.offset[j]; q < nbr_.offset[j + 1]; ++q) {
         if (nbr_.partner[q] == i) {
-          mirror_[k] = static_cast<std::uint32_t>(q);
+          upper_entry_[u] = static_cast<std::uint32_t>(k);
+          upper_mirror_[u] = static_cast<std::uint32_t>(q);
           found = true;
           break;
         }
       }
+      ++u;
       if (!found) missing = 1;
     }
   }
-  if (missing != 0) throw_simulation_error("neighbour list is not symmetric (internal error)");
+  // Every upper entry has its partner's entry, and those are all the other entries: the list is symmetric.
+  if (missing != 0 || 2 * upper_offset_[n] != nbr_.entries()) {
+    throw_simulation_error("neighbour list is not symmetric (internal error)");
+  }
+  linked_entries_ = nbr_.entries();
   last_valid_ = false;  // the compact contacts named entries of the old list
   // A new list: no entry has a force yet (compute_forces relies on zeros in the entries not in contact).
   // With room for growth: assign() beyond the capacity allocates the exact size, which a list growing as the bed
@@ -314,7 +334,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   const Vec<Dim> L = config_.domain.extent<Dim>();
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
-  if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
+  if (upper_offset_.size() != n + 1 || linked_entries_ != nbr_.entries()) link_mirrors();  // a restored list
   if (Law::kRollingHistory && nbr_.rolling.size() != nbr_.entries()) {
     nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});  // a list restored from a run without rolling springs
   }
@@ -377,7 +397,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   }
   const bool release_last = last_valid_ && last_n_ == n;
   const std::uint32_t* partner = nbr_.partner.data();
-  const std::size_t* offset = nbr_.offset.data();
+  const std::size_t* upper = upper_offset_.data();
   Vec<Dim>* history = nbr_.history.data();
   auto release = [&](std::size_t k, std::size_t km) {
     history[k] = Vec<Dim>{};
@@ -408,23 +428,24 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
         // Contacts of the last evaluation (same list, same block) now apart.
         for (std::size_t c = 0; c < last_count_[b]; ++c) {
           const Contact ct = last_contacts_[b][c];
-          const std::size_t j = partner[ct.k];
+          const std::size_t k = upper_entry_[ct.u];
+          const std::size_t j = partner[k];
           const Vec<Dim> dx = separation(pos(ct.i), j);
           const double rsum = R[ct.i] + R[j];
-          if (dot(dx, dx) >= rsum * rsum) release(ct.k, mirror_[ct.k]);
+          if (dot(dx, dx) >= rsum * rsum) release(k, upper_mirror_[ct.u]);
         }
       } else {
         // A new or restored list: any entry may hold a carried-over spring; release those of pairs apart.
         for (std::size_t i = lo; i < hi; ++i) {
-          for (std::size_t k = offset[i]; k < offset[i + 1]; ++k) {
+          for (std::size_t u = upper[i]; u < upper[i + 1]; ++u) {
+            const std::size_t k = upper_entry_[u];
             const std::size_t j = partner[k];
-            if (j < i) continue;
             const Vec<Dim> dx = separation(pos(i), j);
             const double rsum = R[i] + R[j];
             if (dot(dx, dx) < rsum * rsum) continue;
             bool held = entry_contact_[k] != 0 || !is_zero<Dim>(history[k]);
             if constexpr (Law::kRollingHistory) held = held || spin_norm2<Dim>(roll[k]) != 0.0;
-            if (held) release(k, mirror_[k]);
+            if (held) release(k, upper_mirror_[u]);
           }
         }
       }
@@ -433,18 +454,18 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       std::size_t used = 0;
       for (std::size_t i = lo; i < hi; ++i) {
         // Room for every entry of i (the writes below are unconditional); grown by half, so rarely.
-        if (found.size() < used + (offset[i + 1] - offset[i])) {
-          found.resize(used + (offset[i + 1] - offset[i]) + found.size() / 2 + 64);
+        if (found.size() < used + (upper[i + 1] - upper[i])) {
+          found.resize(used + (upper[i + 1] - upper[i]) + found.size() / 2 + 64);
           out = found.data();
         }
         const Vec<Dim> xi = pos(i);
         const double ri = R[i];
-        for (std::size_t k = offset[i]; k < offset[i + 1]; ++k) {
-          const std::size_t j = partner[k];
+        for (std::size_t u = upper[i]; u < upper[i + 1]; ++u) {
+          const std::size_t j = partner[upper_entry_[u]];
           const Vec<Dim> dx = separation(xi, j);
           const double rsum = ri + R[j];
-          out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k)};
-          used += static_cast<std::size_t>((j > i) & !(dot(dx, dx) >= rsum * rsum));
+          out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(u)};
+          used += static_cast<std::size_t>(!(dot(dx, dx) >= rsum * rsum));
         }
       }
       contact_count_[b] = used;
@@ -473,9 +494,9 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     for (std::size_t b = t0; b < nb; b += nt) {
       const Contact* out = contacts_[b].data();
       for (std::size_t c = 0; c < contact_count_[b]; ++c) {
-        const std::size_t i = out[c].i, k = out[c].k;
+        const std::size_t i = out[c].i, k = upper_entry_[out[c].u];
         const std::size_t j = partner[k];
-        const std::size_t km = mirror_[k];
+        const std::size_t km = upper_mirror_[out[c].u];
         const double ri = R[i];
         const Spin<Dim> wi = spin(i);
         const Vec<Dim> vi = vel(i);
@@ -931,7 +952,7 @@ void DemSolver<Dim>::restore(State s) {
       nbr_.partner_id[k] = nbr_.partner[k] < p_.size() ? p_.id[nbr_.partner[k]] : -1;
     }
   }
-  mirror_.clear();  // linked again at the next force evaluation
+  upper_offset_.clear();  // linked again at the next force evaluation
   last_valid_ = false;
   sized_ = p_.has_own_sizes(config_.species);
   double d_max = p_.max_diameter();

@@ -219,18 +219,21 @@ class DemSolver {
   void permute_wall_roll(const std::vector<std::size_t>& order);
   NeighborScratch scratch_;  ///< the list build's per-thread buffers, kept so a rebuild does not fault pages in
   // Each contact is evaluated once, by the partner in the lower storage slot, into a record of its own; both list
-  // entries of the pair name it (mirror_[k] is the partner's entry of the same pair), and each particle then sums
-  // the records its entries name, in list order.
-  std::vector<std::uint32_t> mirror_;
+  // entries of the pair name it, and each particle then sums the records its entries name, in list order.
+  // The half list (built by link_mirrors): particle i's entries of higher-slot partners are
+  // upper_entry_[upper_offset_[i] .. upper_offset_[i + 1]), upper_mirror_ the partner's entry of the same pair.
+  std::vector<std::size_t> upper_offset_;
+  std::vector<std::uint32_t> upper_entry_, upper_mirror_;
+  std::size_t linked_entries_ = 0;  ///< list entries when the half list was built
   /// Per entry 2 c + side: the contact record c (0, a zero record, when not in contact) and the side (0 the lower
   /// slot's entry, which takes +f, 1 the partner's, which takes -f).
   std::vector<std::uint32_t> entry_contact_;
   std::vector<Vec<Dim>> contact_force_;    ///< per record: force on the lower slot
   std::vector<Spin<Dim>> contact_torque_;  ///< per record, two: torque on the lower slot, on the partner
   std::vector<std::size_t> contact_base_;  ///< first record of each block
-  /// A touching pair of the force pass: its lower slot i and i's list entry k.
+  /// A touching pair of the force pass: its lower slot i and its place u in the half list.
   struct Contact {
-    std::uint32_t i, k;
+    std::uint32_t i, u;
   };
   // The touching pairs of this and of the last force evaluation, one array per block of particles (one block per
   // thread), with their counts; the last ones are the only entries that can hold a force to release.
