@@ -6,6 +6,9 @@
 #include <type_traits>
 #include <utility>
 #include <fmt/format.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "core/error.hpp"
 
@@ -156,17 +159,13 @@ DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move
 template <int Dim>
 void DemSolver<Dim>::rebuild() {
   const std::size_t n = p_.size();
-  // The old list in its old storage slots; its buffers are reused by the next rebuild.
-  const bool have_old = nbr_.offset.size() == n + 1;
-  if (have_old) {
-    old_offset_.swap(nbr_.offset);
-    old_partner_id_.swap(nbr_.partner_id);
-    old_history_.swap(nbr_.history);
-    old_rolling_.swap(nbr_.rolling);
-  }
+  // The stretched springs of the old list, by old storage slot and partner id: only the held ones (about one
+  // entry in four in a packed bed), not a copy of the whole old list, so the rebuild needs little memory beyond
+  // the list itself.
+  const bool have_old = nbr_.offset.size() == n + 1 && nbr_.history.size() == nbr_.entries();
   const bool rolling_history = config_.contact.needs_rolling_history();
-  const bool carry_rolling = rolling_history && have_old && old_rolling_.size() == old_history_.size();
-
+  const bool carry_rolling = rolling_history && have_old && nbr_.rolling.size() == nbr_.history.size();
+  if (have_old) gather_held_springs(carry_rolling);
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles
   // drift from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
   const bool sorted = rebuilds_ % kSortEvery == 0;
@@ -188,11 +187,10 @@ void DemSolver<Dim>::rebuild() {
     for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       const std::size_t o = sorted ? order[i] : i;
-      for (std::size_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
-        const Vec<Dim> h = old_history_[q];
-        const Spin<Dim> hr = carry_rolling ? old_rolling_[q] : Spin<Dim>{};
-        if (is_zero<Dim>(h) && spin_norm2<Dim>(hr) == 0.0) continue;
-        const std::int64_t j = old_partner_id_[q];
+      for (std::size_t q = held_offset_[o]; q < held_offset_[o + 1]; ++q) {
+        const Vec<Dim> h = held_history_[q];
+        const Spin<Dim> hr = carry_rolling ? held_rolling_[q] : Spin<Dim>{};
+        const std::int64_t j = held_partner_id_[q];
         for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
           if (nbr_.partner_id[k] == j) {
             nbr_.history[k] = h;
@@ -207,6 +205,40 @@ void DemSolver<Dim>::rebuild() {
   for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   need_rebuild_ = false;
   ++rebuilds_;
+}
+
+template <int Dim>
+void DemSolver<Dim>::gather_held_springs(bool rolling) {
+  const std::size_t n = p_.size();
+  auto held = [&](std::size_t q) {
+    return !is_zero<Dim>(nbr_.history[q]) || (rolling && spin_norm2<Dim>(nbr_.rolling[q]) != 0.0);
+  };
+  held_offset_.assign(n + 1, 0);
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t c = 0;
+    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) c += held(q) ? 1 : 0;
+    held_offset_[i + 1] = c;
+  }
+  for (std::size_t i = 0; i < n; ++i) held_offset_[i + 1] += held_offset_[i];
+  const std::size_t m = held_offset_[n];
+  held_partner_id_.resize(m);
+  held_history_.resize(m);
+  held_rolling_.resize(rolling ? m : 0);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t c = held_offset_[i];
+    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
+      if (!held(q)) continue;
+      held_partner_id_[c] = nbr_.partner_id[q];
+      held_history_[c] = nbr_.history[q];
+      if (rolling) held_rolling_[c] = nbr_.rolling[q];
+      ++c;
+    }
+  }
 }
 
 template <int Dim>
@@ -226,34 +258,53 @@ void DemSolver<Dim>::link_mirrors() {
   if (nbr_.entries() > std::numeric_limits<std::uint32_t>::max()) {
     throw_simulation_error("neighbour list too long for 32-bit entry links");
   }
-  mirror_.resize(nbr_.entries());
-  int missing = 0;
+  // The half list: each particle's entries of higher-slot partners (the pairs it evaluates), with the partner's
+  // entry of the same pair; counted first, so the half list is in list order.
+  upper_offset_.assign(n + 1, 0);
   const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t c = 0;
+    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) c += nbr_.partner[k] > i ? 1 : 0;
+    upper_offset_[i + 1] = c;
+  }
+  for (std::size_t i = 0; i < n; ++i) upper_offset_[i + 1] += upper_offset_[i];
+  upper_entry_.resize(upper_offset_[n]);
+  upper_mirror_.resize(upper_offset_[n]);
+  int missing = 0;
 #pragma omp parallel for schedule(static) reduction(max : missing)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
+    std::size_t u = upper_offset_[i];
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       const std::size_t j = nbr_.partner[k];
+      if (j <= i) continue;
       bool found = false;
       for (std::size_t q = nbr_.offset[j]; q < nbr_.offset[j + 1]; ++q) {
         if (nbr_.partner[q] == i) {
-          mirror_[k] = static_cast<std::uint32_t>(q);
+          upper_entry_[u] = static_cast<std::uint32_t>(k);
+          upper_mirror_[u] = static_cast<std::uint32_t>(q);
           found = true;
           break;
         }
       }
+      ++u;
       if (!found) missing = 1;
     }
   }
-  if (missing != 0) throw_simulation_error("neighbour list is not symmetric (internal error)");
+  // Every upper entry has its partner's entry, and those are all the other entries: the list is symmetric.
+  if (missing != 0 || 2 * upper_offset_[n] != nbr_.entries()) {
+    throw_simulation_error("neighbour list is not symmetric (internal error)");
+  }
+  linked_entries_ = nbr_.entries();
+  last_valid_ = false;  // the compact contacts named entries of the old list
   // A new list: no entry has a force yet (compute_forces relies on zeros in the entries not in contact).
   // With room for growth: assign() beyond the capacity allocates the exact size, which a list growing as the bed
   // compacts would pay (in page faults) at every rebuild.
   const std::size_t m = nbr_.entries();
-  if (entry_force_.capacity() < m) entry_force_.reserve(m + m / 2);
-  if (entry_torque_.capacity() < m) entry_torque_.reserve(m + m / 2);
-  entry_force_.assign(m, Vec<Dim>{});
-  entry_torque_.assign(m, Spin<Dim>{});
+  if (entry_contact_.capacity() < m) entry_contact_.reserve(m + m / 2);
+  entry_contact_.assign(m, 0);
 }
 
 template <int Dim>
@@ -283,7 +334,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   const Vec<Dim> L = config_.domain.extent<Dim>();
   const WallConfig walls = config_.walls;
   const std::size_t ns = config_.n_species();
-  if (mirror_.size() != nbr_.entries()) link_mirrors();  // a restored list
+  if (upper_offset_.size() != n + 1 || linked_entries_ != nbr_.entries()) link_mirrors();  // a restored list
   if (Law::kRollingHistory && nbr_.rolling.size() != nbr_.entries()) {
     nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});  // a list restored from a run without rolling springs
   }
@@ -325,95 +376,199 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   // Pass 1: every pair once, from its lower slot. The law is antisymmetric bit for bit, so writing -f and -xi to
   // the partner's entry gives exactly what the partner would have computed itself; no two pairs share an entry,
   // so threads never write the same memory.
-#pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const Vec<Dim> xi = pos(i);
-    const double ri = R[i];
-    const Spin<Dim> wi = spin(i);
-    const Vec<Dim> vi = vel(i);
-    // One species (not Mixed): every contact takes the first table entry, without the species lookups.
-    const std::size_t si = Mixed ? static_cast<std::size_t>(p_.species[i]) : 0;
-    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
-      const std::size_t j = nbr_.partner[k];
-      if (j < i) continue;  // evaluated by j
-      const std::size_t km = mirror_[k];
-      Vec<Dim> dx = pos(j) - xi;
-      if constexpr (Periodic) dx = periodic_.min_image(dx);  // the partner's nearest image
-      const double d2 = dot(dx, dx);
-      const double rsum = ri + R[j];
-      if (d2 >= rsum * rsum) {
-        // Not touching: entries hold zeros unless this contact just ended (spring released, force cleared);
-        // testing first spares the scattered writes to the partner's entry for the many pairs that only pass by.
-        bool held = !is_zero<Dim>(entry_force_[k]) || !is_zero<Dim>(nbr_.history[k]);
-        if constexpr (Law::kRollingHistory) held = held || spin_norm2<Dim>(roll[k]) != 0.0;
-        if (held) {
-          nbr_.history[k] = Vec<Dim>{};
-          nbr_.history[km] = Vec<Dim>{};
-          if constexpr (Law::kRollingHistory) {
-            roll[k] = Spin<Dim>{};
-            roll[km] = Spin<Dim>{};
+  // Most list entries do not touch (about 0.75 contacts per particle against 6 entries in a packed 2D bed), so the
+  // pass runs in three parts per block of particles: the previous evaluation's contacts that have ended are released
+  // (their entries zeroed); a branch-free distance test writes the touching pairs into a compact array; the law
+  // runs over that array only. Entries of pairs not in contact stay zero, so the gathering pass below is unchanged
+  // and the result is the same bit for bit. The blocks (one per thread) only share out the work: a pair's
+  // evaluation does not depend on the block that finds it.
+#ifdef _OPENMP
+  const int max_threads = omp_get_max_threads();
+#else
+  const int max_threads = 1;
+#endif
+  const auto nb = static_cast<std::size_t>(max_threads);
+  if (contacts_.size() != nb) {
+    contacts_.assign(nb, {});
+    last_contacts_.assign(nb, {});
+    contact_count_.assign(nb, 0);
+    last_count_.assign(nb, 0);
+    last_valid_ = false;
+  }
+  const bool release_last = last_valid_ && last_n_ == n;
+  const std::uint32_t* partner = nbr_.partner.data();
+  const std::size_t* upper = upper_offset_.data();
+  Vec<Dim>* history = nbr_.history.data();
+  auto release = [&](std::size_t k, std::size_t km) {
+    history[k] = Vec<Dim>{};
+    history[km] = Vec<Dim>{};
+    if constexpr (Law::kRollingHistory) {
+      roll[k] = Spin<Dim>{};
+      roll[km] = Spin<Dim>{};
+    }
+    entry_contact_[k] = 0;
+    entry_contact_[km] = 0;
+  };
+  auto separation = [&](const Vec<Dim>& xi, std::size_t j) {
+    Vec<Dim> dx = pos(j) - xi;
+    if constexpr (Periodic) dx = periodic_.min_image(dx);  // the partner's nearest image
+    return dx;
+  };
+#pragma omp parallel num_threads(max_threads)
+  {
+#ifdef _OPENMP
+    const auto t0 = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nt = static_cast<std::size_t>(omp_get_num_threads());
+#else
+    const std::size_t t0 = 0, nt = 1;
+#endif
+    for (std::size_t b = t0; b < nb; b += nt) {
+      const std::size_t lo = n * b / nb, hi = n * (b + 1) / nb;
+      if (release_last) {
+        // Contacts of the last evaluation (same list, same block) now apart.
+        for (std::size_t c = 0; c < last_count_[b]; ++c) {
+          const Contact ct = last_contacts_[b][c];
+          const std::size_t k = upper_entry_[ct.u];
+          const std::size_t j = partner[k];
+          const Vec<Dim> dx = separation(pos(ct.i), j);
+          const double rsum = R[ct.i] + R[j];
+          if (dot(dx, dx) >= rsum * rsum) release(k, upper_mirror_[ct.u]);
+        }
+      } else {
+        // A new or restored list: any entry may hold a carried-over spring; release those of pairs apart.
+        for (std::size_t i = lo; i < hi; ++i) {
+          for (std::size_t u = upper[i]; u < upper[i + 1]; ++u) {
+            const std::size_t k = upper_entry_[u];
+            const std::size_t j = partner[k];
+            const Vec<Dim> dx = separation(pos(i), j);
+            const double rsum = R[i] + R[j];
+            if (dot(dx, dx) < rsum * rsum) continue;
+            bool held = entry_contact_[k] != 0 || !is_zero<Dim>(history[k]);
+            if constexpr (Law::kRollingHistory) held = held || spin_norm2<Dim>(roll[k]) != 0.0;
+            if (held) release(k, upper_mirror_[u]);
           }
-          entry_force_[k] = Vec<Dim>{};
-          entry_force_[km] = Vec<Dim>{};
-          entry_torque_[k] = Spin<Dim>{};
-          entry_torque_[km] = Spin<Dim>{};
         }
-        continue;
       }
-      const double d = std::sqrt(d2);
-      const double inv_d = 1.0 / d;
-      const Vec<Dim> nrm = inv_d * dx;
-      const double overlap = rsum - d;
-      // Lever arms to the contact point x_i + (r_i - overlap / 2) n, the same point seen from j: with them the
-      // pair's torques balance the moment of its forces and an isolated pair keeps its angular momentum, spin
-      // included (the full radii would change it in proportion to the overlap).
-      const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
-      // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
-      const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
-      const std::size_t pair = Mixed ? si * ns + static_cast<std::size_t>(p_.species[j]) : 0;
-      ContactKinematics<Dim> kin{nrm, overlap, v_rel};
-      if constexpr (Law::kNeedsPairSize) {
-        kin.r_eff = ri * R[j] / rsum;
-        kin.m_eff = M[i] * M[j] / (M[i] + M[j]);
-        if constexpr (Law::kRolling) kin.i_roll = 1.0 / (1.0 / roll_inertia(i) + 1.0 / roll_inertia(j));
-      }
-      const ContactForce<Dim> cf = [&] {
-        if constexpr (kSizedDashpot) {
-          // Eq. 8 on this pair's reduced mass: the restitution of the input for every pair of sizes.
-          ContactParams pp = pair_params_[pair];
-          pp.eta_n = pair_damping_per_root_mass_[pair] * std::sqrt(reduced_mass(M[i], M[j]));
-          pp.eta_t = pp.eta_n;
-          return Law::template force<Dim>(pp, kin, dt, nbr_.history[k]);
-        } else {
-          return Law::template force<Dim>(pair_params_[pair], kin, dt, nbr_.history[k]);
+      std::vector<Contact>& found = contacts_[b];
+      Contact* out = found.data();
+      std::size_t used = 0;
+      for (std::size_t i = lo; i < hi; ++i) {
+        // Room for every entry of i (the writes below are unconditional); grown by half, so rarely.
+        if (found.size() < used + (upper[i + 1] - upper[i])) {
+          found.resize(used + (upper[i + 1] - upper[i]) + found.size() / 2 + 64);
+          out = found.data();
         }
-      }();
-      nbr_.history[km] = -nbr_.history[k];
-      entry_force_[k] = cf.f;
-      entry_force_[km] = -cf.f;
-      // Eq. 9: the torque of the tangential force about each centre, a (n x f_t) with the partner's own lever
-      // arm; n x f_t is the same for both partners ((-n) x (-f_t) = n x f_t).
-      const Spin<Dim> tq = cross(nrm, cf.f_t);
-      entry_torque_[k] = ai * tq;
-      entry_torque_[km] = aj * tq;
-      if constexpr (Law::kRolling) {
-        // The rolling torque acts on i and, reversed, on j (Ai et al. 2011 Eq. 11: w_r = omega_i - omega_j).
-        Spin<Dim> unused{};
-        Spin<Dim>& m_k = Law::kRollingHistory ? roll[k] : unused;
-        const Spin<Dim> tr = Law::template rolling_torque<Dim>(pair_params_[pair], kin, cf, wi - spin(j), dt, m_k);
-        if constexpr (Law::kRollingHistory) roll[km] = -roll[k];
-        entry_torque_[k] += tr;
-        entry_torque_[km] -= tr;
+        const Vec<Dim> xi = pos(i);
+        const double ri = R[i];
+        for (std::size_t u = upper[i]; u < upper[i + 1]; ++u) {
+          const std::size_t j = partner[upper_entry_[u]];
+          const Vec<Dim> dx = separation(xi, j);
+          const double rsum = ri + R[j];
+          out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(u)};
+          used += static_cast<std::size_t>(!(dot(dx, dx) >= rsum * rsum));
+        }
       }
-      max_ov = std::max(max_ov, overlap);
-      // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
-      // no longer a small perturbation of two touching spheres.
-      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, R[j])));
+      contact_count_[b] = used;
     }
   }
+  // The contacts' records, numbered block after block from 1 (record 0 stays zero: the entries not in contact).
+  std::vector<std::size_t>& base = contact_base_;
+  base.assign(nb + 1, 1);
+  for (std::size_t b = 0; b < nb; ++b) base[b + 1] = base[b] + contact_count_[b];
+  if (contact_force_.capacity() < base[nb]) {
+    contact_force_.reserve(base[nb] + base[nb] / 2);
+    contact_torque_.reserve(2 * (base[nb] + base[nb] / 2));
+  }
+  contact_force_.resize(base[nb]);
+  contact_torque_.resize(2 * base[nb]);
+  contact_force_[0] = Vec<Dim>{};
+  contact_torque_[0] = contact_torque_[1] = Spin<Dim>{};
+#pragma omp parallel num_threads(max_threads) reduction(max : max_ov, max_frac)
+  {
+#ifdef _OPENMP
+    const auto t0 = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nt = static_cast<std::size_t>(omp_get_num_threads());
+#else
+    const std::size_t t0 = 0, nt = 1;
+#endif
+    for (std::size_t b = t0; b < nb; b += nt) {
+      const Contact* out = contacts_[b].data();
+      for (std::size_t c = 0; c < contact_count_[b]; ++c) {
+        const std::size_t i = out[c].i, k = upper_entry_[out[c].u];
+        const std::size_t j = partner[k];
+        const std::size_t km = upper_mirror_[out[c].u];
+        const double ri = R[i];
+        const Spin<Dim> wi = spin(i);
+        const Vec<Dim> vi = vel(i);
+        // One species (not Mixed): every contact takes the first table entry, without the species lookups.
+        const std::size_t si = Mixed ? static_cast<std::size_t>(p_.species[i]) : 0;
+        const Vec<Dim> dx = separation(pos(i), j);
+        const double d2 = dot(dx, dx);
+        const double rsum = ri + R[j];
+        const double d = std::sqrt(d2);
+        const double inv_d = 1.0 / d;
+        const Vec<Dim> nrm = inv_d * dx;
+        const double overlap = rsum - d;
+        // Lever arms to the contact point x_i + (r_i - overlap / 2) n, the same point seen from j: with them the
+        // pair's torques balance the moment of its forces and an isolated pair keeps its angular momentum, spin
+        // included (the full radii would change it in proportion to the overlap).
+        const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
+        // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
+        const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
+        const std::size_t pair = Mixed ? si * ns + static_cast<std::size_t>(p_.species[j]) : 0;
+        ContactKinematics<Dim> kin{nrm, overlap, v_rel};
+        if constexpr (Law::kNeedsPairSize) {
+          kin.r_eff = ri * R[j] / rsum;
+          kin.m_eff = M[i] * M[j] / (M[i] + M[j]);
+          if constexpr (Law::kRolling) kin.i_roll = 1.0 / (1.0 / roll_inertia(i) + 1.0 / roll_inertia(j));
+        }
+        const ContactForce<Dim> cf = [&] {
+          if constexpr (kSizedDashpot) {
+            // Eq. 8 on this pair's reduced mass: the restitution of the input for every pair of sizes.
+            ContactParams pp = pair_params_[pair];
+            pp.eta_n = pair_damping_per_root_mass_[pair] * std::sqrt(reduced_mass(M[i], M[j]));
+            pp.eta_t = pp.eta_n;
+            return Law::template force<Dim>(pp, kin, dt, nbr_.history[k]);
+          } else {
+            return Law::template force<Dim>(pair_params_[pair], kin, dt, nbr_.history[k]);
+          }
+        }();
+        nbr_.history[km] = -nbr_.history[k];
+        const std::size_t g = base[b] + c;
+        entry_contact_[k] = static_cast<std::uint32_t>(2 * g);
+        entry_contact_[km] = static_cast<std::uint32_t>(2 * g + 1);
+        contact_force_[g] = cf.f;
+        // Eq. 9: the torque of the tangential force about each centre, a (n x f_t) with the partner's own lever
+        // arm; n x f_t is the same for both partners ((-n) x (-f_t) = n x f_t).
+        const Spin<Dim> tq = cross(nrm, cf.f_t);
+        Spin<Dim> tq_i = ai * tq, tq_j = aj * tq;
+        if constexpr (Law::kRolling) {
+          // The rolling torque acts on i and, reversed, on j (Ai et al. 2011 Eq. 11: w_r = omega_i - omega_j).
+          Spin<Dim> unused{};
+          Spin<Dim>& m_k = Law::kRollingHistory ? roll[k] : unused;
+          const Spin<Dim> tr = Law::template rolling_torque<Dim>(pair_params_[pair], kin, cf, wi - spin(j), dt, m_k);
+          if constexpr (Law::kRollingHistory) roll[km] = -roll[k];
+          tq_i += tr;
+          tq_j -= tr;
+        }
+        contact_torque_[2 * g] = tq_i;
+        contact_torque_[2 * g + 1] = tq_j;
+        max_ov = std::max(max_ov, overlap);
+        // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
+        // no longer a small perturbation of two touching spheres.
+        if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, R[j])));
+      }
+    }
+  }
+  last_contacts_.swap(contacts_);
+  last_count_.swap(contact_count_);
+  last_valid_ = true;
+  last_n_ = n;
   std::array<bool, 2 * Dim> wall_on{};
   for (int w = 0; w < 2 * Dim; ++w) wall_on[static_cast<std::size_t>(w)] = walls.enabled(w / 2, w % 2);
+  const Vec<Dim>* cforce = contact_force_.data();
+  const Spin<Dim>* ctorque = contact_torque_.data();
+  static constexpr double kSide[2] = {1.0, -1.0};
   const AxisPtrs<2 * Dim * Dim> WX =
       axis_ptrs<2 * Dim * Dim>([&](int q) -> auto& { return p_.wall_xi[static_cast<std::size_t>(q)]; }, 2 * Dim * Dim);
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
@@ -424,9 +579,12 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     const double ri = R[i];
     Vec<Dim> f{};
     Spin<Dim> torque{};
+    // Entries not in contact name the zero record: adding +0 or -0 leaves every partial sum as it was, so the
+    // sums are those over the touching entries in list order. The partner's side takes -f, an exact negation.
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
-      f += entry_force_[k];
-      torque += entry_torque_[k];
+      const std::uint32_t e = entry_contact_[k];
+      f += kSide[e & 1u] * cforce[e >> 1];
+      torque += ctorque[e];
     }
     // Plane walls: the same law against a fixed body of infinite mass. A disabled wall never holds a spring.
     // A particle clear of every wall (most of the bed) only needs its springs checked for zero: the test on
@@ -802,7 +960,8 @@ void DemSolver<Dim>::restore(State s) {
       nbr_.partner_id[k] = nbr_.partner[k] < p_.size() ? p_.id[nbr_.partner[k]] : -1;
     }
   }
-  mirror_.clear();  // linked again at the next force evaluation
+  upper_offset_.clear();  // linked again at the next force evaluation
+  last_valid_ = false;
   sized_ = p_.has_own_sizes(config_.species);
   double d_max = p_.max_diameter();
   for (const Species& sp : config_.species) d_max = std::max(d_max, sp.d_max());

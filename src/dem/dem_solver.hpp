@@ -204,22 +204,43 @@ class DemSolver {
   bool sized_ = false;  ///< some particle's size differs from its species' diameter
   List nbr_;
   std::array<std::vector<double>, Dim> build_;
-  // The previous list during a rebuild (kept to reuse its memory).
-  std::vector<std::size_t> old_offset_;
-  std::vector<std::int64_t> old_partner_id_;
-  std::vector<Vec<Dim>> old_history_;
-  std::vector<Spin<Dim>> old_rolling_;
+  // The held springs of the previous list during a rebuild: CSR by old storage slot, the partner's id, the springs
+  // (kept between rebuilds to reuse their memory).
+  std::vector<std::size_t> held_offset_;
+  std::vector<std::int64_t> held_partner_id_;
+  std::vector<Vec<Dim>> held_history_;
+  std::vector<Spin<Dim>> held_rolling_;
+  /// Copy the entries of nbr_ with a stretched spring (or rolling spring, if `rolling`) into held_*.
+  void gather_held_springs(bool rolling);
   /// Rolling spring of particle slot i against wall w at wall_roll_[2 Dim i + w], in the store's order (laws with
   /// a rolling spring only, else empty; kept here so that the paper's law does not carry it per particle).
   std::vector<Spin<Dim>> wall_roll_;
   /// Reorder wall_roll_ as ParticleStore::permute reorders the particles.
   void permute_wall_roll(const std::vector<std::size_t>& order);
   NeighborScratch scratch_;  ///< the list build's per-thread buffers, kept so a rebuild does not fault pages in
-  // Each contact is evaluated once, by the partner in the lower storage slot, and its force written to both
-  // list entries (mirror_[k] is the partner's entry of the same pair); each particle then sums its own entries.
-  std::vector<std::uint32_t> mirror_;
-  std::vector<Vec<Dim>> entry_force_;
-  std::vector<Spin<Dim>> entry_torque_;  ///< torque of the entry's contact on the entry's own particle
+  // Each contact is evaluated once, by the partner in the lower storage slot, into a record of its own; both list
+  // entries of the pair name it, and each particle then sums the records its entries name, in list order.
+  // The half list (built by link_mirrors): particle i's entries of higher-slot partners are
+  // upper_entry_[upper_offset_[i] .. upper_offset_[i + 1]), upper_mirror_ the partner's entry of the same pair.
+  std::vector<std::size_t> upper_offset_;
+  std::vector<std::uint32_t> upper_entry_, upper_mirror_;
+  std::size_t linked_entries_ = 0;  ///< list entries when the half list was built
+  /// Per entry 2 c + side: the contact record c (0, a zero record, when not in contact) and the side (0 the lower
+  /// slot's entry, which takes +f, 1 the partner's, which takes -f).
+  std::vector<std::uint32_t> entry_contact_;
+  std::vector<Vec<Dim>> contact_force_;    ///< per record: force on the lower slot
+  std::vector<Spin<Dim>> contact_torque_;  ///< per record, two: torque on the lower slot, on the partner
+  std::vector<std::size_t> contact_base_;  ///< first record of each block
+  /// A touching pair of the force pass: its lower slot i and its place u in the half list.
+  struct Contact {
+    std::uint32_t i, u;
+  };
+  // The touching pairs of this and of the last force evaluation, one array per block of particles (one block per
+  // thread), with their counts; the last ones are the only entries that can hold a force to release.
+  std::vector<std::vector<Contact>> contacts_, last_contacts_;
+  std::vector<std::size_t> contact_count_, last_count_;
+  bool last_valid_ = false;  ///< last_contacts_ name entries of the current list
+  std::size_t last_n_ = 0;   ///< particles at the last evaluation (the blocks depend on it)
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double max_overlap_fraction_ = 0.0;
