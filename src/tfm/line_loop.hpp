@@ -1,6 +1,7 @@
 #pragma once
 
 #include "core/index_box.hpp"
+#include "fluid/stencil_matrix.hpp"
 
 namespace fluidbed {
 
@@ -23,11 +24,13 @@ Index<Dim> line_start(const IndexBox<Dim>& b, int l) {
 
 /// Calls f(line start) for every line along axis 0 of box b, the lines split into contiguous static blocks over
 /// the OpenMP threads. Only for loops in which each index writes its own outputs and reads nothing another writes:
-/// every output is then the same bits at any thread count. Call it outside any parallel region.
+/// every output is then the same bits at any thread count. Call it outside any parallel region. Boxes under
+/// kParallelCells run serially, as in the gas solver: on the paper's 30 x 50 grid two threads lost to one
+/// (docs/performance.md section 17, threads).
 template <int Dim, class F>
 void for_each_line_parallel(const IndexBox<Dim>& b, F&& f) {
   const int n = line_count(b);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (static_cast<int>(b.count()) >= kParallelCells)
   for (int l = 0; l < n; ++l) f(line_start(b, l));
 }
 
@@ -36,7 +39,7 @@ void for_each_line_parallel(const IndexBox<Dim>& b, F&& f) {
 template <int Dim, class Make, class F>
 void for_each_line_parallel_with(const IndexBox<Dim>& b, Make&& make, F&& f) {
   const int n = line_count(b);
-#pragma omp parallel
+#pragma omp parallel if (static_cast<int>(b.count()) >= kParallelCells)
   {
     auto state = make();
 #pragma omp for schedule(static)
