@@ -30,7 +30,11 @@ Index<Dim> line_start(const IndexBox<Dim>& b, int l) {
 template <int Dim, class F>
 void for_each_line_parallel(const IndexBox<Dim>& b, F&& f) {
   const int n = line_count(b);
-#pragma omp parallel for schedule(static) if (static_cast<int>(b.count()) >= kParallelCells)
+  if (static_cast<int>(b.count()) < kParallelCells) {  // no OpenMP region at all: the serial code as it was
+    for (int l = 0; l < n; ++l) f(line_start(b, l));
+    return;
+  }
+#pragma omp parallel for schedule(static)
   for (int l = 0; l < n; ++l) f(line_start(b, l));
 }
 
@@ -39,7 +43,12 @@ void for_each_line_parallel(const IndexBox<Dim>& b, F&& f) {
 template <int Dim, class Make, class F>
 void for_each_line_parallel_with(const IndexBox<Dim>& b, Make&& make, F&& f) {
   const int n = line_count(b);
-#pragma omp parallel if (static_cast<int>(b.count()) >= kParallelCells)
+  if (static_cast<int>(b.count()) < kParallelCells) {
+    auto state = make();
+    for (int l = 0; l < n; ++l) f(state, line_start(b, l));
+    return;
+  }
+#pragma omp parallel
   {
     auto state = make();
 #pragma omp for schedule(static)
