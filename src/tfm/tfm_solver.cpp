@@ -12,6 +12,7 @@
 #include "fluid/gas_boundary.hpp"
 #include "fluid/structured_solver_hypre.hpp"
 #include "tfm/band_pressure_solver.hpp"
+#include "tfm/line_loop.hpp"
 #include "tfm/packing_limiter.hpp"
 
 namespace fluidbed::tfm {
@@ -430,7 +431,7 @@ void TfmSolver<Dim>::compute_closures_of() {
     if (!(hi > lo)) return 0.0;
     return (usc[comp][with<Dim>(cell, along, hi)] - usc[comp][with<Dim>(cell, along, lo)]) / ((hi - lo) * grid_.h[along]);
   };
-  for_each(cells, [&](const Index<Dim>& cell) {
+  auto close = [&](const Index<Dim>& cell) {
     const double eps = s_.eps[cell];
     const double eps_s = 1.0 - eps;
     std::array<double, Dim> rel{};
@@ -472,6 +473,10 @@ void TfmSolver<Dim>::compute_closures_of() {
     const double p_lo = solids_pressure_law<R>(c, mat, eps - h, theta);
     const double p_hi = solids_pressure_law<R>(c, mat, eps + h, theta);
     dps_deps_[cell] = std::max(0.0, (p_lo - p_hi) / (2 * h));
+  };
+  // Each cell writes only its own closures: the same bits at any thread count.
+  for_each_line_parallel(cells, [&](Index<Dim> cell) {
+    for (; cell[0] < cells.hi[0]; ++cell[0]) close(cell);
   });
 }
 
@@ -572,9 +577,11 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
   IndexBox<Dim> faces = cells.faces(d);
   faces.lo[d] += 1;
   faces.hi[d] -= (d == kUp && top_open) ? 0 : 1;
-  // for_each runs along axis 0 fastest, then axis 1.
-  FluxCarry<Dim> carry_g(faces.lo[0], faces.extent(0)), carry_s(faces.lo[0], faces.extent(0));
-  for_each(faces, [&](const Index<Dim>& f) {
+  // Lines along axis 0; a thread takes a contiguous block of them, in order (the carried fluxes).
+  struct Carries {
+    FluxCarry<Dim> g, s;
+  };
+  auto face_update = [&](const Index<Dim>& f, Carries& carry) {
     const bool top = d == kUp && f[d] == cells.hi[d];
     const Index<Dim> lo = shifted<Dim>(f, d, -1);  // the cell below the face; f names the one above
     const double eg = top ? eps[lo] : 0.5 * (eps[lo] + eps[f]);
@@ -582,7 +589,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
     const double beta = top ? beta_c_[lo] : 0.5 * (beta_c_[lo] + beta_c_[f]);
     const double p_above = top ? 2.0 * c.boundary.top_pressure - p[lo] : p[f];
     const double dpdx = (p_above - p[lo]) / h[d];
-    const double adv_g = advect<Dim, d, Law>(w.g0, grid_, f, carry_g);
+    const double adv_g = advect<Dim, d, Law>(w.g0, grid_, f, carry.g);
     const double a_g = eg * rho_g / dt;
     const double rhs_g = a_g * w.g0[d][f] - eg * rho_g * adv_g + eg * rho_g * grav - eg * dpdx;
     if (top || !(std::min(1.0 - eps[lo], 1.0 - eps[f]) > kEpsSTrace)) {
@@ -624,7 +631,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
       visc += (shear[1] - shear[0]) / h[b];
     }
     visc += diag * s0[d][f];
-    const double adv_s = advect<Dim, d, Law>(s0, grid_, f, carry_s);
+    const double adv_s = advect<Dim, d, Law>(s0, grid_, f, carry.s);
     const double a_s = es * rho_s / dt;
     const double rhs_s = a_s * s0[d][f] - es * rho_s * adv_s + es * rho_s * grav - es * dpdx - dpsdx + visc;
     const FaceSolve fsol = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
@@ -634,7 +641,14 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
     w.ds[d][f] = fsol.ds;
     w.gs[d][f] = fsol.gs;
     w.ss[d][f] = fsol.ss;
-  });
+  };
+  // Each face writes only its own velocities and coefficients; a thread's carried fluxes start empty at its first
+  // line and are recomputed there from the same operands, so the bits do not depend on the thread count.
+  for_each_line_parallel_with(
+      faces, [&] { return Carries{{faces.lo[0], faces.extent(0)}, {faces.lo[0], faces.extent(0)}}; },
+      [&](Carries& carry, Index<Dim> f) {
+        for (; f[0] < faces.hi[0]; ++f[0]) face_update(f, carry);
+      });
 }
 
 template <int Dim>

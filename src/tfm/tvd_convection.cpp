@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "fluid/stencil_matrix.hpp"
+#include "tfm/line_loop.hpp"
 
 namespace fluidbed::tfm {
 
@@ -86,9 +87,8 @@ void tvd_face_values_of(const Grid<Dim>& g, const Field<Dim>& phi, const FaceVel
     const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
     // A periodic axis reads face n's velocity from face 0.
     const auto wrap = static_cast<std::ptrdiff_t>(u.stride(a)) * (hi - lo);
-    IndexBox<Dim> lines = faces;
-    lines.hi[0] = lines.lo[0] + 1;
-    for_each(lines, [&](Index<Dim> f) {
+    // Each face writes only its own value: the same bits at any thread count.
+    for_each_line_parallel(faces, [&](Index<Dim> f) {
       const double* p = phi.data().data() + phi.index(f);
       const double* v = u.data().data() + u.index(f);
       double* out = phi_f[a].data().data() + phi_f[a].index(f);

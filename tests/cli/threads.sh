@@ -14,4 +14,10 @@ same_results "cfd 1 vs 2 threads" "$WORK/t1" "$WORK/t2"
 run_ok "cfd: --threads 3" run "$WORK/cfd.toml" --out "$WORK/t3" --threads 3
 same_results "cfd 1 vs 3 threads" "$WORK/t1" "$WORK/t3"
 
+# The two-fluid model's threaded cell and face loops (closures, limiter face values, momentum predictors).
+tfm=("$ROOT/cases/gera1998/tfm.toml" --end-time 0.1 --quiet --overwrite)
+for t in 1 2 3; do run_ok "tfm: --threads $t" run "${tfm[@]}" --out "$WORK/tfm$t" --threads "$t"; done
+same_results "tfm 1 vs 2 threads" "$WORK/tfm1" "$WORK/tfm2"
+same_results "tfm 1 vs 3 threads" "$WORK/tfm1" "$WORK/tfm3"
+
 finish
