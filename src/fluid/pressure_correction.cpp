@@ -34,12 +34,6 @@ class StaleLdltPreconditioner {
   const Ldlt* ldlt_ = nullptr;
 };
 
-template <int Dim>
-std::string cell_name(const Index<Dim>& c) {
-  std::string s = "(";
-  for (int a = 0; a < Dim; ++a) s += (a > 0 ? ", " : "") + std::to_string(c[a]);
-  return s + ")";
-}
 
 template <int Dim>
 class EigenStructuredSolver final : public StructuredSolver<Dim> {
@@ -129,8 +123,7 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
       for (int a = 0; a < Dim; ++a)
         finite = finite && std::isfinite(coeff[a][c]) && std::isfinite(coeff[a][shifted<Dim>(c, a, 1)]);
       if (!finite) {
-        throw_simulation_error("gas pressure correction: the mass imbalance or a face coefficient of cell " +
-                               cell_name<Dim>(c) + " is not finite (imbalance " + std::to_string(rhs[c]) + ")");
+        throw_non_finite_row<Dim>(c, rhs[c]);
       }
     });
     bool solved = false;
@@ -209,6 +202,16 @@ std::unique_ptr<StructuredSolver<Dim>> make_eigen_structured_solver(const Grid<D
                                                                     double cg_tolerance) {
   return std::make_unique<EigenStructuredSolver<Dim>>(grid, kind, cg_tolerance);
 }
+template <int Dim>
+void throw_non_finite_row(const Index<Dim>& cell, double imbalance) {
+  std::string name = "(";
+  for (int a = 0; a < Dim; ++a) name += (a > 0 ? ", " : "") + std::to_string(cell[a]);
+  throw_simulation_error("gas pressure correction: the mass imbalance or a face coefficient of cell " + name +
+                         ") is not finite (imbalance " + std::to_string(imbalance) + ")");
+}
+
+template void throw_non_finite_row<2>(const Index<2>&, double);
+template void throw_non_finite_row<3>(const Index<3>&, double);
 template std::unique_ptr<StructuredSolver<2>> make_eigen_structured_solver(const Grid<2>&, PressureSolverKind, double);
 template std::unique_ptr<StructuredSolver<3>> make_eigen_structured_solver(const Grid<3>&, PressureSolverKind, double);
 

@@ -57,6 +57,10 @@ bool couples_to_boundary(const IndexBox<Dim>& cells, const FaceFields<Dim>& coef
   return any;
 }
 
+/// Every backend refuses a non-finite row instead of solving it: the error names the cell and its imbalance.
+template <int Dim>
+[[noreturn]] void throw_non_finite_row(const Index<Dim>& cell, double imbalance);
+
 /// Today's backend: Eigen's sparse Cholesky (Direct: factorised at the first solve of a step, CG preconditioned by
 /// that factorisation after, to cg_tolerance) or incomplete-Cholesky CG to cg_tolerance. Serial: the grid's owned box must be its whole domain.
 template <int Dim>

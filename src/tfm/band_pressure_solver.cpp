@@ -13,13 +13,6 @@ namespace fluidbed::tfm {
 namespace {
 
 template <int Dim>
-std::string cell_name(const Index<Dim>& c) {
-  std::string s = "(";
-  for (int a = 0; a < Dim; ++a) s += (a > 0 ? ", " : "") + std::to_string(c[a]);
-  return s + ")";
-}
-
-template <int Dim>
 class BandStructuredSolver final : public StructuredSolver<Dim> {
  public:
   BandStructuredSolver(const IndexBox<Dim>& cells, int band) : cells_(cells), n_(static_cast<int>(cells.count())), kd_(band) {
@@ -77,8 +70,7 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
             c[a] > b.lo[a] && !(pin && c == shifted<Dim>(b.lo, a, 1)) ? -lo : 0.0;
       }
       if (!finite) {
-        throw_simulation_error("gas pressure correction: the mass imbalance or a face coefficient of cell " +
-                               cell_name<Dim>(c) + " is not finite (imbalance " + std::to_string(rhs[c]) + ")");
+        throw_non_finite_row<Dim>(c, rhs[c]);
       }
       double rb = rhs[c];
       if (pin && r == 0) {

@@ -10,8 +10,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
+#include <string>
 
+#include "core/error.hpp"
 #include "tfm/band_pressure_solver.hpp"
 
 namespace fluidbed::tfm {
@@ -110,6 +113,24 @@ TEST(BandPressureSolver, WideBandIsLeftToTheOtherBackends) {
   for (int a = 0; a < 2; ++a) e2[a] = 1.0;
   EXPECT_EQ(make_band_structured_solver<2>(Grid<2>::uniform(e2, Index<2>{kMaxPressureBand + 1, 10}, 0)), nullptr);
   EXPECT_NE(make_band_structured_solver<2>(Grid<2>::uniform(e2, Index<2>{kMaxPressureBand, 10}, 0)), nullptr);
+}
+
+TEST(BandPressureSolver, ANonFiniteRowNamesItsCellInEveryBackend) {
+  // The band and the Eigen backends share one message (fluid/pressure_correction.hpp, throw_non_finite_row).
+  Problem<2> pr = make_problem<2>({6, 5}, true);
+  pr.rhs[Index<2>{3, 2}] = std::nan("");
+  Field<2> x(pr.grid.owned, 0);
+  std::unique_ptr<StructuredSolver<2>> solvers[] = {make_band_structured_solver<2>(pr.grid),
+                                                    make_eigen_structured_solver<2>(pr.grid)};
+  for (const auto& solver : solvers) {
+    ASSERT_NE(solver, nullptr);
+    try {
+      solver->solve(pr.coeff, pr.rhs, x, false);
+      ADD_FAILURE() << "a NaN imbalance was solved";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("cell (3, 2) is not finite (imbalance nan)"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
