@@ -44,8 +44,9 @@ void sync_directory(const std::filesystem::path& dir) {
   }
 }
 
+// `total`: the size of the whole file, for the disk-space note.
 void write_all(int fd, std::string_view content, const std::filesystem::path& target,
-               const std::filesystem::path& temp) {
+               const std::filesystem::path& temp, std::size_t total) {
   const char* p = content.data();
   std::size_t left = content.size();
   while (left > 0) {
@@ -55,7 +56,7 @@ void write_all(int fd, std::string_view content, const std::filesystem::path& ta
       const int err = errno;
       ::close(fd);
       ::unlink(temp.c_str());
-      fail_errno(target, err, content.size());
+      fail_errno(target, err, total);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
@@ -105,27 +106,33 @@ void commit_temp_file(const std::filesystem::path& temp, const std::filesystem::
 }
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content, Sync sync) {
+  write_file_atomic(path, std::span<const std::string_view>(&content, 1), sync);
+}
+
+void write_file_atomic(const std::filesystem::path& path, std::span<const std::string_view> pieces, Sync sync) {
   if (path.empty()) fail(path, "empty file name");
+  std::size_t total = 0;
+  for (const std::string_view piece : pieces) total += piece.size();
   const std::filesystem::path temp = temp_path_for(path);
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail_errno(path, errno, content.size());
-  write_all(fd, content, path, temp);
+  if (fd < 0) fail_errno(path, errno, total);
+  for (const std::string_view piece : pieces) write_all(fd, piece, path, temp, total);
   if (sync == Sync::Durable && ::fsync(fd) != 0) {
     const int err = errno;
     ::close(fd);
     ::unlink(temp.c_str());
-    fail_errno(path, err, content.size());
+    fail_errno(path, err, total);
   }
   // close() reports deferred write errors on some file systems (NFS).
   if (::close(fd) != 0) {
     const int err = errno;
     ::unlink(temp.c_str());
-    fail_errno(path, err, content.size());
+    fail_errno(path, err, total);
   }
   if (::rename(temp.c_str(), path.c_str()) != 0) {
     const int err = errno;
     ::unlink(temp.c_str());
-    fail_errno(path, err, content.size());
+    fail_errno(path, err, total);
   }
   if (sync == Sync::Durable) sync_directory(path.parent_path());
 }

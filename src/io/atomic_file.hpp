@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -45,6 +46,11 @@ enum class Sync { Durable, Atomic };
 /// Throws WriteError("cannot write <path>: <reason>"); on failure the target is untouched and no temporary file
 /// is left behind.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content, Sync sync = Sync::Durable);
+
+/// As above, the content being `pieces` one after the other: a large file (a particle frame) is written from its
+/// parts without first being joined into one string.
+void write_file_atomic(const std::filesystem::path& path, std::span<const std::string_view> pieces,
+                       Sync sync = Sync::Durable);
 
 /// As above, with the content produced by `writer` into a stream. If `writer` throws, its exception propagates
 /// and nothing is written.

@@ -5,8 +5,10 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 #include <string_view>
 
@@ -27,26 +29,69 @@ constexpr std::size_t kBlockBytes = std::size_t{1} << 16;
 // (46.3% against 47.2% of the raw size) for 2.5 times the compression time.
 constexpr int kZlibLevel = Z_BEST_SPEED;
 
-// Collects the XML header and the appended data. One DataArray's appended block, with header_type="UInt64" and
-// compressor="vtkZLibDataCompressor" (VTK XML file format, "compressed data"): UInt64 number of blocks, UInt64
-// uncompressed block size, UInt64 uncompressed size of the last block (0 when it is full), one UInt64 compressed
-// size per block, then the zlib streams of the blocks one after the other. A DataArray's offset counts from the
-// first byte after the '_' marker, so the header can only be written once every array is compressed.
+// Collects the XML header and each array's compressed appended data. One DataArray's appended block, with
+// header_type="UInt64" and compressor="vtkZLibDataCompressor" (VTK XML file format, "compressed data"): UInt64
+// number of blocks, UInt64 uncompressed block size, UInt64 uncompressed size of the last block (0 when it is full),
+// one UInt64 compressed size per block, then the zlib streams of the blocks one after the other. A DataArray's
+// offset counts from the first byte after the '_' marker, so the header can only be written once every array is
+// compressed. The values are gathered one block at a time straight from the caller's arrays and only the
+// compressed blocks are kept, so a frame needs about half its raw size in memory, not three copies of it
+// (docs/performance.md, section 21).
 class VtkFile {
  public:
   std::string xml;
 
-  template <class T>
-  void data_array(std::string_view type, std::string_view name, int components, const std::vector<T>& values) {
+  /// An array of `count` values of T; fill(first, n, dst) writes values first .. first + n - 1 to dst. It is
+  /// called from several threads at once, for different blocks.
+  template <class T, class Fill>
+  void data_array(std::string_view type, std::string_view name, int components, std::size_t count,
+                  const Fill& fill) {
     // Names go into an XML attribute unescaped; ParaView also expects them printable.
     if (name.empty() || name.find_first_of("\"<>&\n") != std::string_view::npos) {
       throw std::invalid_argument("VTK array name '" + std::string(name) + "' is empty or has XML characters");
     }
+    static_assert(kBlockBytes % sizeof(T) == 0, "a block holds whole values");
     xml += fmt::format(R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset=")",
                        type, name, components);
     pieces_.push_back(std::move(xml));
     xml = "\"/>\n";
-    raw_.emplace_back(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    Array& a = arrays_.emplace_back();
+    const std::size_t bytes = count * sizeof(T);
+    const std::size_t n_blocks = (bytes + kBlockBytes - 1) / kBlockBytes;
+    constexpr std::size_t kPerBlock = kBlockBytes / sizeof(T);
+    a.blocks.resize(n_blocks);
+    std::vector<int> status(n_blocks, Z_OK);
+    const auto nb = static_cast<std::ptrdiff_t>(n_blocks);
+    // Each block is compressed on its own, so the bytes written do not depend on the thread count.
+#pragma omp parallel if (n_blocks > 1)
+    {
+      std::vector<T> raw(kPerBlock);
+      std::vector<Bytef> packed(compressBound(static_cast<uLong>(kBlockBytes)));
+#pragma omp for schedule(dynamic)
+      for (std::ptrdiff_t k = 0; k < nb; ++k) {
+        const auto b = static_cast<std::size_t>(k);
+        const std::size_t first = b * kPerBlock, n = std::min(kPerBlock, count - first);
+        fill(first, n, raw.data());
+        uLongf len = static_cast<uLongf>(packed.size());
+        status[b] = compress2(packed.data(), &len, reinterpret_cast<const Bytef*>(raw.data()),
+                              static_cast<uLong>(n * sizeof(T)), kZlibLevel);
+        a.blocks[b].assign(reinterpret_cast<const char*>(packed.data()), len);
+      }
+    }
+    for (const int st : status) {
+      // compressBound sizes the output, so only memory can run out.
+      if (st != Z_OK) throw std::runtime_error(fmt::format("zlib compression of a VTK frame failed (code {})", st));
+    }
+    std::vector<std::uint64_t> header{n_blocks, kBlockBytes, bytes % kBlockBytes};
+    for (const std::string& block : a.blocks) header.push_back(block.size());
+    a.header.assign(reinterpret_cast<const char*>(header.data()), header.size() * sizeof(std::uint64_t));
+  }
+
+  /// An array of `count` contiguous values.
+  template <class T>
+  void data_array(std::string_view type, std::string_view name, int components, const T* values, std::size_t count) {
+    data_array<T>(type, name, components, count,
+                  [values](std::size_t first, std::size_t n, T* dst) { std::copy_n(values + first, n, dst); });
   }
 
   void time_value(double time) {
@@ -58,74 +103,40 @@ class VtkFile {
     xml += "    </FieldData>\n";
   }
 
-  std::string finish(std::string_view type) const {
-    const std::vector<std::string> blocks = compressed_blocks();
-    std::string out;
-    out += "<?xml version=\"1.0\"?>\n";
-    out += fmt::format(
+  /// Write the file: the XML with the offsets, then the arrays' blocks as they are held.
+  void write(const std::filesystem::path& path, std::string_view type) const {
+    std::string head;
+    head += "<?xml version=\"1.0\"?>\n";
+    head += fmt::format(
         R"(<VTKFile type="{}" version="1.0" byte_order="LittleEndian" header_type="UInt64" )"
         R"(compressor="vtkZLibDataCompressor">)"
         "\n",
         type);
-    std::string appended;
-    std::size_t block = 0;
-    for (std::size_t a = 0; a < raw_.size(); ++a) {
-      out += pieces_[a];
-      out += std::to_string(appended.size());
-      const std::size_t bytes = raw_[a].size();
-      const std::size_t n_blocks = block_count(bytes);
-      std::vector<std::uint64_t> header{n_blocks, kBlockBytes, bytes % kBlockBytes};
-      for (std::size_t b = 0; b < n_blocks; ++b) header.push_back(blocks[block + b].size());
-      appended.append(reinterpret_cast<const char*>(header.data()), header.size() * sizeof(std::uint64_t));
-      for (std::size_t b = 0; b < n_blocks; ++b) appended += blocks[block + b];
-      block += n_blocks;
+    std::size_t offset = 0;
+    for (std::size_t a = 0; a < arrays_.size(); ++a) {
+      head += pieces_[a];
+      head += std::to_string(offset);
+      offset += arrays_[a].header.size();
+      for (const std::string& block : arrays_[a].blocks) offset += block.size();
     }
-    out += xml;
-    out += "  <AppendedData encoding=\"raw\">\n   _";
-    out += appended;
-    out += "\n  </AppendedData>\n</VTKFile>\n";
-    return out;
+    head += xml;
+    head += "  <AppendedData encoding=\"raw\">\n   _";
+    std::vector<std::string_view> parts{head};
+    for (const Array& a : arrays_) {
+      parts.push_back(a.header);
+      for (const std::string& block : a.blocks) parts.push_back(block);
+    }
+    parts.push_back("\n  </AppendedData>\n</VTKFile>\n");
+    write_file_atomic(path, parts, Sync::Atomic);
   }
 
  private:
-  std::vector<std::string> pieces_;       // XML before each array's offset value
-  std::vector<std::string> raw_;          // each array's bytes, copied: a caller's vector may be a temporary
-
-  static std::size_t block_count(std::size_t bytes) { return (bytes + kBlockBytes - 1) / kBlockBytes; }
-
-  // The blocks of every array in file order, compressed in one parallel loop. Each block is compressed on its own,
-  // so the bytes written do not depend on the thread count.
-  std::vector<std::string> compressed_blocks() const {
-    struct Job {
-      const char* src;
-      std::size_t len;
-    };
-    std::vector<Job> jobs;
-    for (const std::string& r : raw_) {
-      for (std::size_t b = 0; b < block_count(r.size()); ++b) {
-        jobs.push_back({r.data() + b * kBlockBytes, std::min(kBlockBytes, r.size() - b * kBlockBytes)});
-      }
-    }
-    std::vector<std::string> out(jobs.size());
-    std::vector<int> status(jobs.size(), Z_OK);
-    const auto n = static_cast<std::ptrdiff_t>(jobs.size());
-#pragma omp parallel for schedule(dynamic)
-    for (std::ptrdiff_t k = 0; k < n; ++k) {
-      const Job& j = jobs[static_cast<std::size_t>(k)];
-      std::string& dst = out[static_cast<std::size_t>(k)];
-      uLongf dst_len = compressBound(static_cast<uLong>(j.len));
-      dst.resize(dst_len);
-      status[static_cast<std::size_t>(k)] = compress2(reinterpret_cast<Bytef*>(dst.data()), &dst_len,
-                                                      reinterpret_cast<const Bytef*>(j.src), static_cast<uLong>(j.len),
-                                                      kZlibLevel);
-      dst.resize(dst_len);
-    }
-    for (const int st : status) {
-      // compressBound sizes the output, so only memory can run out.
-      if (st != Z_OK) throw std::runtime_error(fmt::format("zlib compression of a VTK frame failed (code {})", st));
-    }
-    return out;
-  }
+  struct Array {
+    std::string header;               // the UInt64 block header
+    std::vector<std::string> blocks;  // the zlib stream of each block
+  };
+  std::vector<std::string> pieces_;  // XML before each array's offset value
+  std::vector<Array> arrays_;
 };
 
 void check_shape(const Grid2& grid, const Field2* f, const std::string& name) {
@@ -182,20 +193,21 @@ void write_vti(const std::filesystem::path& path, const VtiGrid& grid, double ti
       }
     }
     if (a.count == 1) {
-      file.data_array("Float64", a.name, 1, std::vector<double>(a.c[0], a.c[0] + cells));
+      file.data_array("Float64", a.name, 1, a.c[0], cells);
     } else {
       // Vectors always have 3 components in VTK; a 2D vector's z is 0.
-      std::vector<double> xyz(3 * cells, 0.0);
-      for (int c = 0; c < a.count; ++c) {
-        const double* src = a.c[static_cast<std::size_t>(c)];
-        for (std::size_t k = 0; k < cells; ++k) xyz[3 * k + static_cast<std::size_t>(c)] = src[k];
-      }
-      file.data_array("Float64", a.name, 3, xyz);
+      const auto components = static_cast<std::size_t>(a.count);
+      file.data_array<double>("Float64", a.name, 3, 3 * cells, [&a, components](std::size_t first, std::size_t n, double* dst) {
+        for (std::size_t f = first; f < first + n; ++f) {
+          const std::size_t c = f % 3;
+          *dst++ = c < components ? a.c[c][f / 3] : 0.0;
+        }
+      });
     }
   }
   file.xml += "      </CellData>\n";
   file.xml += "    </Piece>\n  </ImageData>\n";
-  write_file_atomic(path, file.finish("ImageData"), Sync::Atomic);
+  file.write(path, "ImageData");
 }
 
 void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
@@ -213,31 +225,29 @@ void write_vtu(const std::filesystem::path& path, double time, const ParticleArr
   const bool three_d = particles.dimension == 3;
   const std::vector<std::size_t> order = particles.order_by_id();
   const std::size_t n = order.size();
-  const int axes = three_d ? 3 : 2;
+  const auto axes = static_cast<std::size_t>(three_d ? 3 : 2);
+  const ParticleArrays& p = particles;
 
-  std::vector<double> points(3 * n, 0.0), velocity(3 * n, 0.0), diameter(n), spin(three_d ? 3 * n : n);
-  std::vector<std::int64_t> id(n), connectivity(n), offsets(n);
-  std::vector<std::int32_t> species(n), layer(n, 0);
-  std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t p = order[k];
-    for (int a = 0; a < axes; ++a) {
-      const auto ua = static_cast<std::size_t>(a);
-      points[3 * k + ua] = particles.x[ua][p];
-      velocity[3 * k + ua] = particles.v[ua][p];
-    }
-    if (three_d) {
-      for (std::size_t a = 0; a < 3; ++a) spin[3 * k + a] = particles.omega[a][p];
-    } else {
-      spin[k] = particles.omega[2][p];
-    }
-    diameter[k] = 2.0 * particles.radius[p];
-    id[k] = particles.id[p];
-    species[k] = particles.species[p];
-    if (!particles.layer.empty()) layer[k] = particles.layer[p];
-    connectivity[k] = static_cast<std::int64_t>(k);
-    offsets[k] = static_cast<std::int64_t>(k + 1);
-  }
+  // Each array is gathered in id order block by block (VtkFile::data_array), from the particles' own arrays.
+  // A vector of 3 components per particle, `axes` of them set (a 2D point's z is 0).
+  auto vector3 = [&order, axes](const std::array<std::span<const double>, 3>& v) {
+    return [&order, &v, axes](std::size_t first, std::size_t count, double* dst) {
+      for (std::size_t f = first; f < first + count; ++f) {
+        const std::size_t c = f % 3;
+        *dst++ = c < axes ? v[c][order[f / 3]] : 0.0;
+      }
+    };
+  };
+  auto gathered = [&order](auto value) {
+    return [&order, value](std::size_t first, std::size_t count, auto* dst) {
+      for (std::size_t k = first; k < first + count; ++k) *dst++ = value(order[k]);
+    };
+  };
+  auto index = [](std::int64_t shift) {
+    return [shift](std::size_t first, std::size_t count, std::int64_t* dst) {
+      for (std::size_t k = first; k < first + count; ++k) *dst++ = static_cast<std::int64_t>(k) + shift;
+    };
+  };
 
   VtkFile file;
   file.xml += "  <UnstructuredGrid>\n";
@@ -246,20 +256,28 @@ void write_vtu(const std::filesystem::path& path, double time, const ParticleArr
                           "\n",
                           n, n);
   file.xml += "      <Points>\n";
-  file.data_array("Float64", "Points", 3, points);
+  file.data_array<double>("Float64", "Points", 3, 3 * n, vector3(p.x));
   file.xml += "      </Points>\n      <Cells>\n";
-  file.data_array("Int64", "connectivity", 1, connectivity);
-  file.data_array("Int64", "offsets", 1, offsets);
-  file.data_array("UInt8", "types", 1, types);
+  file.data_array<std::int64_t>("Int64", "connectivity", 1, n, index(0));
+  file.data_array<std::int64_t>("Int64", "offsets", 1, n, index(1));
+  file.data_array<std::uint8_t>("UInt8", "types", 1, n, [](std::size_t, std::size_t count, std::uint8_t* dst) {
+    std::fill_n(dst, count, std::uint8_t{1});  // VTK_VERTEX
+  });
   file.xml += "      </Cells>\n      <PointData>\n";
-  file.data_array("Int64", "id", 1, id);
-  file.data_array("Int32", "species", 1, species);
-  file.data_array("Float64", "diameter", 1, diameter);
-  file.data_array("Float64", "velocity", 3, velocity);
-  file.data_array("Float64", "angular_velocity", three_d ? 3 : 1, spin);
-  file.data_array("Int32", "layer", 1, layer);
+  file.data_array<std::int64_t>("Int64", "id", 1, n, gathered([&p](std::size_t s) { return p.id[s]; }));
+  file.data_array<std::int32_t>("Int32", "species", 1, n, gathered([&p](std::size_t s) { return p.species[s]; }));
+  file.data_array<double>("Float64", "diameter", 1, n, gathered([&p](std::size_t s) { return 2.0 * p.radius[s]; }));
+  file.data_array<double>("Float64", "velocity", 3, 3 * n, vector3(p.v));
+  if (three_d) {
+    file.data_array<double>("Float64", "angular_velocity", 3, 3 * n, vector3(p.omega));
+  } else {
+    file.data_array<double>("Float64", "angular_velocity", 1, n, gathered([&p](std::size_t s) { return p.omega[2][s]; }));
+  }
+  file.data_array<std::int32_t>("Int32", "layer", 1, n, gathered([&p](std::size_t s) {
+    return p.layer.empty() ? std::int32_t{0} : p.layer[s];
+  }));
   file.xml += "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n";
-  write_file_atomic(path, file.finish("UnstructuredGrid"), Sync::Atomic);
+  file.write(path, "UnstructuredGrid");
 }
 
 void write_vtu(const std::filesystem::path& path, double time, const ParticleStore<2>& particles) {
