@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "core/error.hpp"
 
 namespace fluidbed {
@@ -26,7 +28,7 @@ void check_count(const Hdf5File& file, const std::string& path, const std::vecto
 void write_components(Hdf5File& file, const std::string& group, const std::vector<NamedComponent>& components) {
   ensure_group(file, group);
   for (const NamedComponent& c : components) {
-    file.write(join(group, c.name), std::vector<double>(c.values.begin(), c.values.end()));
+    file.write(join(group, c.name), c.values);
   }
 }
 
@@ -97,11 +99,14 @@ std::vector<std::pair<std::size_t, std::string>> spin_names(int dimension) {
 void write_particle_arrays(Hdf5File& file, const std::string& group, const ParticleArrays& p) {
   ensure_group(file, group);
   const int axes = p.dimension == 3 ? 3 : 2;
-  file.write(join(group, "id"), std::vector<std::int64_t>(p.id.begin(), p.id.end()));
-  file.write(join(group, "species"), std::vector<std::int32_t>(p.species.begin(), p.species.end()));
-  std::vector<std::int32_t> layer(p.layer.begin(), p.layer.end());
-  if (layer.empty()) layer.assign(p.size(), 0);
-  file.write(join(group, "layer"), layer);
+  file.write(join(group, "id"), p.id);
+  file.write(join(group, "species"), p.species);
+  if (p.layer.empty()) {
+    file.write(join(group, "layer"), p.size(),
+               [](std::size_t, std::size_t n, std::int32_t* dst) { std::fill_n(dst, n, std::int32_t{0}); });
+  } else {
+    file.write(join(group, "layer"), p.layer);
+  }
   std::vector<NamedComponent> c;
   const auto xn = axis_names<3>(""), vn = axis_names<3>("v");
   for (int a = 0; a < axes; ++a) c.push_back({xn[static_cast<std::size_t>(a)], p.x[static_cast<std::size_t>(a)]});

@@ -161,8 +161,9 @@ std::filesystem::path case_relative_path(const std::string& case_file, const std
 
 namespace {
 
-// Writes from the solver's own arrays; the list is converted one array at a time, so a checkpoint needs at most
-// one list-sized temporary on top of the solver (docs/performance.md, memory).
+// Writes from the solver's own arrays; what is converted (the list's slots and springs, the sizes) is converted one
+// HDF5 chunk at a time, so a checkpoint needs no array-sized temporary on top of the solver (docs/performance.md,
+// sections 4 and 21).
 template <int Dim>
 void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
     static constexpr const char* kAxis[3] = {"x", "y", "z"};
@@ -175,46 +176,46 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
     });
     // Particles of their own sizes keep them (the species' diameters restore every other bed, as they always have).
     if (s.own_sizes) {
-      std::vector<double> d(p.size());
-      for (std::size_t i = 0; i < d.size(); ++i) d[i] = 2.0 * p.radius[i];
-      f.write("dem/diameter", d);
+      f.write("dem/diameter", p.size(), [&p](std::size_t first, std::size_t n, double* d) {
+        for (std::size_t i = first; i < first + n; ++i) *d++ = 2.0 * p.radius[i];
+      });
     }
     for (std::size_t a = 0; a < s.build.size(); ++a) f.write(std::string("dem/") + kAxis[a] + "_build", s.build[a]);
-    f.write("dem/nbr_offset", std::vector<std::int64_t>(s.neighbors.offset.begin(), s.neighbors.offset.end()));
-    f.write("dem/nbr_partner", std::vector<std::int64_t>(s.neighbors.partner.begin(), s.neighbors.partner.end()));
-    {
-      std::vector<double> h(s.neighbors.history.size());
-      for (int a = 0; a < Dim; ++a) {
-        for (std::size_t k = 0; k < h.size(); ++k) h[k] = s.neighbors.history[k][a];
-        f.write(std::string("dem/nbr_xi_") + kAxis[a], h);
-      }
+    const auto& nb = s.neighbors;
+    f.write("dem/nbr_offset", nb.offset.size(), [&nb](std::size_t first, std::size_t n, std::int64_t* d) {
+      for (std::size_t k = first; k < first + n; ++k) *d++ = static_cast<std::int64_t>(nb.offset[k]);
+    });
+    f.write("dem/nbr_partner", nb.partner.size(), [&nb](std::size_t first, std::size_t n, std::int64_t* d) {
+      for (std::size_t k = first; k < first + n; ++k) *d++ = static_cast<std::int64_t>(nb.partner[k]);
+    });
+    for (int a = 0; a < Dim; ++a) {
+      f.write(std::string("dem/nbr_xi_") + kAxis[a], nb.history.size(), [&nb, a](std::size_t first, std::size_t n, double* d) {
+        for (std::size_t k = first; k < first + n; ++k) *d++ = nb.history[k][a];
+      });
     }
+    // One spin component of a rolling spring (a scalar in 2D).
+    auto spin_component = [](const auto& spin, int c) {
+      if constexpr (Dim == 2) {
+        (void)c;
+        return spin;
+      } else {
+        return spin[c];
+      }
+    };
     // Rolling springs (laws with one): one array per spin component, absent when the law has none.
-    if (!s.neighbors.rolling.empty()) {
-      std::vector<double> h(s.neighbors.rolling.size());
+    if (!nb.rolling.empty()) {
       for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        for (std::size_t k = 0; k < h.size(); ++k) {
-          if constexpr (Dim == 2) {
-            h[k] = s.neighbors.rolling[k];
-          } else {
-            h[k] = s.neighbors.rolling[k][c];
-          }
-        }
-        f.write(fmt::format("dem/nbr_roll_{}", c), h);
+        f.write(fmt::format("dem/nbr_roll_{}", c), nb.rolling.size(), [&](std::size_t first, std::size_t n, double* d) {
+          for (std::size_t k = first; k < first + n; ++k) *d++ = spin_component(nb.rolling[k], c);
+        });
       }
     }
     // Rolling springs against the walls, 2 Dim per particle in storage order, likewise absent without them.
     if (!s.wall_roll.empty()) {
-      std::vector<double> h(s.wall_roll.size());
       for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        for (std::size_t k = 0; k < h.size(); ++k) {
-          if constexpr (Dim == 2) {
-            h[k] = s.wall_roll[k];
-          } else {
-            h[k] = s.wall_roll[k][c];
-          }
-        }
-        f.write(fmt::format("dem/wall_roll_{}", c), h);
+        f.write(fmt::format("dem/wall_roll_{}", c), s.wall_roll.size(), [&](std::size_t first, std::size_t n, double* d) {
+          for (std::size_t k = first; k < first + n; ++k) *d++ = spin_component(s.wall_roll[k], c);
+        });
       }
     }
     f.set_attribute("dem", "dimension", static_cast<std::int64_t>(Dim));

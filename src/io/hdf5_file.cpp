@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <span>
 #include <system_error>
 #include <type_traits>
 
@@ -93,9 +94,10 @@ hid_t file_access_plist() {
   return fapl;
 }
 
-// Elements per chunk: one chunk for a checkpoint's arrays (a million particles is 8 MB per array), several
-// beyond, each with its own Fletcher32 checksum.
-constexpr hsize_t kChunkElements = hsize_t{1} << 20;
+// Elements per chunk, each with its own Fletcher32 checksum: 512 KB of doubles, so that writing an array costs at
+// most that much on top of it (HDF5 filters a copy of each chunk; docs/performance.md, section 21). Files written
+// with the earlier 2^20 read the same: the chunk size is recorded in each dataset.
+constexpr hsize_t kChunkElements = hsize_t{1} << 16;
 
 std::string object_path(const std::string& object) { return object.empty() ? std::string("/") : object; }
 
@@ -149,29 +151,51 @@ hid_t link_creation_plist() {
   return lcpl;
 }
 
+// Writes `count` values chunk by chunk: source(first, n, buffer) returns the values first .. first + n - 1,
+// either in place (an array written as it is) or converted into `buffer` (n values), so a converted array costs one
+// chunk of memory, not a copy of the whole.
 template <class T>
-void write_dataset(hid_t file, const std::string& name, const std::vector<T>& data,
+void write_dataset(hid_t file, const std::string& name, std::size_t count,
+                   const std::function<const T*(std::size_t, std::size_t, T*)>& source,
                    const std::function<void(const std::string&)>& fail) {
-  const hsize_t dims[1] = {static_cast<hsize_t>(data.size())};
+  const hsize_t dims[1] = {static_cast<hsize_t>(count)};
   Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose);
   if (!space.valid()) fail("cannot create the dataspace of '" + name + "'");
   Handle lcpl(link_creation_plist(), H5Pclose);
   // Chunked with a Fletcher32 checksum per chunk, which H5Dread checks; an empty dataset has no chunk to check.
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   if (!dcpl.valid()) fail("cannot create the properties of dataset '" + name + "'");
-  if (!data.empty()) {
-    const hsize_t chunk[1] = {std::min(dims[0], kChunkElements)};
-    if (H5Pset_chunk(dcpl.get(), 1, chunk) < 0 || H5Pset_fletcher32(dcpl.get()) < 0) {
+  const hsize_t chunk = std::min(dims[0], kChunkElements);
+  if (count > 0) {
+    const hsize_t chunk_dims[1] = {chunk};
+    if (H5Pset_chunk(dcpl.get(), 1, chunk_dims) < 0 || H5Pset_fletcher32(dcpl.get()) < 0) {
       fail("cannot set the checksum of dataset '" + name + "'");
     }
   }
   Handle set(H5Dcreate2(file, name.c_str(), Hdf5Type<T>::file(), space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
              H5Dclose);
   if (!set.valid()) fail("cannot create dataset '" + name + "'");
-  if (!data.empty() &&
-      H5Dwrite(set.get(), Hdf5Type<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0) {
-    fail("cannot write dataset '" + name + "'");
+  // One write per whole chunk, so HDF5 filters each chunk once and needs no chunk cache.
+  std::vector<T> buffer;
+  for (hsize_t first = 0; first < dims[0]; first += chunk) {
+    const hsize_t n[1] = {std::min(chunk, dims[0] - first)};
+    const hsize_t start[1] = {first};
+    if (buffer.empty() && n[0] > 0) buffer.resize(static_cast<std::size_t>(chunk));
+    const T* values = source(static_cast<std::size_t>(first), static_cast<std::size_t>(n[0]), buffer.data());
+    Handle memory(H5Screate_simple(1, n, nullptr), H5Sclose);
+    if (!memory.valid() ||
+        H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, n, nullptr) < 0 ||
+        H5Dwrite(set.get(), Hdf5Type<T>::memory(), memory.get(), space.get(), H5P_DEFAULT, values) < 0) {
+      fail("cannot write dataset '" + name + "'");
+    }
   }
+}
+
+template <class T>
+void write_dataset(hid_t file, const std::string& name, std::span<const T> data,
+                   const std::function<void(const std::string&)>& fail) {
+  write_dataset<T>(
+      file, name, data.size(), [data](std::size_t first, std::size_t, T*) { return data.data() + first; }, fail);
 }
 
 }  // namespace
@@ -306,17 +330,45 @@ bool Hdf5File::has(const std::string& name) const {
   return true;
 }
 
-void Hdf5File::write(const std::string& name, const std::vector<double>& data) {
+void Hdf5File::write(const std::string& name, std::span<const double> data) {
   bytes_ += data.size() * sizeof(double);
   write_dataset(checked_file(), name, data, [this](const std::string& w) { fail(w); });
 }
-void Hdf5File::write(const std::string& name, const std::vector<std::int64_t>& data) {
+void Hdf5File::write(const std::string& name, std::span<const std::int64_t> data) {
   bytes_ += data.size() * sizeof(std::int64_t);
   write_dataset(checked_file(), name, data, [this](const std::string& w) { fail(w); });
 }
-void Hdf5File::write(const std::string& name, const std::vector<std::int32_t>& data) {
+void Hdf5File::write(const std::string& name, std::span<const std::int32_t> data) {
   bytes_ += data.size() * sizeof(std::int32_t);
   write_dataset(checked_file(), name, data, [this](const std::string& w) { fail(w); });
+}
+
+namespace {
+
+template <class T>
+std::function<const T*(std::size_t, std::size_t, T*)> filling(const std::function<void(std::size_t, std::size_t, T*)>& fill) {
+  return [&fill](std::size_t first, std::size_t n, T* buffer) {
+    fill(first, n, buffer);
+    return static_cast<const T*>(buffer);
+  };
+}
+
+}  // namespace
+
+void Hdf5File::write(const std::string& name, std::size_t count,
+                     const std::function<void(std::size_t, std::size_t, double*)>& fill) {
+  bytes_ += count * sizeof(double);
+  write_dataset<double>(checked_file(), name, count, filling(fill), [this](const std::string& w) { fail(w); });
+}
+void Hdf5File::write(const std::string& name, std::size_t count,
+                     const std::function<void(std::size_t, std::size_t, std::int64_t*)>& fill) {
+  bytes_ += count * sizeof(std::int64_t);
+  write_dataset<std::int64_t>(checked_file(), name, count, filling(fill), [this](const std::string& w) { fail(w); });
+}
+void Hdf5File::write(const std::string& name, std::size_t count,
+                     const std::function<void(std::size_t, std::size_t, std::int32_t*)>& fill) {
+  bytes_ += count * sizeof(std::int32_t);
+  write_dataset<std::int32_t>(checked_file(), name, count, filling(fill), [this](const std::string& w) { fail(w); });
 }
 
 namespace {

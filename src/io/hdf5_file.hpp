@@ -7,6 +7,8 @@
 // so verify() detects a changed byte anywhere that matters.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,9 +43,18 @@ class Hdf5File {
   bool has(const std::string& name) const;
 
   /// Write a 1D dataset; parent groups are created as needed. Writing an existing name is an error.
-  void write(const std::string& name, const std::vector<double>& data);
-  void write(const std::string& name, const std::vector<std::int64_t>& data);
-  void write(const std::string& name, const std::vector<std::int32_t>& data);
+  void write(const std::string& name, std::span<const double> data);
+  void write(const std::string& name, std::span<const std::int64_t> data);
+  void write(const std::string& name, std::span<const std::int32_t> data);
+  /// Write a 1D dataset of `count` values made chunk by chunk: fill(first, n, dst) writes values first ..
+  /// first + n - 1 to dst. An array converted on the way (a list's slots to int64, one component of a vector)
+  /// then needs one chunk of memory, not a copy of the whole.
+  void write(const std::string& name, std::size_t count,
+             const std::function<void(std::size_t, std::size_t, double*)>& fill);
+  void write(const std::string& name, std::size_t count,
+             const std::function<void(std::size_t, std::size_t, std::int64_t*)>& fill);
+  void write(const std::string& name, std::size_t count,
+             const std::function<void(std::size_t, std::size_t, std::int32_t*)>& fill);
 
   /// Read a 1D dataset of exactly that element type. Throws Error(BadInput, "<file>: ...") when the dataset is
   /// missing, not 1D, or of another type.
