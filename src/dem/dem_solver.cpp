@@ -192,7 +192,7 @@ void DemSolver<Dim>::rebuild() {
         const Spin<Dim> hr = carry_rolling ? held_rolling_[q] : Spin<Dim>{};
         const std::int64_t j = held_partner_id_[q];
         for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
-          if (nbr_.partner_id[k] == j) {
+          if (p_.id[nbr_.partner[k]] == j) {
             nbr_.history[k] = h;
             if (carry_rolling) nbr_.rolling[k] = hr;
             break;
@@ -233,7 +233,7 @@ void DemSolver<Dim>::gather_held_springs(bool rolling) {
     std::size_t c = held_offset_[i];
     for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
       if (!held(q)) continue;
-      held_partner_id_[c] = nbr_.partner_id[q];
+      held_partner_id_[c] = p_.id[nbr_.partner[q]];
       held_history_[c] = nbr_.history[q];
       if (rolling) held_rolling_[c] = nbr_.rolling[q];
       ++c;
@@ -775,7 +775,6 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   List list;
   list.offset.assign(keep.size() + 1, 0);
   list.partner.reserve(nbr_.partner.size());
-  list.partner_id.reserve(nbr_.partner_id.size());
   list.history.reserve(nbr_.history.size());
   const bool rolling = nbr_.rolling.size() == nbr_.history.size() && !nbr_.rolling.empty();
   if (rolling) list.rolling.reserve(nbr_.rolling.size());
@@ -786,7 +785,6 @@ std::size_t DemSolver<Dim>::remove_escaped() {
         const std::size_t j = new_slot[nbr_.partner[q]];
         if (j == kGone) continue;
         list.partner.push_back(static_cast<std::uint32_t>(j));
-        list.partner_id.push_back(nbr_.partner_id[q]);
         list.history.push_back(nbr_.history[q]);
         if (rolling) list.rolling.push_back(nbr_.rolling[q]);
       }
@@ -953,12 +951,10 @@ void DemSolver<Dim>::restore(State s) {
   for (std::int64_t id : p_.id) feed_.next_id = std::max(feed_.next_id, id + 1);
   wall_roll_ = std::move(s.wall_roll);
   need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
-  if (nbr_.partner_id.size() != nbr_.partner.size()) {
-    // A list given by slots only: its ids are those of the partners in this storage order.
-    nbr_.partner_id.resize(nbr_.partner.size());
-    for (std::size_t k = 0; k < nbr_.partner.size(); ++k) {
-      nbr_.partner_id[k] = nbr_.partner[k] < p_.size() ? p_.id[nbr_.partner[k]] : -1;
-    }
+  // The carry-over reads each partner's id from the store, so every slot must name a particle (a checkpoint's are
+  // checked when it is read).
+  for (const std::uint32_t j : nbr_.partner) {
+    if (j >= p_.size()) throw std::invalid_argument("DemSolver::restore: a neighbour entry names no particle");
   }
   upper_offset_.clear();  // linked again at the next force evaluation
   last_valid_ = false;

@@ -296,10 +296,6 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
   for (std::size_t t = 0; t < static_cast<std::size_t>(max_threads); ++t) {
     if (block[t] < block[t + 1]) std::copy(found[t].begin(), found[t].end(), out.partner.begin() + static_cast<std::ptrdiff_t>(out.offset[block[t]]));
   }
-  out.partner_id.resize(out.offset[n]);
-  const auto sm = static_cast<std::ptrdiff_t>(out.offset[n]);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t k = 0; k < sm; ++k) out.partner_id[static_cast<std::size_t>(k)] = p.id[out.partner[static_cast<std::size_t>(k)]];
 }
 
 template <int Dim>

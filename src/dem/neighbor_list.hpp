@@ -16,8 +16,9 @@ namespace fluidbed {
 template <int Dim>
 struct NeighborList {
   std::vector<std::size_t> offset;      ///< CSR: partners of slot i are entries offset[i] .. offset[i+1]
-  std::vector<std::uint32_t> partner;   ///< storage slot of the partner (what the force loop reads)
-  std::vector<std::int64_t> partner_id; ///< global id of the partner: the key the contact history is carried by
+  /// Storage slot of the partner (what the force loop reads). Its id, p.id[partner], is the key the contact
+  /// history is carried by across rebuilds; it is read from the store, not kept per entry (8 bytes an entry).
+  std::vector<std::uint32_t> partner;
   std::vector<Vec<Dim>> history;        ///< tangential spring of the contact, mirrored in the partner's entry
   /// Rolling spring torque of the contact (laws with a rolling spring only, else empty), mirrored like history.
   std::vector<Spin<Dim>> rolling;

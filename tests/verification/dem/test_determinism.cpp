@@ -64,7 +64,6 @@ void expect_identical(const DemSolver<2>::State& a, const DemSolver<2>::State& b
   EXPECT_EQ(names.size(), k);
   EXPECT_TRUE(same_bits(a.neighbors.offset, b.neighbors.offset)) << what;
   EXPECT_TRUE(same_bits(a.neighbors.partner, b.neighbors.partner)) << what;
-  EXPECT_TRUE(same_bits(a.neighbors.partner_id, b.neighbors.partner_id)) << what;
   EXPECT_TRUE(same_bits(a.neighbors.history, b.neighbors.history)) << what;
   EXPECT_EQ(a.time, b.time) << what;
   EXPECT_EQ(a.steps, b.steps) << what;
@@ -143,12 +142,11 @@ DemSolver<2>::State permuted(const DemSolver<2>::State& s, const std::vector<std
   NeighborList<2>& nl = out.neighbors;
   nl.offset.assign(1, 0);
   nl.partner.clear();
-  nl.partner_id.clear();
   nl.history.clear();
   for (std::size_t k = 0; k < order.size(); ++k) {
     for (std::size_t q = in.offset[order[k]]; q < in.offset[order[k] + 1]; ++q) {
-      nl.partner_id.push_back(in.partner_id[q]);
-      nl.partner.push_back(static_cast<std::uint32_t>(slot_of_id[static_cast<std::size_t>(in.partner_id[q])]));
+      const auto partner_id = static_cast<std::size_t>(s.particles.id[in.partner[q]]);
+      nl.partner.push_back(static_cast<std::uint32_t>(slot_of_id[partner_id]));
       nl.history.push_back(in.history[q]);
     }
     nl.offset.push_back(nl.partner.size());
@@ -162,7 +160,7 @@ std::map<std::pair<std::int64_t, std::int64_t>, Vec2> springs_by_id(const DemSol
   const ParticleStore<2>& p = s.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (std::size_t k = s.neighbors.offset[i]; k < s.neighbors.offset[i + 1]; ++k) {
-      if (norm2(s.neighbors.history[k]) > 0.0) m[{p.id[i], s.neighbors.partner_id[k]}] = s.neighbors.history[k];
+      if (norm2(s.neighbors.history[k]) > 0.0) m[{p.id[i], p.id[s.neighbors.partner[k]]}] = s.neighbors.history[k];
     }
     for (int w = 0; w < 4; ++w) {
       if (norm2(p.wall_spring(i, w)) > 0.0) m[{p.id[i], -1 - w}] = p.wall_spring(i, w);
