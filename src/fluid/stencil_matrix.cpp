@@ -2,9 +2,23 @@
 
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace fluidbed {
+namespace {
+
+// Inf and NaN are the doubles whose exponent bits are all set.
+bool all_finite(const double* v, Eigen::Index n) {
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
+  std::uint64_t bad = 0;
+  for (Eigen::Index k = 0; k < n; ++k)
+    bad |= static_cast<std::uint64_t>((std::bit_cast<std::uint64_t>(v[k]) & kExponent) == kExponent);
+  return bad == 0;
+}
+
+}  // namespace
 
 template <std::size_t N>
 void StencilMatrix::build_impl(int n, const std::vector<std::array<int, N>>& neighbours) {
@@ -68,8 +82,10 @@ LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::Vect
   LinearSolveOutcome out;
   const Eigen::Index n = a.rows();
   if (x.size() != n) x = Eigen::VectorXd::Zero(n);
-  // A non-finite coefficient makes every solver's answer meaningless: name the row instead of iterating.
-  for (Eigen::Index r = 0; r < n && out.bad_row < 0; ++r) {
+  // A non-finite coefficient makes every solver's answer meaningless: name the row instead of iterating. The
+  // common all-finite case is one branch-free scan of the stored values; rows are looked at only after a hit.
+  const bool scanned = a.isCompressed() && all_finite(a.valuePtr(), a.nonZeros()) && all_finite(b.data(), n);
+  for (Eigen::Index r = 0; !scanned && r < n && out.bad_row < 0; ++r) {
     bool finite = std::isfinite(b[r]);
     for (Matrix::InnerIterator it(a, r); it && finite; ++it) finite = std::isfinite(it.value());
     if (!finite) out.bad_row = static_cast<int>(r);
@@ -79,12 +95,13 @@ LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::Vect
     return out;
   }
   bicgstab_.compute(a);
-  Eigen::VectorXd y = bicgstab_.solveWithGuess(b, x);
+  Eigen::VectorXd& y = y_;  // kept between calls: no allocation per solve
+  y = bicgstab_.solveWithGuess(b, x);
   out.iterations = static_cast<int>(bicgstab_.iterations());
   out.error = bicgstab_.error();
   if (bicgstab_.info() == Eigen::Success && y.allFinite()) {
     out.ok = true;
-    x = std::move(y);
+    x.swap(y);
     return out;
   }
   // BiCGSTAB ran out of iterations or broke down: a direct factorisation does not depend on convergence.
@@ -107,7 +124,7 @@ LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::Vect
     return out;
   }
   out.ok = true;
-  x = std::move(y);
+  x.swap(y);
   return out;
 }
 

@@ -85,6 +85,7 @@ class CheckedSparseSolver {
 
  private:
   Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> bicgstab_;
+  Eigen::VectorXd y_;  ///< BiCGSTAB's answer before it is accepted
 };
 
 }  // namespace fluidbed
