@@ -9,13 +9,12 @@
 namespace fluidbed {
 namespace {
 
-// Inf and NaN are the doubles whose exponent bits are all set.
+// x - x is +0 for every finite x and NaN for inf and NaN: the OR of the bits is zero exactly when all are finite
+// (a loop that vectorises, unlike one that tests each value).
 bool all_finite(const double* v, Eigen::Index n) {
-  constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
-  std::uint64_t bad = 0;
-  for (Eigen::Index k = 0; k < n; ++k)
-    bad |= static_cast<std::uint64_t>((std::bit_cast<std::uint64_t>(v[k]) & kExponent) == kExponent);
-  return bad == 0;
+  std::uint64_t bits = 0;
+  for (Eigen::Index k = 0; k < n; ++k) bits |= std::bit_cast<std::uint64_t>(v[k] - v[k]);
+  return bits == 0;
 }
 
 }  // namespace
