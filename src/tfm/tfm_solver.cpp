@@ -483,10 +483,21 @@ void TfmSolver<Dim>::compute_closures_of() {
     const double p_hi = solids_pressure_law<R>(c, mat, eps + h, theta);
     dps_deps_[cell] = std::max(0.0, (p_lo - p_hi) / (2 * h));
   };
-  // Each cell writes only its own closures: the same bits at any thread count.
-  for_each_line_parallel(cells, [&](Index<Dim> cell) {
-    for (; cell[0] < cells.hi[0]; ++cell[0]) close(cell);
-  });
+  // Each cell writes only its own closures: the same bits at any thread count. Below kParallelCells with two
+  // threads, each takes one half of the lines (one fork).
+  auto lines = [&](int first, int last) {
+    for (int l = first; l < last; ++l)
+      for (Index<Dim> cell = line_start(cells, l); cell[0] < cells.hi[0]; ++cell[0]) close(cell);
+  };
+  const long count = static_cast<long>(cells.count());
+  if (two_tasks(count)) {
+    const int n = line_count(cells);
+    side_by_side(true, [&] { lines(0, n / 2); }, [&] { lines(n / 2, n); });
+  } else {
+    for_each_line_parallel(cells, [&](Index<Dim> cell) {
+      for (; cell[0] < cells.hi[0]; ++cell[0]) close(cell);
+    });
+  }
 }
 
 template <int Dim>
