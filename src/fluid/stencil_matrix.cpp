@@ -109,9 +109,9 @@ void CheckedSparseSolver::take_diagonals(const Matrix& a) {
         const auto d = std::find(offsets_.begin(), offsets_.end(), inner[k] - static_cast<int>(r)) - offsets_.begin();
         slot_[static_cast<std::size_t>(k)] = static_cast<int>(d * n + r);
       }
+    diagonals_.assign(offsets_.size() * static_cast<std::size_t>(n), 0.0);  // the entries no row has stay zero
   }
   if (offsets_.empty()) return;
-  diagonals_.assign(offsets_.size() * static_cast<std::size_t>(n), 0.0);
   const double* val = a.valuePtr();
   for (Eigen::Index k = 0; k < nnz; ++k) diagonals_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(k)])] = val[k];
   by_diagonals_ = true;

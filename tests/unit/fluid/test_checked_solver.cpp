@@ -46,13 +46,14 @@ TEST(CheckedSparseSolver, ConvergedBicgstabIsAcceptedWithoutFallback) {
 // with varying coefficients, boundary rows with fewer entries and explicit zeros, and on a pattern with more
 // diagonals than the diagonal layout takes (the row-loop product).
 TEST(CheckedSparseSolver, BicgstabGivesEigensAnswerBitForBit) {
-  auto check = [](const StencilMatrix::Matrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& guess) {
+  // One solver for every system, so that its cached diagonal layout must follow each change of pattern.
+  CheckedSparseSolver s;
+  s.set_tolerance(1e-12);
+  auto check = [&s](const StencilMatrix::Matrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& guess) {
     Eigen::BiCGSTAB<StencilMatrix::Matrix, Eigen::DiagonalPreconditioner<double>> eigen;
     eigen.setTolerance(1e-12);
     eigen.compute(a);
     const Eigen::VectorXd x_ref = eigen.solveWithGuess(b, guess);
-    CheckedSparseSolver s;
-    s.set_tolerance(1e-12);
     Eigen::VectorXd x = guess;
     const LinearSolveOutcome out = s.solve(a, b, x);
     ASSERT_TRUE(out.ok);
@@ -86,6 +87,10 @@ TEST(CheckedSparseSolver, BicgstabGivesEigensAnswerBitForBit) {
   StencilMatrix::Matrix wide(n, n);
   wide.setFromTriplets(t.begin(), t.end());
   check(wide, b, guess);
+  // Back to the five-point pattern with other values: the layout is rebuilt and the old values are gone.
+  for (int r = 0; r < n; ++r) m.set_row(r, 5.0 + 0.01 * r, {-1.0, -0.5, -1.2, r % 3 == 0 ? 0.0 : -0.9});
+  check(m.matrix(), b, guess);
+  check(m.matrix(), b, Eigen::VectorXd::Zero(n));
 }
 
 TEST(CheckedSparseSolver, IterationCapFallsBackToLuWithTheSameAnswer) {
