@@ -2,9 +2,22 @@
 
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace fluidbed {
+namespace {
+
+// x - x is +0 for every finite x and NaN for inf and NaN: the OR of the bits is zero exactly when all are finite
+// (a loop that vectorises, unlike one that tests each value).
+bool all_finite(const double* v, Eigen::Index n) {
+  std::uint64_t bits = 0;
+  for (Eigen::Index k = 0; k < n; ++k) bits |= std::bit_cast<std::uint64_t>(v[k] - v[k]);
+  return bits == 0;
+}
+
+}  // namespace
 
 template <std::size_t N>
 void StencilMatrix::build_impl(int n, const std::vector<std::array<int, N>>& neighbours) {
@@ -64,12 +77,133 @@ double backward_error(const StencilMatrix::Matrix& a, const Eigen::VectorXd& x, 
   return denom > 0.0 ? r / denom : r;
 }
 
+void CheckedSparseSolver::take_diagonals(const Matrix& a) {
+  const Eigen::Index n = a.rows(), nnz = a.nonZeros();
+  by_diagonals_ = false;
+  if (!a.isCompressed() || a.cols() != n) return;
+  const int* outer = a.outerIndexPtr();
+  const int* inner = a.innerIndexPtr();
+  const bool same = pattern_.size() == static_cast<std::size_t>(n + 1 + nnz) &&
+                    std::equal(outer, outer + n + 1, pattern_.begin()) &&
+                    std::equal(inner, inner + nnz, pattern_.begin() + n + 1);
+  if (!same) {
+    pattern_.assign(outer, outer + n + 1);
+    pattern_.insert(pattern_.end(), inner, inner + nnz);
+    offsets_.clear();
+    bool sorted = true;
+    for (Eigen::Index r = 0; r < n && sorted; ++r)
+      for (int k = outer[r]; k < outer[r + 1]; ++k) {
+        sorted = sorted && (k == outer[r] || inner[k] > inner[k - 1]);
+        const int off = inner[k] - static_cast<int>(r);
+        if (std::find(offsets_.begin(), offsets_.end(), off) == offsets_.end()) offsets_.push_back(off);
+      }
+    // Rows summed in column order, as Eigen does, only if the diagonals in ascending order meet each row so.
+    if (!sorted || offsets_.size() > static_cast<std::size_t>(kMaxDiagonals)) {
+      offsets_.clear();
+      return;
+    }
+    std::sort(offsets_.begin(), offsets_.end());
+    slot_.resize(static_cast<std::size_t>(nnz));
+    for (Eigen::Index r = 0; r < n; ++r)
+      for (int k = outer[r]; k < outer[r + 1]; ++k) {
+        const auto d = std::find(offsets_.begin(), offsets_.end(), inner[k] - static_cast<int>(r)) - offsets_.begin();
+        slot_[static_cast<std::size_t>(k)] = static_cast<int>(d * n + r);
+      }
+    diagonals_.assign(offsets_.size() * static_cast<std::size_t>(n), 0.0);  // the entries no row has stay zero
+  }
+  if (offsets_.empty()) return;
+  const double* val = a.valuePtr();
+  for (Eigen::Index k = 0; k < nnz; ++k) diagonals_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(k)])] = val[k];
+  by_diagonals_ = true;
+}
+
+// Eigen's sparse * dense product (SparseDenseProduct.h) adds each row's products in column order to a sum that
+// starts at zero. By diagonals, in ascending offset order, every row sees the same additions in the same order:
+// the same bits, since a zero entry adds +-0 to a sum that is never -0 (x finite; a non-finite x fails the solve
+// either way). The diagonal loops vectorise; the row loop of a compressed matrix waits on one chain per row.
+void CheckedSparseSolver::multiply(const Matrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  if (!by_diagonals_) {
+    y.noalias() = a * x;
+    return;
+  }
+  const int n = static_cast<int>(a.rows());
+  const double* px = x.data();
+  double* py = y.data();
+  for (int r = 0; r < n; ++r) py[r] = 0.0;
+  for (std::size_t d = 0; d < offsets_.size(); ++d) {
+    const int off = offsets_[d];
+    const double* pa = diagonals_.data() + d * static_cast<std::size_t>(n);
+    const int lo = std::max(0, -off), hi = std::min(n, n - off);
+    for (int r = lo; r < hi; ++r) py[r] += pa[r] * px[r + off];
+  }
+}
+
+bool CheckedSparseSolver::bicgstab(const Matrix& a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                   LinearSolveOutcome& out) {
+  using std::abs;
+  using std::sqrt;
+  precond_.compute(a);
+  take_diagonals(a);
+  const Eigen::Index n = a.cols();
+  const Eigen::Index max_iters = max_iterations_ < 0 ? 2 * n : max_iterations_;
+  const double tol = tolerance_;
+  for (Eigen::VectorXd* v : {&r_, &r0_, &v_, &p_, &y_, &z_, &s_, &t_}) v->resize(n);
+  Eigen::VectorXd &r = r_, &r0 = r0_, &v = v_, &p = p_, &y = y_, &z = z_, &s = s_, &t = t_;
+  multiply(a, x, t);
+  r = rhs - t;
+  r0 = r;
+  double r0_sqnorm = r0.squaredNorm();
+  const double rhs_sqnorm = rhs.squaredNorm();
+  if (rhs_sqnorm == 0) {  // Eigen leaves its iteration count and error estimate at their limits here
+    x.setZero();
+    out.iterations = static_cast<int>(max_iters);
+    out.error = tol;
+    return true;
+  }
+  double rho = 1, alpha = 1, w = 1;
+  v.setZero();
+  p.setZero();
+  const double tol2 = tol * tol * rhs_sqnorm;
+  const double eps2 = Eigen::NumTraits<double>::epsilon() * Eigen::NumTraits<double>::epsilon();
+  Eigen::Index i = 0, restarts = 0;
+  while (r.squaredNorm() > tol2 && i < max_iters) {
+    const double rho_old = rho;
+    rho = r0.dot(r);
+    if (abs(rho) < eps2 * r0_sqnorm) {
+      // The residual became too orthogonal to r0: restart with a new r0.
+      multiply(a, x, t);
+      r = rhs - t;
+      r0 = r;
+      rho = r0_sqnorm = r.squaredNorm();
+      if (restarts++ == 0) i = 0;
+    }
+    const double beta = (rho / rho_old) * (alpha / w);
+    p = r + beta * (p - w * v);
+    y = precond_.solve(p);
+    multiply(a, y, v);
+    alpha = rho / r0.dot(v);
+    s = r - alpha * v;
+    z = precond_.solve(s);
+    multiply(a, z, t);
+    const double tmp = t.squaredNorm();
+    w = tmp > 0.0 ? t.dot(s) / tmp : 0.0;
+    x += alpha * y + w * z;
+    r = s - w * t;
+    ++i;
+  }
+  out.error = sqrt(r.squaredNorm() / rhs_sqnorm);
+  out.iterations = static_cast<int>(i);
+  return out.error <= tol;
+}
+
 LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   LinearSolveOutcome out;
   const Eigen::Index n = a.rows();
   if (x.size() != n) x = Eigen::VectorXd::Zero(n);
-  // A non-finite coefficient makes every solver's answer meaningless: name the row instead of iterating.
-  for (Eigen::Index r = 0; r < n && out.bad_row < 0; ++r) {
+  // A non-finite coefficient makes every solver's answer meaningless: name the row instead of iterating. The
+  // common all-finite case is one branch-free scan of the stored values; rows are looked at only after a hit.
+  const bool scanned = a.isCompressed() && all_finite(a.valuePtr(), a.nonZeros()) && all_finite(b.data(), n);
+  for (Eigen::Index r = 0; !scanned && r < n && out.bad_row < 0; ++r) {
     bool finite = std::isfinite(b[r]);
     for (Matrix::InnerIterator it(a, r); it && finite; ++it) finite = std::isfinite(it.value());
     if (!finite) out.bad_row = static_cast<int>(r);
@@ -78,13 +212,10 @@ LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::Vect
     out.why = "non-finite coefficient or right-hand side in row " + std::to_string(out.bad_row);
     return out;
   }
-  bicgstab_.compute(a);
-  Eigen::VectorXd y = bicgstab_.solveWithGuess(b, x);
-  out.iterations = static_cast<int>(bicgstab_.iterations());
-  out.error = bicgstab_.error();
-  if (bicgstab_.info() == Eigen::Success && y.allFinite()) {
+  Eigen::VectorXd y = x;
+  if (bicgstab(a, b, y, out) && y.allFinite()) {
     out.ok = true;
-    x = std::move(y);
+    x.swap(y);
     return out;
   }
   // BiCGSTAB ran out of iterations or broke down: a direct factorisation does not depend on convergence.
@@ -107,7 +238,7 @@ LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::Vect
     return out;
   }
   out.ok = true;
-  x = std::move(y);
+  x.swap(y);
   return out;
 }
 

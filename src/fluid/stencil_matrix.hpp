@@ -75,16 +75,37 @@ struct LinearSolveOutcome {
 class CheckedSparseSolver {
  public:
   using Matrix = StencilMatrix::Matrix;
-  void set_tolerance(double tol) { bicgstab_.setTolerance(tol); }
+  void set_tolerance(double tol) { tolerance_ = tol; }
   /// At most this many BiCGSTAB iterations; 0: Eigen's default (twice the size).
   void set_max_iterations(int n) {
-    if (n > 0) bicgstab_.setMaxIterations(n);
+    if (n > 0) max_iterations_ = n;
   }
   /// Solves a x = b; x is the initial guess on entry (zero for an empty vector) and the answer on exit.
   LinearSolveOutcome solve(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
  private:
-  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> bicgstab_;
+  /// Eigen's BiCGSTAB (Eigen/src/IterativeLinearSolvers/BiCGSTAB.h, 3.4) step for step, with the same vector
+  /// expressions, on vectors kept between calls, and the sparse products by multiply(): the same bits. Returns
+  /// whether it converged; iterations and the relative residual estimate in `out`.
+  bool bicgstab(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, LinearSolveOutcome& out);
+
+  /// y = A x, the same bits as Eigen's sparse * dense product. Cloned for AVX2 (no FMA: both clones round alike).
+  __attribute__((target_clones("avx2", "default"))) void multiply(const Matrix& a, const Eigen::VectorXd& x,
+                                                                  Eigen::VectorXd& y) const;
+  /// Copies the values of a into the diagonal layout (rebuilt when the pattern differs from the last one).
+  void take_diagonals(const Matrix& a);
+
+  // The matrix by diagonals (a structured stencil has a few: offsets col - row, ascending), zero where a row
+  // has no entry; slot_[k] is where stored value k goes. Used when the pattern has at most kMaxDiagonals.
+  static constexpr int kMaxDiagonals = 8;
+  std::vector<int> offsets_, slot_, pattern_;
+  std::vector<double> diagonals_;
+  bool by_diagonals_ = false;
+
+  double tolerance_ = Eigen::NumTraits<double>::epsilon();  // Eigen's default
+  int max_iterations_ = -1;                                 // -1: twice the size, as Eigen
+  Eigen::DiagonalPreconditioner<double> precond_;
+  Eigen::VectorXd r_, r0_, v_, p_, y_, z_, s_, t_;
 };
 
 }  // namespace fluidbed

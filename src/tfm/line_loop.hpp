@@ -1,5 +1,8 @@
 #pragma once
 
+#include <exception>
+#include <omp.h>
+
 #include "core/index_box.hpp"
 #include "fluid/stencil_matrix.hpp"
 
@@ -54,6 +57,47 @@ void for_each_line_parallel_with(const IndexBox<Dim>& b, Make&& make, F&& f) {
 #pragma omp for schedule(static)
     for (int l = 0; l < n; ++l) f(state, line_start(b, l));
   }
+}
+
+/// Whether side_by_side runs its two tasks on two threads for a grid of `cells` cells: only below kParallelCells,
+/// where the per-line loops above are serial, so that one fork per pair of tasks replaces none (the barriers of
+/// per-loop threads lost on the paper's grid), and only outside any parallel region.
+inline bool two_tasks(long cells) {
+  return cells < kParallelCells && omp_get_max_threads() > 1 && !omp_in_parallel();
+}
+
+/// Runs f0() and f1(), on two threads when `parallel`, else one after the other. Only for tasks that write
+/// disjoint outputs and read nothing the other writes: the same bits either way. An exception of either task is
+/// rethrown after both have finished (f0's first).
+template <class F0, class F1>
+void side_by_side(bool parallel, F0&& f0, F1&& f1) {
+  if (!parallel) {
+    f0();
+    f1();
+    return;
+  }
+  std::exception_ptr e0, e1;
+#pragma omp parallel sections num_threads(2)
+  {
+#pragma omp section
+    {
+      try {
+        f0();
+      } catch (...) {
+        e0 = std::current_exception();
+      }
+    }
+#pragma omp section
+    {
+      try {
+        f1();
+      } catch (...) {
+        e1 = std::current_exception();
+      }
+    }
+  }
+  if (e0) std::rethrow_exception(e0);
+  if (e1) std::rethrow_exception(e1);
 }
 
 }  // namespace fluidbed

@@ -57,6 +57,12 @@ struct FluxCarry {
   int i0 = 0;  // the first position along axis 0
   FluxCarry(int lo0, int n0) : along1(static_cast<std::size_t>(n0)), i0(lo0) {}
   Slot& slot(int a, const Index<Dim>& f) { return a == 0 ? along0 : along1[static_cast<std::size_t>(f[0] - i0)]; }
+  // Component by component: std::array's == compiles to a call of memcmp here (1% of the paper's TFM case).
+  static bool holds(const Slot& c, const Index<Dim>& f) {
+    bool same = c.valid;
+    for (int a = 0; a < Dim; ++a) same = same && c.next[a] == f[a];
+    return same;
+  }
 };
 
 // Advective term (U . grad) u_d of velocity component d at its face f, TVD face values, in the advective form
@@ -85,7 +91,7 @@ double advect(const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& 
     double f_lo;
     if (a < 2) {
       typename FluxCarry<Dim>::Slot& c = carry.slot(a, f);
-      f_lo = c.valid && c.next == f ? c.flux : v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
+      f_lo = FluxCarry<Dim>::holds(c, f) ? c.flux : v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
       c.next = shifted<Dim>(f, a, 1);
       c.flux = f_hi;
       c.valid = true;
@@ -357,7 +363,10 @@ double TfmSolver<Dim>::advance(double t_stop) {
   predict_momentum(dt);            // Eqs. 17-18 per face, drag by partial elimination
   set_boundary_faces(s_.time + dt);  // walls, distributor inflow and jets, lid
   face_fractions();                // section 2.2.1: TVD face voidages of the step
-  correct_pressure(dt, false);     // Eqs. 15 + 16: mixture volume flux divergence-free (P')
+  // Eqs. 15 + 16: mixture volume flux divergence-free (P'); the E' rows need only the face fractions and the
+  // closures, so a second thread writes them meanwhile.
+  side_by_side(two_tasks(static_cast<long>(grid_.domain.count())), [&] { correct_pressure(dt, false); },
+               [&] { solids_fraction_rows(dt); });
   correct_solids_fraction(dt);     // Eq. 16 with P_s implicit (E'), then P' once more
   solids_continuity(dt);           // Eq. 16 implicit, packing limiter eps >= eps* - max_compaction
   close_gas_continuity(dt);        // Eq. 15: the gas takes the rest of the mixture flux; eps = 1 - eps_s
@@ -474,10 +483,21 @@ void TfmSolver<Dim>::compute_closures_of() {
     const double p_hi = solids_pressure_law<R>(c, mat, eps + h, theta);
     dps_deps_[cell] = std::max(0.0, (p_lo - p_hi) / (2 * h));
   };
-  // Each cell writes only its own closures: the same bits at any thread count.
-  for_each_line_parallel(cells, [&](Index<Dim> cell) {
-    for (; cell[0] < cells.hi[0]; ++cell[0]) close(cell);
-  });
+  // Each cell writes only its own closures: the same bits at any thread count. Below kParallelCells with two
+  // threads, each takes one half of the lines (one fork).
+  auto lines = [&](int first, int last) {
+    for (int l = first; l < last; ++l)
+      for (Index<Dim> cell = line_start(cells, l); cell[0] < cells.hi[0]; ++cell[0]) close(cell);
+  };
+  const long count = static_cast<long>(cells.count());
+  if (two_tasks(count)) {
+    const int n = line_count(cells);
+    side_by_side(true, [&] { lines(0, n / 2); }, [&] { lines(n / 2, n); });
+  } else {
+    for_each_line_parallel(cells, [&](Index<Dim> cell) {
+      for (; cell[0] < cells.hi[0]; ++cell[0]) close(cell);
+    });
+  }
 }
 
 template <int Dim>
@@ -528,9 +548,15 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
   // The momentum loops are compiled once per limiter law; the law is chosen here, once per step.
   tvd::with_limiter(config_.limiter, [&](auto law) {
     using Law = decltype(law);
-    predict_momentum_along<0, Law>(dt);
-    predict_momentum_along<1, Law>(dt);
-    if constexpr (Dim == 3) predict_momentum_along<2, Law>(dt);
+    if constexpr (Dim == 2) {
+      // The two components read the same inputs and write disjoint outputs.
+      side_by_side(two_tasks(static_cast<long>(grid_.domain.count())), [&] { predict_momentum_along<0, Law>(dt); },
+                   [&] { predict_momentum_along<1, Law>(dt); });
+    } else {
+      predict_momentum_along<0, Law>(dt);
+      predict_momentum_along<1, Law>(dt);
+      predict_momentum_along<2, Law>(dt);
+    }
   });
 }
 
@@ -685,8 +711,9 @@ void TfmSolver<Dim>::face_fractions() {
   std::vector<double>& es = w.eps_s.data();
   const std::vector<double>& e = s_.eps.data();
   for (std::size_t k = 0; k < es.size(); ++k) es[k] = 1.0 - e[k];  // the ghosts too: they repeat the boundary
-  tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{s_.ug}, w.eg);
-  tvd_face_values(grid_, config_.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, w.es);
+  side_by_side(two_tasks(static_cast<long>(grid_.domain.count())),
+               [&] { tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{s_.ug}, w.eg); },
+               [&] { tvd_face_values(grid_, config_.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, w.es); });
   for_each_bottom([&](const Index<Dim>& c) { w.eg[kUp][c] = 1.0; });  // gas enters through the distributor undiluted
 }
 
@@ -782,14 +809,13 @@ void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
 }
 
 template <int Dim>
-void TfmSolver<Dim>::correct_solids_fraction(double dt) {
+void TfmSolver<Dim>::solids_fraction_rows(double dt) {
   // The solids pressure is made implicit by a solids volume fraction correction E' (as in MFIX): the solids
   // continuity (Eq. 16) must hold with P_s + K E', K = dP_s/d eps_s, so the stiff compaction limit does not limit
   // dt: (V/dt) E' - sum_faces es ss K grad E' = -(solids outflow). Solved for W = K E' the matrix would be
   // symmetric, but K vanishes in dilute cells, so E' is the unknown. Row of cell P:
   // (V/dt + K_P sum_f a_f) E'_P - sum_f a_f K_nb E'_nb, a_f the face's area / distance times its solids flux
   // response, written in place into the fixed pattern.
-  const TfmConfig& c = config_;
   Work& w = *w_;
   const IndexBox<Dim>& cells = grid_.domain;
   const double vol = grid_.cell_measure();
@@ -811,6 +837,14 @@ void TfmSolver<Dim>::correct_solids_fraction(double dt) {
     for (int m = 0; m < 2 * Dim; ++m) off[m] = -coef[m] * k[m];
     w.e_matrix.set_row(cell_row(cells, cell), vol / dt + dps_deps_[cell] * sum, off);
   });
+}
+
+template <int Dim>
+void TfmSolver<Dim>::correct_solids_fraction(double dt) {
+  // The E' system (rows by solids_fraction_rows) with the solids outflow after the first P' correction.
+  const TfmConfig& c = config_;
+  Work& w = *w_;
+  const IndexBox<Dim>& cells = grid_.domain;
   outflow(w.out_g, w.out_s);
   w.solids_solver.set_tolerance(1e-12);
   w.solids_solver.set_max_iterations(c.linear_max_iterations);

@@ -136,6 +136,7 @@ class TfmSolver {
   void set_boundary_faces(double t);
   void face_fractions();
   void correct_pressure(double dt, bool same_matrix);
+  void solids_fraction_rows(double dt);
   void correct_solids_fraction(double dt);
   void solids_continuity(double dt);
   void close_gas_continuity(double dt);

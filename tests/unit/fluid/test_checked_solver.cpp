@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include "fluid/gas_solver.hpp"
 #include "fluid/stencil_matrix.hpp"
@@ -37,6 +39,58 @@ TEST(CheckedSparseSolver, ConvergedBicgstabIsAcceptedWithoutFallback) {
   EXPECT_FALSE(out.fell_back);
   EXPECT_GT(out.iterations, 1);
   EXPECT_LT((m.matrix() * x - b).norm() / b.norm(), 1e-11);
+}
+
+// The solver runs Eigen's BiCGSTAB algorithm itself (kept vectors, products by diagonals): it must give Eigen's
+// answer bit for bit, with Eigen's iteration count, from a zero and from a non-zero guess, on a five-point matrix
+// with varying coefficients, boundary rows with fewer entries and explicit zeros, and on a pattern with more
+// diagonals than the diagonal layout takes (the row-loop product).
+TEST(CheckedSparseSolver, BicgstabGivesEigensAnswerBitForBit) {
+  // One solver for every system, so that its cached diagonal layout must follow each change of pattern.
+  CheckedSparseSolver s;
+  s.set_tolerance(1e-12);
+  auto check = [&s](const StencilMatrix::Matrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& guess) {
+    Eigen::BiCGSTAB<StencilMatrix::Matrix, Eigen::DiagonalPreconditioner<double>> eigen;
+    eigen.setTolerance(1e-12);
+    eigen.compute(a);
+    const Eigen::VectorXd x_ref = eigen.solveWithGuess(b, guess);
+    Eigen::VectorXd x = guess;
+    const LinearSolveOutcome out = s.solve(a, b, x);
+    ASSERT_TRUE(out.ok);
+    EXPECT_FALSE(out.fell_back);
+    EXPECT_EQ(out.iterations, eigen.iterations());
+    EXPECT_EQ(out.error, eigen.error());
+    ASSERT_EQ(x.size(), x_ref.size());
+    int differ = 0;
+    for (Eigen::Index k = 0; k < x.size(); ++k) differ += std::memcmp(&x[k], &x_ref[k], sizeof(double)) != 0;
+    EXPECT_EQ(differ, 0);
+  };
+  const int nx = 13, ny = 9, n = nx * ny;
+  StencilMatrix m;
+  m.build_cells(nx, ny);
+  for (int r = 0; r < n; ++r) {
+    const double w = 1.0 + 0.3 * std::sin(0.7 * r), e = r % 5 == 0 ? 0.0 : 0.5 + 0.2 * std::cos(1.3 * r);
+    m.set_row(r, 3.5 + w + e, {-w, -e, -0.8 - 0.1 * std::sin(0.2 * r), -1.1});
+  }
+  const Eigen::VectorXd b = rhs(n);
+  check(m.matrix(), b, Eigen::VectorXd::Zero(n));
+  Eigen::VectorXd guess(n);
+  for (int k = 0; k < n; ++k) guess[k] = 0.1 * std::cos(0.5 * k);
+  check(m.matrix(), b, guess);
+  // Ten diagonals: more than the diagonal layout takes.
+  std::vector<Eigen::Triplet<double>> t;
+  for (int r = 0; r < n; ++r) {
+    t.emplace_back(r, r, 12.0 + std::sin(r));
+    for (int off : {-40, -20, -9, -3, -1, 2, 7, 21, 33})
+      if (r + off >= 0 && r + off < n) t.emplace_back(r, r + off, -1.0 + 0.1 * std::cos(r + off));
+  }
+  StencilMatrix::Matrix wide(n, n);
+  wide.setFromTriplets(t.begin(), t.end());
+  check(wide, b, guess);
+  // Back to the five-point pattern with other values: the layout is rebuilt and the old values are gone.
+  for (int r = 0; r < n; ++r) m.set_row(r, 5.0 + 0.01 * r, {-1.0, -0.5, -1.2, r % 3 == 0 ? 0.0 : -0.9});
+  check(m.matrix(), b, guess);
+  check(m.matrix(), b, Eigen::VectorXd::Zero(n));
 }
 
 TEST(CheckedSparseSolver, IterationCapFallsBackToLuWithTheSameAnswer) {
