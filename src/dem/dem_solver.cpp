@@ -6,11 +6,10 @@
 #include <type_traits>
 #include <utility>
 #include <fmt/format.h>
-#ifdef _OPENMP
 #include <omp.h>
-#endif
 
 #include "core/error.hpp"
+#include "core/team.hpp"
 
 namespace fluidbed {
 
@@ -382,11 +381,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   // runs over that array only. Entries of pairs not in contact stay zero, so the gathering pass below is unchanged
   // and the result is the same bit for bit. The blocks (one per thread) only share out the work: a pair's
   // evaluation does not depend on the block that finds it.
-#ifdef _OPENMP
   const int max_threads = omp_get_max_threads();
-#else
-  const int max_threads = 1;
-#endif
   const auto nb = static_cast<std::size_t>(max_threads);
   if (contacts_.size() != nb) {
     contacts_.assign(nb, {});
@@ -416,12 +411,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   };
 #pragma omp parallel num_threads(max_threads)
   {
-#ifdef _OPENMP
-    const auto t0 = static_cast<std::size_t>(omp_get_thread_num());
-    const auto nt = static_cast<std::size_t>(omp_get_num_threads());
-#else
-    const std::size_t t0 = 0, nt = 1;
-#endif
+    const auto [t0, nt] = team_slot();
     for (std::size_t b = t0; b < nb; b += nt) {
       const std::size_t lo = n * b / nb, hi = n * (b + 1) / nb;
       if (release_last) {
@@ -485,12 +475,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   contact_torque_[0] = contact_torque_[1] = Spin<Dim>{};
 #pragma omp parallel num_threads(max_threads) reduction(max : max_ov, max_frac)
   {
-#ifdef _OPENMP
-    const auto t0 = static_cast<std::size_t>(omp_get_thread_num());
-    const auto nt = static_cast<std::size_t>(omp_get_num_threads());
-#else
-    const std::size_t t0 = 0, nt = 1;
-#endif
+    const auto [t0, nt] = team_slot();
     for (std::size_t b = t0; b < nb; b += nt) {
       const Contact* out = contacts_[b].data();
       for (std::size_t c = 0; c < contact_count_[b]; ++c) {

@@ -4,9 +4,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#ifdef _OPENMP
 #include <omp.h>
-#endif
+
+#include "core/team.hpp"
 
 namespace fluidbed {
 
@@ -258,23 +258,14 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
   out.offset.assign(n + 1, 0);
   // One search pass: each thread fills its own buffer for a contiguous block of particles, and the blocks are
   // joined in block order, so the list is the same for any number of threads.
-#ifdef _OPENMP
   const int max_threads = omp_get_max_threads();
-#else
-  const int max_threads = 1;
-#endif
   std::vector<std::vector<std::uint32_t>>& found = scratch.found;
   if (found.size() < static_cast<std::size_t>(max_threads)) found.resize(static_cast<std::size_t>(max_threads));
   std::vector<std::size_t> block(static_cast<std::size_t>(max_threads) + 1, n);
   block[0] = 0;
 #pragma omp parallel num_threads(max_threads)
   {
-#ifdef _OPENMP
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-    const auto nt = static_cast<std::size_t>(omp_get_num_threads());
-#else
-    const std::size_t t = 0, nt = 1;
-#endif
+    const auto [t, nt] = team_slot();
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     block[t + 1] = hi;
     std::vector<std::uint32_t>& mine = found[t];
