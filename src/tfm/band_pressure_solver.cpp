@@ -23,7 +23,7 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
     const auto n = static_cast<std::size_t>(n_);
     diag_.resize(n);
     for (auto& l : low_) l.resize(n);
-    band_.resize(n * static_cast<std::size_t>(kd_ + 1));
+    band_.resize(n * static_cast<std::size_t>(kd_ + 1) + kLanes);  // + the last block's whole-vector overrun
     b_.resize(n);
     x_.resize(n);
   }
@@ -85,9 +85,10 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
   }
 
   // Band LDL^T in place, column k holding L(k + i, k) at offset i and d_k at offset 0 (right-looking: the update
-  // of each later column is one contiguous axpy).
-  // Cloned for AVX2 (four lanes instead of SSE2's two; no FMA, so both clones round alike).
-  __attribute__((target_clones("avx2", "default"))) void factorise() {
+  // of each later column is one contiguous pass). Pivots go kPivots at a time (a rank-kPivots update, loaded and
+  // stored once); every entry still takes the updates of the pivots in their order, as one pivot at a time.
+  // Cloned for AVX-512 and AVX2; -ffp-contract=off (CMakeLists.txt) keeps FMA out, so every clone rounds alike.
+  __attribute__((target_clones("avx512f", "avx2", "default"))) void factorise() {
     const int w = kd_ + 1;
     std::fill(band_.begin(), band_.end(), 0.0);
     for (int r = 0; r < n_; ++r) {
@@ -98,58 +99,69 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
         if (v != 0.0) band_[static_cast<std::size_t>(r - s) * w + s] = v;
       }
     }
-    // Two pivots at a time: column k + 1 is finished first (k's update on it, then its own scaling), then the
-    // updates of both reach each later column in one pass, k's before k + 1's, so every entry sees the same
-    // operations in the same order as one pivot at a time, with half the memory traffic.
-    std::array<double, kMaxPressureBand + 2> t0{}, t1{};
-    auto pivot = [&](int k, double* ck, std::array<double, kMaxPressureBand + 2>& t, int m) {
-      const double dk = ck[0];
-      if (!(dk > 0.0) || !std::isfinite(dk)) {
-        throw_simulation_error("gas pressure correction: the band LDLT factorisation failed at row " +
-                               std::to_string(k) + " (pivot " + std::to_string(dk) +
-                               ": the matrix is not positive definite, a face coefficient is negative or not finite)");
-      }
-      for (int i = 1; i <= m; ++i) {
-        t[static_cast<std::size_t>(i)] = ck[i];
-        ck[i] /= dk;
-      }
-    };
     int k = 0;
-    for (; k + 1 < n_; k += 2) {
-      double* ck = &band_[static_cast<std::size_t>(k) * w];
-      double* c1 = ck + w;
-      const int m = std::min(kd_, n_ - 1 - k);  // column k reaches rows up to k + m
-      pivot(k, ck, t0, m);
-      {
-        const double f = ck[1];  // k's update of column k + 1 (rows k + 1 .. k + m)
-        if (f != 0.0)
-          for (int i = 1; i <= m; ++i) c1[i - 1] -= f * t0[static_cast<std::size_t>(i)];
-      }
-      const int m1 = std::min(kd_, n_ - 2 - k);  // column k + 1 reaches rows up to k + 1 + m1
-      pivot(k + 1, c1, t1, m1);
-      // Columns k + 2 .. k + 1 + m1: k's update reaches rows up to k + m, k + 1's up to k + 1 + m1.
-      for (int j = 2; j <= 1 + m1; ++j) {
-        const double f0 = j <= m ? ck[j] : 0.0, f1 = c1[j - 1];
-        double* cj = &band_[static_cast<std::size_t>(k + j) * w] - j;  // cj[i] = A(k + i, k + j)
-        const int top0 = m, top1 = 1 + m1;
-        if (f0 != 0.0 && f1 != 0.0 && top0 == top1 - 1) {
-          for (int i = j; i <= top0; ++i)
-            cj[i] = (cj[i] - f0 * t0[static_cast<std::size_t>(i)]) - f1 * t1[static_cast<std::size_t>(i - 1)];
-          cj[top1] -= f1 * t1[static_cast<std::size_t>(top1 - 1)];
-        } else {
-          if (f0 != 0.0)
-            for (int i = j; i <= top0; ++i) cj[i] -= f0 * t0[static_cast<std::size_t>(i)];
-          if (f1 != 0.0)
-            for (int i = j; i <= top1; ++i) cj[i] -= f1 * t1[static_cast<std::size_t>(i - 1)];
-        }
-      }
-    }
-    if (k < n_) pivot(k, &band_[static_cast<std::size_t>(k) * w], t0, 0);  // the last row, when n is odd
+    for (; k + kPivots <= n_; k += kPivots) pivot_block<kPivots>(k);
+    for (; k < n_; ++k) pivot_block<1>(k);  // the last rows
     factorised_ = true;
   }
 
+  static constexpr int kPivots = 4;
+  static constexpr int kLanes = 8;  // the widest clone's doubles per vector
+
+  // Pivots k .. k + P - 1. t_[p][r] holds column k + p before its scaling, A(k + r, k + p), at rows r relative to
+  // k and zero outside that column's band, so a later column's pass subtracts f * 0 = 0 where a pivot does not
+  // reach: the entry is unchanged bit for bit (no entry of the factorisation is ever -0: it starts at +0 or a
+  // non-zero, and x - y rounds an exact cancellation to +0).
+  template <int P>
+  [[gnu::always_inline]] inline void pivot_block(int k) {
+    const int w = kd_ + 1;
+    std::array<int, P> m{};  // column k + p reaches rows up to k + p + m[p]
+    const int rows = std::min(P - 1 + kd_, n_ - 1 - k);  // the block's last row, relative to k
+    for (int p = 0; p < P; ++p) {
+      double* cp = &band_[static_cast<std::size_t>(k + p) * w];
+      m[p] = std::min(kd_, n_ - 1 - k - p);
+      const double dk = cp[0];
+      if (!(dk > 0.0) || !std::isfinite(dk)) {
+        throw_simulation_error("gas pressure correction: the band LDLT factorisation failed at row " +
+                               std::to_string(k + p) + " (pivot " + std::to_string(dk) +
+                               ": the matrix is not positive definite, a face coefficient is negative or not finite)");
+      }
+      double* t = t_[static_cast<std::size_t>(p)].data();
+      for (int r = 0; r < rows + kLanes; ++r) t[r] = 0.0;
+      for (int i = 1; i <= m[p]; ++i) {
+        t[p + i] = cp[i];
+        cp[i] /= dk;
+      }
+      // Pivot p's update of the block's later columns q (rows k + q .. k + p + m[p]).
+      for (int q = p + 1; q < P && q - p <= m[p]; ++q) {
+        const double f = cp[q - p];
+        double* cq = &band_[static_cast<std::size_t>(k + q) * w] - q;  // cq[r] = A(k + r, k + q)
+        for (int r = q; r <= p + m[p]; ++r) cq[r] -= f * t[r];
+      }
+    }
+    // Columns k + P .. k + rows: the block's pivots, in order, on rows k + j .. k + rows. The rows are taken in
+    // whole vectors of kLanes: the rows past `rows` (the next column's first entries, or the tail's padding) see
+    // t = 0 and stay as they are, and the loop has no scalar remainder.
+    for (int j = P; j <= rows; ++j) {
+      std::array<double, P> f{};
+      for (int p = 0; p < P; ++p)
+        f[p] = j - p <= m[p] ? band_[static_cast<std::size_t>(k + p) * w + static_cast<std::size_t>(j - p)] : 0.0;
+      double* cj = &band_[static_cast<std::size_t>(k + j) * w] - j;  // cj[r] = A(k + r, k + j)
+      if constexpr (P == kPivots) {
+        const double *t0 = t_[0].data(), *t1 = t_[1].data(), *t2 = t_[2].data(), *t3 = t_[3].data();
+        const int end = j + ((rows - j + kLanes) / kLanes) * kLanes;
+        for (int r = j; r < end; ++r) cj[r] = (((cj[r] - f[0] * t0[r]) - f[1] * t1[r]) - f[2] * t2[r]) - f[3] * t3[r];
+      } else {
+        for (int p = 0; p < P; ++p) {
+          const double* t = t_[static_cast<std::size_t>(p)].data();
+          for (int r = j; r <= rows; ++r) cj[r] -= f[p] * t[r];
+        }
+      }
+    }
+  }
+
   // x = L^-T D^-1 L^-1 b.
-  __attribute__((target_clones("avx2", "default"))) void substitute() {
+  __attribute__((target_clones("avx512f", "avx2", "default"))) void substitute() {
     const int w = kd_ + 1;
     x_ = b_;
     // A zero right-hand side (the second P' solve of a TFM step has one) has the answer zero.
@@ -211,6 +223,7 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
   std::array<std::vector<double>, Dim> low_;
   std::vector<double> band_;
   std::vector<double> b_, x_;
+  std::array<std::array<double, kMaxPressureBand + kPivots + kLanes>, kPivots> t_{};  // the block's unscaled columns
   bool factorised_ = false;
 };
 
