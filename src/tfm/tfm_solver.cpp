@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/tvd_lines.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "fluid/structured_solver_hypre.hpp"
@@ -42,68 +43,96 @@ Index<Dim> with(Index<Dim> c, int a, int value) {
   return c;
 }
 
-// The low face of a momentum cell along axis 0 or 1 is the high face of the cell before it along that axis: its
-// flux (the same operands, so the same bits) is carried from the earlier call instead of being limited twice.
-// Axis 0 needs the last cell, axis 1 the cell of the line before (one slot per position along axis 0).
+// Advective term (U . grad) u_d of velocity component d on a line of its faces along axis 0 (n faces from f),
+// TVD face values, in the advective form div(U u_d) - u_d div(U) so that it vanishes for a uniform field; the
+// transport velocity of each face of the momentum cell is the mean of the two faces it joins. Ghost layers stand in
+// for the clamped stencil. The fluxes through the momentum cells' faces are computed as vectorised runs
+// (tvd::face_fluxes), each face once: along axis 0 the low face of a cell is the high face of the one before it,
+// along axis 1 it is the high face of the same cell on the line before (kept from that line when the thread has
+// just done it). Every flux is the expression of the face by face form, with the same operands: the same bits.
 template <int Dim>
-struct FluxCarry {
-  struct Slot {
-    Index<Dim> next{};  // the face whose low flux this holds
-    double flux = 0.0;
-    bool valid = false;
-  };
-  Slot along0;
-  std::vector<Slot> along1;
-  int i0 = 0;  // the first position along axis 0
-  FluxCarry(int lo0, int n0) : along1(static_cast<std::size_t>(n0)), i0(lo0) {}
-  Slot& slot(int a, const Index<Dim>& f) { return a == 0 ? along0 : along1[static_cast<std::size_t>(f[0] - i0)]; }
-  // Component by component: std::array's == compiles to a call of memcmp here (1% of the paper's TFM case).
-  static bool holds(const Slot& c, const Index<Dim>& f) {
-    bool same = c.valid;
-    for (int a = 0; a < Dim; ++a) same = same && c.next[a] == f[a];
-    return same;
+struct AdvectLine {
+  int n;
+  std::vector<double> v0, f0;      // axis 0: the n + 1 faces of the line's cells, velocity and flux
+  std::vector<double> v_hi, f_hi;  // axis 1 (and 2 in turn): the high faces
+  std::vector<double> v_lo, f_lo;  // and the low ones
+  std::vector<double> v1_prev, f1_prev;  // the last line's axis-1 high faces
+  Index<Dim> prev{};
+  bool has_prev = false;
+  std::vector<double> div;
+  explicit AdvectLine(int n_faces)
+      : n(n_faces), v0(n + 1), f0(n + 1), v_hi(n), f_hi(n), v_lo(n), f_lo(n), v1_prev(n), f1_prev(n), div(n) {}
+
+  template <int d>
+  void run(tvd::Limiter limiter, const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& f, double* adv) {
+    const Field<Dim>& u = vel[d];
+    const double* pu = u.data().data() + u.index(f);
+    // Velocity of the momentum cells' faces along axis a on this line: vl[i] (the low face of face i's cell) for
+    // i in [first, last).
+    auto low_velocity = [&](int a, int first, int last, double* vl) {
+      if (a == d) {
+        const auto su = static_cast<std::ptrdiff_t>(u.stride(a));
+        for (int i = first; i < last; ++i) vl[i - first] = 0.5 * (pu[i - su] + pu[i]);
+      } else {
+        const Field<Dim>& v = vel[a];
+        const double* pv = v.data().data() + v.index(f);
+        const auto sd = static_cast<std::ptrdiff_t>(v.stride(d));
+        for (int i = first; i < last; ++i) vl[i - first] = 0.5 * (pv[i - sd] + pv[i]);
+      }
+    };
+    // Axis 0: the faces of cells i - 1 | i for i = 0 .. n.
+    {
+      low_velocity(0, 0, n + 1, v0.data());
+      tvd::face_fluxes(limiter, n + 1, v0.data(), pu, static_cast<std::ptrdiff_t>(u.stride(0)), f0.data());
+      const double h = g.h[0];
+      for (int i = 0; i < n; ++i) {
+        adv[i] = (f0[i + 1] - f0[i]) / h;
+        div[i] = (v0[i + 1] - v0[i]) / h;
+      }
+    }
+    Index<Dim> next_prev = f;
+    for (int a = 1; a < Dim; ++a) {
+      const auto su = static_cast<std::ptrdiff_t>(u.stride(a));
+      // The high face of this line's cells is the low face of the next line's: velocity and flux at the line
+      // shifted by one along a.
+      Index<Dim> up = f;
+      ++up[a];
+      {
+        const double* pu_up = pu + su;
+        const Field<Dim>& v = vel[a];
+        if (a == d) {
+          for (int i = 0; i < n; ++i) v_hi[i] = 0.5 * (pu_up[i - su] + pu_up[i]);
+        } else {
+          const double* pv = v.data().data() + v.index(up);
+          const auto sd = static_cast<std::ptrdiff_t>(v.stride(d));
+          for (int i = 0; i < n; ++i) v_hi[i] = 0.5 * (pv[i - sd] + pv[i]);
+        }
+        tvd::face_fluxes(limiter, n, v_hi.data(), pu_up, su, f_hi.data());
+      }
+      Index<Dim> below = f;
+      --below[a];
+      if (a == 1 && has_prev && prev == below) {
+        v_lo.swap(v1_prev);
+        f_lo.swap(f1_prev);
+      } else {
+        low_velocity(a, 0, n, v_lo.data());
+        tvd::face_fluxes(limiter, n, v_lo.data(), pu, su, f_lo.data());
+      }
+      const double h = g.h[a];
+      for (int i = 0; i < n; ++i) {
+        adv[i] = adv[i] + (f_hi[i] - f_lo[i]) / h;
+        div[i] = div[i] + (v_hi[i] - v_lo[i]) / h;
+      }
+      if (a == 1) {  // keep this line's high faces for the next line
+        v1_prev.swap(v_hi);
+        f1_prev.swap(f_hi);
+      }
+    }
+    prev = next_prev;
+    has_prev = true;
+    for (int i = 0; i < n; ++i) adv[i] = adv[i] - pu[i] * div[i];
   }
 };
-
-// Advective term (U . grad) u_d of velocity component d at its face f, TVD face values, in the advective form
-// div(U u_d) - u_d div(U) so that it vanishes for a uniform field; the transport velocity of each face of the
-// momentum cell is the mean of the two faces it joins. Ghost layers stand in for the clamped stencil.
-template <int Dim, int d, class Law>
-double advect(const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& f, FluxCarry<Dim>& carry) {
-  // Offsets from the face's storage slot (the hottest stencil of the momentum predictor).
-  const Field<Dim>& u = vel[d];
-  const double* pu = u.data().data() + u.index(f);
-  double flux = 0.0, div = 0.0;
-  for (int a = 0; a < Dim; ++a) {
-    const auto su = static_cast<std::ptrdiff_t>(u.stride(a));
-    double v_hi, v_lo;
-    if (a == d) {
-      v_hi = 0.5 * (pu[0] + pu[su]);
-      v_lo = 0.5 * (pu[-su] + pu[0]);
-    } else {
-      const Field<Dim>& v = vel[a];
-      const double* pv = v.data().data() + v.index(f);
-      const auto sd = static_cast<std::ptrdiff_t>(v.stride(d)), sa = static_cast<std::ptrdiff_t>(v.stride(a));
-      v_hi = 0.5 * (pv[sa - sd] + pv[sa]);
-      v_lo = 0.5 * (pv[-sd] + pv[0]);
-    }
-    const double f_hi = v_hi * tvd::face_value<Law>(v_hi, pu[-su], pu[0], pu[su], pu[2 * su]);
-    double f_lo;
-    if (a < 2) {
-      typename FluxCarry<Dim>::Slot& c = carry.slot(a, f);
-      f_lo = FluxCarry<Dim>::holds(c, f) ? c.flux : v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
-      c.next = shifted<Dim>(f, a, 1);
-      c.flux = f_hi;
-      c.valid = true;
-    } else {
-      f_lo = v_lo * tvd::face_value<Law>(v_lo, pu[-2 * su], pu[-su], pu[0], pu[su]);
-    }
-    const double t_flux = (f_hi - f_lo) / g.h[a], t_div = (v_hi - v_lo) / g.h[a];
-    flux = a == 0 ? t_flux : flux + t_flux;
-    div = a == 0 ? t_div : div + t_div;
-  }
-  return flux - pu[0] * div;
-}
 
 // Partial elimination of the interphase drag (Syamlal 1998, MFIX): the gas and solids momentum equations of
 // one face are solved together as a 2x2 system, so the drag is fully implicit and never limits dt.
@@ -545,19 +574,15 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
     fill_face_ghosts(w.s0[a]);
     for (FaceFields<Dim>* f : {&w.dg, &w.ds, &w.gs, &w.ss}) (*f)[a].fill(0.0);
   }
-  // The momentum loops are compiled once per limiter law; the law is chosen here, once per step.
-  tvd::with_limiter(config_.limiter, [&](auto law) {
-    using Law = decltype(law);
-    if constexpr (Dim == 2) {
-      // The two components read the same inputs and write disjoint outputs.
-      side_by_side(two_tasks(static_cast<long>(grid_.domain.count())), [&] { predict_momentum_along<0, Law>(dt); },
-                   [&] { predict_momentum_along<1, Law>(dt); });
-    } else {
-      predict_momentum_along<0, Law>(dt);
-      predict_momentum_along<1, Law>(dt);
-      predict_momentum_along<2, Law>(dt);
-    }
-  });
+  if constexpr (Dim == 2) {
+    // The two components read the same inputs and write disjoint outputs.
+    side_by_side(two_tasks(static_cast<long>(grid_.domain.count())), [&] { predict_momentum_along<0>(dt); },
+                 [&] { predict_momentum_along<1>(dt); });
+  } else {
+    predict_momentum_along<0>(dt);
+    predict_momentum_along<1>(dt);
+    predict_momentum_along<2>(dt);
+  }
 }
 
 template <int Dim>
@@ -576,7 +601,7 @@ double TfmSolver<Dim>::mu_corner(const Index<Dim>& k, int p, int q) const {
 }
 
 template <int Dim>
-template <int d, class Law>
+template <int d>
 void TfmSolver<Dim>::predict_momentum_along(double dt) {
   const TfmConfig& c = config_;
   Work& w = *w_;
@@ -603,11 +628,14 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
   IndexBox<Dim> faces = cells.faces(d);
   faces.lo[d] += 1;
   faces.hi[d] -= (d == kUp && top_open) ? 0 : 1;
-  // Lines along axis 0; a thread takes a contiguous block of them, in order (the carried fluxes).
-  struct Carries {
-    FluxCarry<Dim> g, s;
+  // Lines along axis 0; a thread takes a contiguous block of them. The advection of a line is computed first, as
+  // vectorised runs, then the faces one by one.
+  const int n = faces.extent(0);
+  struct Lines {
+    AdvectLine<Dim> g, s;
+    std::vector<double> adv_g, adv_s;
   };
-  auto face_update = [&](const Index<Dim>& f, Carries& carry) {
+  auto face_update = [&](const Index<Dim>& f, double adv_g, double adv_s) {
     const bool top = d == kUp && f[d] == cells.hi[d];
     const Index<Dim> lo = shifted<Dim>(f, d, -1);  // the cell below the face; f names the one above
     const double eg = top ? eps[lo] : 0.5 * (eps[lo] + eps[f]);
@@ -615,7 +643,6 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
     const double beta = top ? beta_c_[lo] : 0.5 * (beta_c_[lo] + beta_c_[f]);
     const double p_above = top ? 2.0 * c.boundary.top_pressure - p[lo] : p[f];
     const double dpdx = (p_above - p[lo]) / h[d];
-    const double adv_g = advect<Dim, d, Law>(w.g0, grid_, f, carry.g);
     const double a_g = eg * rho_g / dt;
     const double rhs_g = a_g * w.g0[d][f] - eg * rho_g * adv_g + eg * rho_g * grav - eg * dpdx;
     if (top || !(std::min(1.0 - eps[lo], 1.0 - eps[f]) > kEpsSTrace)) {
@@ -657,7 +684,6 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
       visc += (shear[1] - shear[0]) / h[b];
     }
     visc += diag * s0[d][f];
-    const double adv_s = advect<Dim, d, Law>(s0, grid_, f, carry.s);
     const double a_s = es * rho_s / dt;
     const double rhs_s = a_s * s0[d][f] - es * rho_s * adv_s + es * rho_s * grav - es * dpdx - dpsdx + visc;
     const FaceSolve fsol = solve_face(a_g, a_s + diag, beta, rhs_g, rhs_s, eg, es);
@@ -668,12 +694,13 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
     w.gs[d][f] = fsol.gs;
     w.ss[d][f] = fsol.ss;
   };
-  // Each face writes only its own velocities and coefficients; a thread's carried fluxes start empty at its first
-  // line and are recomputed there from the same operands, so the bits do not depend on the thread count.
+  // Each face writes only its own velocities and coefficients: the bits do not depend on the thread count.
   for_each_line_parallel_with(
-      faces, [&] { return Carries{{faces.lo[0], faces.extent(0)}, {faces.lo[0], faces.extent(0)}}; },
-      [&](Carries& carry, Index<Dim> f) {
-        for (; f[0] < faces.hi[0]; ++f[0]) face_update(f, carry);
+      faces, [&] { return Lines{AdvectLine<Dim>(n), AdvectLine<Dim>(n), std::vector<double>(n), std::vector<double>(n)}; },
+      [&](Lines& l, Index<Dim> f) {
+        l.g.template run<d>(c.limiter, w.g0, grid_, f, l.adv_g.data());
+        l.s.template run<d>(c.limiter, s0, grid_, f, l.adv_s.data());
+        for (int i = 0; i < n; ++i, ++f[0]) face_update(f, l.adv_g[static_cast<std::size_t>(i)], l.adv_s[static_cast<std::size_t>(i)]);
       });
 }
 

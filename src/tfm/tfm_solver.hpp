@@ -131,7 +131,7 @@ class TfmSolver {
   void compute_closures_of();
   double choose_dt(double t_stop) const;
   void predict_momentum(double dt);
-  template <int d, class Law>
+  template <int d>
   void predict_momentum_along(double dt);
   void set_boundary_faces(double t);
   void face_fractions();
