@@ -127,15 +127,41 @@ void CheckedSparseSolver::multiply(const Matrix& a, const Eigen::VectorXd& x, Ei
     return;
   }
   const int n = static_cast<int>(a.rows());
+  const int nd = static_cast<int>(offsets_.size());
   const double* px = x.data();
   double* py = y.data();
-  for (int r = 0; r < n; ++r) py[r] = 0.0;
-  for (std::size_t d = 0; d < offsets_.size(); ++d) {
-    const int off = offsets_[d];
-    const double* pa = diagonals_.data() + d * static_cast<std::size_t>(n);
-    const int lo = std::max(0, -off), hi = std::min(n, n - off);
-    for (int r = lo; r < hi; ++r) py[r] += pa[r] * px[r + off];
+  std::array<const double*, kMaxDiagonals> pa{};
+  for (int d = 0; d < nd; ++d) pa[static_cast<std::size_t>(d)] = diagonals_.data() + static_cast<std::size_t>(d) * n;
+  // Rows where every diagonal has its column inside the matrix: all terms of a row in one expression, in the
+  // same ascending order (five or seven diagonals: the 2D and 3D stencils); the other rows term by term.
+  const int first = std::clamp(-offsets_.front(), 0, n), last = std::clamp(n - offsets_.back(), first, n);
+  auto row = [&](int r) {
+    double sum = 0.0;
+    for (int d = 0; d < nd; ++d) {
+      const int c = r + offsets_[static_cast<std::size_t>(d)];
+      if (c >= 0 && c < n) sum += pa[static_cast<std::size_t>(d)][r] * px[c];
+    }
+    py[r] = sum;
+  };
+  for (int r = 0; r < first; ++r) row(r);
+  const int* o = offsets_.data();
+  if (nd == 5) {
+    const double *a0 = pa[0], *a1 = pa[1], *a2 = pa[2], *a3 = pa[3], *a4 = pa[4];
+    const double *x0 = px + o[0], *x1 = px + o[1], *x2 = px + o[2], *x3 = px + o[3], *x4 = px + o[4];
+    for (int r = first; r < last; ++r)
+      py[r] = ((((0.0 + a0[r] * x0[r]) + a1[r] * x1[r]) + a2[r] * x2[r]) + a3[r] * x3[r]) + a4[r] * x4[r];
+  } else if (nd == 7) {
+    const double *a0 = pa[0], *a1 = pa[1], *a2 = pa[2], *a3 = pa[3], *a4 = pa[4], *a5 = pa[5], *a6 = pa[6];
+    const double *x0 = px + o[0], *x1 = px + o[1], *x2 = px + o[2], *x3 = px + o[3], *x4 = px + o[4],
+                 *x5 = px + o[5], *x6 = px + o[6];
+    for (int r = first; r < last; ++r)
+      py[r] = ((((((0.0 + a0[r] * x0[r]) + a1[r] * x1[r]) + a2[r] * x2[r]) + a3[r] * x3[r]) + a4[r] * x4[r]) +
+               a5[r] * x5[r]) +
+              a6[r] * x6[r];
+  } else {
+    for (int r = first; r < last; ++r) row(r);
   }
+  for (int r = last; r < n; ++r) row(r);
 }
 
 bool CheckedSparseSolver::bicgstab(const Matrix& a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,

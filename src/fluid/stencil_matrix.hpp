@@ -89,8 +89,9 @@ class CheckedSparseSolver {
   /// whether it converged; iterations and the relative residual estimate in `out`.
   bool bicgstab(const Matrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, LinearSolveOutcome& out);
 
-  /// y = A x, the same bits as Eigen's sparse * dense product. Cloned for AVX2 (no FMA: both clones round alike).
-  __attribute__((target_clones("avx2", "default"))) void multiply(const Matrix& a, const Eigen::VectorXd& x,
+  /// y = A x, the same bits as Eigen's sparse * dense product. Cloned for AVX-512 and AVX2 (no FMA: every clone
+  /// rounds alike).
+  __attribute__((target_clones("avx512f", "avx2", "default"))) void multiply(const Matrix& a, const Eigen::VectorXd& x,
                                                                   Eigen::VectorXd& y) const;
   /// Copies the values of a into the diagonal layout (rebuilt when the pattern differs from the last one).
   void take_diagonals(const Matrix& a);

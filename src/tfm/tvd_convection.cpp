@@ -17,19 +17,32 @@ template <int Dim>
 void fill_cell_ghosts(Field<Dim>& phi, const std::type_identity_t<std::array<bool, Dim>>& periodic) {
   const IndexBox<Dim>& b = phi.box();
   const int g = phi.ghost();
+  double* v = phi.data().data();
   // Axis by axis over the layers already filled along the earlier axes, so that edges and corners are filled too.
+  // Each ghost line along axis 0 is copied from its source line (axis 0 has unit stride); along axis 0 itself the
+  // ghosts of each line are set from the line's own cells.
   IndexBox<Dim> span = b;
   for (int a = 0; a < Dim; ++a) {
     const int n = b.extent(a);
     for (bool high : {false, true}) {
-      for_each(span.outside(a, high, g), [&](const Index<Dim>& c) {
-        Index<Dim> src = c;
-        if (periodic[a]) {
-          src[a] = b.lo[a] + ((c[a] - b.lo[a]) % n + n) % n;
-        } else {
-          src[a] = high ? b.hi[a] - 1 : b.lo[a];
+      const IndexBox<Dim> out = span.outside(a, high, g);
+      IndexBox<Dim> lines = out;
+      lines.hi[0] = lines.lo[0] + 1;
+      const int len = out.extent(0);
+      if (out.empty()) continue;
+      for_each(lines, [&](const Index<Dim>& c) {
+        if (a == 0) {
+          double* line = v + phi.index(c);  // line[i] is the entry at c[0] + i
+          for (int i = 0; i < len; ++i) {
+            const int ci = c[0] + i;
+            const int src = periodic[a] ? b.lo[0] + ((ci - b.lo[0]) % n + n) % n : (high ? b.hi[0] - 1 : b.lo[0]);
+            line[i] = line[src - c[0]];
+          }
+          return;
         }
-        phi[c] = phi[src];
+        Index<Dim> src = c;
+        src[a] = periodic[a] ? b.lo[a] + ((c[a] - b.lo[a]) % n + n) % n : (high ? b.hi[a] - 1 : b.lo[a]);
+        std::copy_n(v + phi.index(src), len, v + phi.index(c));
       });
     }
     span = span.grown(a, g);
