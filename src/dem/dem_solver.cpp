@@ -152,7 +152,7 @@ DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move
       if (!(in.region_lo[a] <= in.region_hi[a])) throw_input_error("insertion: the region's low corner lies above its high one");
     }
   }
-  for (auto& w : p_.wall_xi) std::fill(w.begin(), w.end(), 0.0);
+  walls_.reset(p_.size());
 }
 
 template <int Dim>
@@ -173,6 +173,9 @@ void DemSolver<Dim>::rebuild() {
     order = sort_by_cell(p_, cell_size_);
     p_.permute(order);
     permute_wall_roll(order);
+    walls_.permute(order);
+  } else {
+    walls_.compact();  // springs back at +0 give up their records
   }
   build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_, periodic_);
   if (rolling_history) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
@@ -554,13 +557,18 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   const Vec<Dim>* cforce = contact_force_.data();
   const Spin<Dim>* ctorque = contact_torque_.data();
   static constexpr double kSide[2] = {1.0, -1.0};
-  const AxisPtrs<2 * Dim * Dim> WX =
-      axis_ptrs<2 * Dim * Dim>([&](int q) -> auto& { return p_.wall_xi[static_cast<std::size_t>(q)]; }, 2 * Dim * Dim);
+  // A particle that touches a wall without a record of springs (all +0 until now) leaves its new springs here, one
+  // list per thread; they get their records after the pass (few particles a step, in no particular order: each
+  // (particle, wall) is set once).
+  const int threads = omp_get_max_threads();
+  if (new_wall_springs_.size() < static_cast<std::size_t>(threads)) new_wall_springs_.resize(static_cast<std::size_t>(threads));
   // Pass 2: each particle sums its own entries in list order (independent of the thread count), then its walls.
 #pragma omp parallel for schedule(static) reduction(max : max_ov, max_frac)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const Vec<Dim> xi = pos(i);
+    const std::int32_t rec = walls_.record(i);
+    Vec<Dim>* const springs = rec >= 0 ? walls_.springs(rec).data() : nullptr;
     const double ri = R[i];
     Vec<Dim> f{};
     Spin<Dim> torque{};
@@ -580,20 +588,19 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
       constexpr bool high = w % 2 == 1;
       if (!wall_on[static_cast<std::size_t>(w)]) return;
       const double overlap = high ? ri - (L[a] - xi[a]) : ri - xi[a];
-      double* const* spring = &WX.a[static_cast<std::size_t>(w * Dim)];
       if (overlap <= 0.0) {
-        bool held = false;
-        for (int c = 0; c < Dim; ++c) held = held || spring[c][i] != 0.0;
-        if (held) {
-          for (int c = 0; c < Dim; ++c) spring[c][i] = 0.0;
+        if (springs) {
+          Vec<Dim>& sp = springs[w];
+          bool held = false;
+          for (int c = 0; c < Dim; ++c) held = held || sp[c] != 0.0;
+          if (held) sp = Vec<Dim>{};
         }
         if constexpr (Law::kRollingHistory) wall_roll_[i * (2 * Dim) + w] = Spin<Dim>{};
         return;
       }
       Vec<Dim> nrm{};
       nrm[a] = high ? 1.0 : -1.0;
-      Vec<Dim> xi_w;
-      for (int c = 0; c < Dim; ++c) xi_w[c] = spring[c][i];
+      Vec<Dim> xi_w = springs ? springs[w] : Vec<Dim>{};
       const double lever = ri - overlap;  // to the contact point on the wall plane
       // Velocity, spin and species are read only here, by the few particles touching a wall.
       const Vec<Dim> v_rel = vel(i) + cross(spin(i) * lever, nrm);
@@ -614,7 +621,11 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
           return Law::template force<Dim>(wall_params_[sw], kin, dt, xi_w);
         }
       }();
-      for (int c = 0; c < Dim; ++c) spring[c][i] = xi_w[c];
+      if (springs) {
+        springs[w] = xi_w;
+      } else if (!WallSprings<Dim>::is_plus_zero(xi_w)) {
+        new_wall_springs_[team_slot().index].push_back({i, w, xi_w});
+      }
       f += cf.f;
       torque += lever * cross(nrm, cf.f_t);
       if constexpr (Law::kRolling) {
@@ -634,6 +645,10 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     } else {
       for (int c = 0; c < 3; ++c) T[c][i] = torque[c];
     }
+  }
+  for (auto& list : new_wall_springs_) {
+    for (const NewWallSpring& s : list) walls_.set(s.i, s.wall, s.xi);
+    list.clear();
   }
   max_overlap_ = max_ov;
   max_overlap_fraction_ = Mixed || n == 0 ? max_frac : max_ov / (2.0 * p_.radius[0]);
@@ -781,6 +796,7 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   }
   p_.permute(keep);
   permute_wall_roll(keep);
+  walls_.permute(keep);
   for (int a = 0; a < Dim; ++a) {
     std::vector<double>& b = build_[static_cast<std::size_t>(a)];
     std::vector<double> nb(keep.size());
@@ -843,6 +859,7 @@ std::size_t DemSolver<Dim>::insert_due() {
     if (list_valid) nbr_.offset.push_back(nbr_.offset.back());
     // Its wall rolling springs start relaxed; the others' stay (a size mismatch would reset them all).
     if (!wall_roll_.empty()) wall_roll_.resize(wall_roll_.size() + 2 * Dim, Spin<Dim>{});
+    walls_.push_back();
     for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)].push_back(x[a]);
     ++feed_.inserted;
     feed_.mass += p_.mass.back();
@@ -906,7 +923,7 @@ double DemSolver<Dim>::kinetic_energy() const {
 
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
-  return State{p_,           nbr_,           build_,        time_,         steps_,       rebuilds_,
+  return State{p_,           nbr_,         walls_,        build_,        time_,         steps_,       rebuilds_,
                need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,
                wall_roll_};
 }
@@ -915,6 +932,9 @@ template <int Dim>
 void DemSolver<Dim>::restore(State s) {
   p_ = std::move(s.particles);
   nbr_ = std::move(s.neighbors);
+  walls_ = std::move(s.walls);
+  if (walls_.size() == 0) walls_.reset(p_.size());  // a state without wall springs: none held
+  if (walls_.size() != p_.size()) throw std::invalid_argument("DemSolver::restore: the wall springs do not match the particles");
   build_ = std::move(s.build);
   time_ = s.time;
   steps_ = s.steps;

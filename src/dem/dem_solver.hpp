@@ -14,6 +14,7 @@
 #include "dem/dem_config.hpp"
 #include "dem/neighbor_list.hpp"
 #include "dem/particle_store.hpp"
+#include "dem/wall_springs.hpp"
 
 namespace fluidbed {
 
@@ -93,11 +94,12 @@ class DemSolver {
   }
   const ContactParams& wall_params(int species) const { return wall_params_[static_cast<std::size_t>(species)]; }
 
-  /// The complete DEM state, storage order and neighbour list included (the wall springs are in the particle
-  /// store), so that a restart continues bit for bit as the uninterrupted run would have.
+  /// The complete DEM state, storage order, neighbour list and wall springs included, so that a restart continues
+  /// bit for bit as the uninterrupted run would have.
   struct State {
     Store particles;
     List neighbors;
+    WallSprings<Dim> walls;  ///< tangential springs against the plane walls, by particle slot
     std::array<std::vector<double>, Dim> build;  ///< positions at the last list build, per axis
     double time = 0.0;
     std::uint64_t steps = 0;
@@ -115,6 +117,7 @@ class DemSolver {
   struct StateView {
     const Store& particles;
     const List& neighbors;
+    const WallSprings<Dim>& walls;
     const std::array<std::vector<double>, Dim>& build;
     double time;
     std::uint64_t steps;
@@ -129,13 +132,15 @@ class DemSolver {
     bool own_sizes;  ///< the particles' sizes are state (has_own_sizes)
   };
   StateView view() const {
-    return {p_,           nbr_,         build_,        time_,          steps_,        rebuilds_, need_rebuild_,
-            time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,        wall_roll_, sized_};
+    return {p_,           nbr_,          walls_,         build_,        time_, steps_,      rebuilds_, need_rebuild_,
+            time_origin_, steps_origin_, removed_count_, removed_mass_, feed_, wall_roll_, sized_};
   }
   /// Whether some particle's size differs from its species' diameter (a size distribution, or a file's sizes).
   bool has_own_sizes() const { return sized_; }
   void restore(State s);
   const List& neighbors() const { return nbr_; }
+  /// The tangential springs against the plane walls.
+  const WallSprings<Dim>& wall_springs() const { return walls_; }
 
   /// Ask for a neighbour-list rebuild before the next force evaluation (e.g. after particles were moved).
   void invalidate_neighbors() { need_rebuild_ = true; }
@@ -195,6 +200,14 @@ class DemSolver {
 
   DemConfig config_;
   Store p_;
+  WallSprings<Dim> walls_;
+  /// Springs of the particles that first touched a wall in the force pass, one list per thread (compute_forces_of).
+  struct NewWallSpring {
+    std::size_t i;
+    int wall;
+    Vec<Dim> xi;
+  };
+  std::vector<std::vector<NewWallSpring>> new_wall_springs_;
   std::vector<ContactParams> pair_params_;
   std::vector<ContactParams> wall_params_;
   /// Eq. 8 per unit square root of mass, eta / sqrt(m_eff), per species pair and per species on a wall, for beds

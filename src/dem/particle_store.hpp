@@ -1,8 +1,9 @@
 #pragma once
 // Structure-of-arrays particle store (AMReX/MFiX-Exa SoA layout): one vector per attribute, so kernels stream
 // through memory and a later MPI/GPU port moves whole arrays. Storage order is free (re-sorted by cell);
-// the global id is the identity of a particle, and every per-particle state (the wall springs included) is an
-// attribute here, so that it travels with the particle through re-sorting and, later, migration.
+// the global id is the identity of a particle, and every per-particle attribute is here, so that it travels with
+// the particle through re-sorting and, later, migration. (The springs against the walls, which few particles hold,
+// are kept apart by the solver: dem/wall_springs.hpp.)
 //
 // The attributes are listed once, in for_each_array; reserve, add, permute, clear and the checkpoint's save and
 // load all go through it, so adding an attribute is one edit. Names per dimension:
@@ -123,9 +124,6 @@ struct ParticleStore : ParticleAxes<Dim> {
   std::vector<double> inv_mass;     ///< 1/kg
   std::vector<double> inv_inertia;  ///< 1/(kg m^2)
   std::vector<double> drag_k;       ///< drag coefficient V_p beta / (1 - eps) of the particle, kg/s
-  /// Tangential spring against each plane wall, component c of wall w at wall_xi[w * Dim + c], m; a wall the
-  /// particle does not touch holds zeros. Per particle, so it is carried by the particle's id.
-  std::array<std::vector<double>, 2 * Dim * Dim> wall_xi;
 
   std::size_t size() const { return id.size(); }
 
@@ -151,7 +149,6 @@ struct ParticleStore : ParticleAxes<Dim> {
   template <class F>
   void for_each_array(F&& f) {
     static constexpr const char* kAxis[3] = {"x", "y", "z"};
-    static constexpr const char* kSide[6] = {"left", "right", "bottom", "top", "back", "front"};
     f(std::string("id"), id, ArrayRole::State);
     f(std::string("species"), species, ArrayRole::State);
     f(std::string("layer"), layer, ArrayRole::State);
@@ -169,12 +166,6 @@ struct ParticleStore : ParticleAxes<Dim> {
     for (int a = 0; a < Dim; ++a) f(std::string("f") + kAxis[a] + "_ext", force_ext(a), ArrayRole::State);
     f(std::string("drag_k"), drag_k, ArrayRole::State);
     for (int a = 0; a < Dim; ++a) f(std::string("ug") + kAxis[a], gas_velocity(a), ArrayRole::State);
-    for (int w = 0; w < 2 * Dim; ++w) {
-      for (int c = 0; c < Dim; ++c) {
-        f(std::string("wall_xi_") + kSide[w] + "_" + kAxis[c], wall_xi[static_cast<std::size_t>(w * Dim + c)],
-          ArrayRole::State);
-      }
-    }
   }
   template <class F>
   void for_each_array(F&& f) const {
@@ -195,7 +186,7 @@ struct ParticleStore : ParticleAxes<Dim> {
   }
 
   /// Append a particle of species s at its diameter s.diameter (`of_diameter` gives a particle its own size): at
-  /// rest by default, forces, drag and wall springs zero.
+  /// rest by default, forces and drag zero.
   void add(std::int64_t id_, std::int32_t species_, const Species& s, Vec<Dim> pos, Vec<Dim> vel = {},
            Spin<Dim> w = {}, std::int32_t layer_ = 0) {
     for_each_array([](const std::string&, auto& a, ArrayRole) { a.emplace_back(); });
@@ -257,15 +248,6 @@ struct ParticleStore : ParticleAxes<Dim> {
       this->omega_y[i] = w.y;
       this->omega_z[i] = w.z;
     }
-  }
-  /// Tangential spring of particle i against wall w.
-  Vec<Dim> wall_spring(std::size_t i, int w) const {
-    Vec<Dim> v;
-    for (int c = 0; c < Dim; ++c) v[c] = wall_xi[static_cast<std::size_t>(w * Dim + c)][i];
-    return v;
-  }
-  void set_wall_spring(std::size_t i, int w, Vec<Dim> v) {
-    for (int c = 0; c < Dim; ++c) wall_xi[static_cast<std::size_t>(w * Dim + c)][i] = v[c];
   }
 
   /// Reorder every attribute so that new slot k holds old slot order[k]; slots that `order` does not name are

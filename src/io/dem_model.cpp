@@ -161,6 +161,14 @@ std::filesystem::path case_relative_path(const std::string& case_file, const std
 
 namespace {
 
+// The checkpoint's name of the spring component c against wall w ("dem/wall_xi_left_x", ...).
+template <int Dim>
+std::string wall_spring_name(int w, int c) {
+  static constexpr const char* kAxis[3] = {"x", "y", "z"};
+  static constexpr const char* kSide[6] = {"left", "right", "bottom", "top", "back", "front"};
+  return std::string("dem/wall_xi_") + kSide[w] + "_" + kAxis[c];
+}
+
 // Writes from the solver's own arrays; what is converted (the list's slots and springs, the sizes) is converted one
 // HDF5 chunk at a time, so a checkpoint needs no array-sized temporary on top of the solver (docs/performance.md,
 // sections 4 and 21).
@@ -174,6 +182,15 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
     p.for_each_array([&](const std::string& name, const auto& a, ArrayRole role) {
       if (role == ArrayRole::State) f.write("dem/" + name, a);
     });
+    // The wall springs, one array per wall and component over every particle (+0 where a particle holds none), as
+    // the store once held them.
+    for (int w = 0; w < 2 * Dim; ++w) {
+      for (int c = 0; c < Dim; ++c) {
+        f.write(wall_spring_name<Dim>(w, c), p.size(), [&s, w, c](std::size_t first, std::size_t n, double* d) {
+          for (std::size_t i = first; i < first + n; ++i) *d++ = s.walls.get(i, w)[c];
+        });
+      }
+    }
     // Particles of their own sizes keep them (the species' diameters restore every other bed, as they always have).
     if (s.own_sizes) {
       f.write("dem/diameter", p.size(), [&p](std::size_t first, std::size_t n, double* d) {
@@ -279,9 +296,23 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
     p.for_each_array([&](const std::string& name, auto& a, ArrayRole role) {
       using T = typename std::decay_t<decltype(a)>::value_type;
       if constexpr (std::is_same_v<T, double>) {
-        if (role == ArrayRole::State && !(flat_walls && name.starts_with("wall_xi_"))) read(name, a);
+        if (role == ArrayRole::State) read(name, a);
       }
     });
+    s.walls.reset(id.size());
+    if (!flat_walls) {
+      for (int w = 0; w < 2 * Dim; ++w) {
+        for (int c = 0; c < Dim; ++c) {
+          std::vector<double> v;
+          read(wall_spring_name<Dim>(w, c).substr(4), v);
+          for (std::size_t i = 0; i < v.size(); ++i) {
+            Vec<Dim> xi = s.walls.get(i, w);
+            xi[c] = v[i];
+            s.walls.set(i, w, xi);
+          }
+        }
+      }
+    }
     for (std::size_t a = 0; a < s.build.size(); ++a) read(std::string(kAxis[a]) + "_build", s.build[a]);
     const auto offset = f.read_int64("dem/nbr_offset");
     const auto partner = f.read_int64("dem/nbr_partner");
@@ -343,7 +374,7 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
     if constexpr (Dim == 2) {
       if (flat_walls) {
         for (std::size_t i = 0; i < n; ++i) {
-          for (int w = 0; w < 4; ++w) p.set_wall_spring(i, w, {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]});
+          for (int w = 0; w < 4; ++w) s.walls.set(i, w, {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]});
         }
       }
     }

@@ -43,8 +43,8 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-/// Bit-for-bit equality of two solver states (every particle attribute in storage order, the wall springs
-/// among them, and the neighbour list).
+/// Bit-for-bit equality of two solver states (every particle attribute in storage order, the neighbour list and
+/// the wall springs).
 void expect_identical(const DemSolver<2>::State& a, const DemSolver<2>::State& b, const char* what) {
   std::vector<std::string> names;
   a.particles.for_each_array([&](const std::string& name, const auto&, ArrayRole) { names.push_back(name); });
@@ -65,6 +65,11 @@ void expect_identical(const DemSolver<2>::State& a, const DemSolver<2>::State& b
   EXPECT_TRUE(same_bits(a.neighbors.offset, b.neighbors.offset)) << what;
   EXPECT_TRUE(same_bits(a.neighbors.partner, b.neighbors.partner)) << what;
   EXPECT_TRUE(same_bits(a.neighbors.history, b.neighbors.history)) << what;
+  ASSERT_EQ(a.walls.size(), b.walls.size()) << what;
+  std::size_t wall_diffs = 0;
+  for (std::size_t i = 0; i < a.walls.size(); ++i)
+    for (int w = 0; w < 4; ++w) wall_diffs += same_bits(std::vector<Vec2>{a.walls.get(i, w)}, std::vector<Vec2>{b.walls.get(i, w)}) ? 0 : 1;
+  EXPECT_EQ(wall_diffs, 0u) << what << ": wall springs";
   EXPECT_EQ(a.time, b.time) << what;
   EXPECT_EQ(a.steps, b.steps) << what;
 }
@@ -133,6 +138,7 @@ TEST(DemDeterminism, StorageOrderAtTheStartDoesNotMatter) {
 DemSolver<2>::State permuted(const DemSolver<2>::State& s, const std::vector<std::size_t>& order) {
   DemSolver<2>::State out = s;
   out.particles.permute(order);
+  out.walls.permute(order);
   for (std::size_t a = 0; a < 2; ++a) {
     for (std::size_t k = 0; k < order.size(); ++k) out.build[a][k] = s.build[a][order[k]];
   }
@@ -163,7 +169,7 @@ std::map<std::pair<std::int64_t, std::int64_t>, Vec2> springs_by_id(const DemSol
       if (norm2(s.neighbors.history[k]) > 0.0) m[{p.id[i], p.id[s.neighbors.partner[k]]}] = s.neighbors.history[k];
     }
     for (int w = 0; w < 4; ++w) {
-      if (norm2(p.wall_spring(i, w)) > 0.0) m[{p.id[i], -1 - w}] = p.wall_spring(i, w);
+      if (norm2(s.walls.get(i, w)) > 0.0) m[{p.id[i], -1 - w}] = s.walls.get(i, w);
     }
   }
   return m;
