@@ -222,7 +222,7 @@ void DemSolver<Dim>::gather_held_springs(bool rolling) {
     const auto i = static_cast<std::size_t>(ii);
     std::size_t c = 0;
     for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) c += held(q) ? 1 : 0;
-    held_offset_[i + 1] = c;
+    held_offset_[i + 1] = static_cast<std::uint32_t>(c);
   }
   for (std::size_t i = 0; i < n; ++i) held_offset_[i + 1] += held_offset_[i];
   const std::size_t m = held_offset_[n];
@@ -269,7 +269,7 @@ void DemSolver<Dim>::link_mirrors() {
     const auto i = static_cast<std::size_t>(ii);
     std::size_t c = 0;
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) c += nbr_.partner[k] > i ? 1 : 0;
-    upper_offset_[i + 1] = c;
+    upper_offset_[i + 1] = static_cast<std::uint32_t>(c);
   }
   for (std::size_t i = 0; i < n; ++i) upper_offset_[i + 1] += upper_offset_[i];
   upper_entry_.resize(upper_offset_[n]);
@@ -395,7 +395,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   }
   const bool release_last = last_valid_ && last_n_ == n;
   const std::uint32_t* partner = nbr_.partner.data();
-  const std::size_t* upper = upper_offset_.data();
+  const std::uint32_t* upper = upper_offset_.data();
   Vec<Dim>* history = nbr_.history.data();
   auto release = [&](std::size_t k, std::size_t km) {
     history[k] = Vec<Dim>{};

@@ -218,8 +218,8 @@ class DemSolver {
   List nbr_;
   std::array<std::vector<double>, Dim> build_;
   // The held springs of the previous list during a rebuild: CSR by old storage slot, the partner's id, the springs
-  // (kept between rebuilds to reuse their memory).
-  std::vector<std::size_t> held_offset_;
+  // (kept between rebuilds to reuse their memory). 32-bit offsets: the list's entries fit (link_mirrors checks).
+  std::vector<std::uint32_t> held_offset_;
   std::vector<std::int64_t> held_partner_id_;
   std::vector<Vec<Dim>> held_history_;
   std::vector<Spin<Dim>> held_rolling_;
@@ -235,7 +235,7 @@ class DemSolver {
   // entries of the pair name it, and each particle then sums the records its entries name, in list order.
   // The half list (built by link_mirrors): particle i's entries of higher-slot partners are
   // upper_entry_[upper_offset_[i] .. upper_offset_[i + 1]), upper_mirror_ the partner's entry of the same pair.
-  std::vector<std::size_t> upper_offset_;
+  std::vector<std::uint32_t> upper_offset_;  // 32-bit, as the entries it counts
   std::vector<std::uint32_t> upper_entry_, upper_mirror_;
   std::size_t linked_entries_ = 0;  ///< list entries when the half list was built
   /// Per entry 2 c + side: the contact record c (0, a zero record, when not in contact) and the side (0 the lower

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <omp.h>
+#include <string>
 
+#include "core/error.hpp"
 #include "core/team.hpp"
 
 namespace fluidbed {
@@ -255,6 +257,12 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
     b = bin_particles(p, cell_size);
     add_cell_ordered_copies(p, b);
   }
+  // Partners a block is first given room for: the last list's mean per particle with a quarter to spare (a bed
+  // changes little between rebuilds), else a guess; append_near doubles a buffer that runs out. Sized so, the kept
+  // buffers hold about the list's own size, not a fixed 8 (2D) or 16 (3D) partners per particle.
+  const std::size_t last = out.offset.size() > 1 ? out.offset.back() : 0;
+  const double per_particle = last > 0 && out.offset.size() == n + 1 ? 1.25 * static_cast<double>(last) / static_cast<double>(n)
+                                                                      : (Dim == 2 ? 4.0 : 8.0);
   out.offset.assign(n + 1, 0);
   // One search pass: each thread fills its own buffer for a contiguous block of particles, and the blocks are
   // joined in block order, so the list is the same for any number of threads.
@@ -269,14 +277,21 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     block[t + 1] = hi;
     std::vector<std::uint32_t>& mine = found[t];
-    mine.resize((hi - lo) * (Dim == 2 ? 8 : 16) + 64);
+    const auto room = static_cast<std::size_t>(per_particle * static_cast<double>(hi - lo)) + 64;
+    if (mine.size() < room) mine.resize(room);
     std::size_t used = 0;
     for (std::size_t i = lo; i < hi; ++i) {
       const std::size_t before = used;
       used = append_near(p, b, i, skin, mine, used);
-      out.offset[i + 1] = used - before;
+      out.offset[i + 1] = static_cast<std::uint32_t>(used - before);  // at most one bin row's particles
     }
     mine.resize(used);
+  }
+  // The prefix sum in 64 bits: a list whose entries do not fit the 32-bit offsets and links is refused.
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < n; ++i) total += out.offset[i + 1];
+  if (total > std::numeric_limits<std::uint32_t>::max()) {
+    throw_simulation_error("neighbour list too long for 32-bit offsets (" + std::to_string(total) + " entries)");
   }
   for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.partner.resize(out.offset[n]);

@@ -15,7 +15,9 @@ namespace fluidbed {
 
 template <int Dim>
 struct NeighborList {
-  std::vector<std::size_t> offset;      ///< CSR: partners of slot i are entries offset[i] .. offset[i+1]
+  /// CSR: partners of slot i are entries offset[i] .. offset[i+1]; 32-bit, as the entries they count (a list of
+  /// more than 2^32 - 1 entries is refused when it is linked).
+  std::vector<std::uint32_t> offset;
   /// Storage slot of the partner (what the force loop reads). Its id, p.id[partner], is the key the contact
   /// history is carried by across rebuilds; it is read from the store, not kept per entry (8 bytes an entry).
   std::vector<std::uint32_t> partner;

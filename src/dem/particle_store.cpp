@@ -19,8 +19,16 @@ void ParticleStore<Dim>::permute(const std::vector<std::size_t>& order) {
       return i64;
     }
   };
+  // After the swap a scratch holds the array's old storage: the integer ones are given back before the first
+  // double array (for_each_array lists the integer arrays first), so at most one old array is held at a time on
+  // top of the store.
   for_each_array([&](const std::string&, auto& a, ArrayRole) {
     auto& scratch = scratch_for(a);
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if constexpr (std::is_same_v<T, double>) {
+      std::vector<std::int32_t>().swap(i32);
+      std::vector<std::int64_t>().swap(i64);
+    }
     scratch.resize(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = a[order[k]];
     a.swap(scratch);

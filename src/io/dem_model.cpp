@@ -6,6 +6,7 @@
 #include <span>
 #include <sstream>
 #include <fmt/format.h>
+#include <limits>
 #include <spdlog/spdlog.h>
 
 #include "analysis/cell_view.hpp"
@@ -318,10 +319,11 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
     const auto partner = f.read_int64("dem/nbr_partner");
     std::array<std::vector<double>, Dim> hist;
     for (int a = 0; a < Dim; ++a) hist[static_cast<std::size_t>(a)] = f.read_double(std::string("dem/nbr_xi_") + kAxis[a]);
-    const auto wall = flat_walls ? f.read_double("dem/wall_xi") : std::vector<double>(8 * id.size());
+    const auto wall = flat_walls ? f.read_double("dem/wall_xi") : std::vector<double>();
     const std::size_t n = id.size();
     bool consistent = offset.size() == n + 1 && offset.front() == 0 &&
-                      static_cast<std::size_t>(offset.back()) == partner.size() && wall.size() == 8 * n;
+                      static_cast<std::size_t>(offset.back()) == partner.size() && (!flat_walls || wall.size() == 8 * n) &&
+                      partner.size() <= std::numeric_limits<std::uint32_t>::max();
     for (const auto& h : hist) consistent = consistent && h.size() == partner.size();
     if (!consistent) {
       throw_input_error(fmt::format("{}: the neighbour list or contact history is inconsistent", f.path().string()));
