@@ -1,9 +1,12 @@
 // fluidbed command line: run, check, report. Maps errors to the exit codes of shared/interface.md.
 #include <CLI/CLI.hpp>
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <iostream>
+#include <string>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -61,14 +64,47 @@ int report(const std::vector<std::string>& dirs, const std::vector<std::string>&
   return 0;
 }
 
+// Tasks other than this program that stay runnable: the fewest of five looks at /proc/loadavg's "running" count
+// (less this process) over 20 ms, so that a program starting beside this one (the shell, a pipe's reader) does not
+// count while a busy one (a build, another simulation) does; -1 when it cannot be read.
+int other_runnable_tasks() {
+  int fewest = -1;
+  for (int look = 0; look < 5; ++look) {
+    if (look > 0) usleep(5000);
+    std::ifstream in("/proc/loadavg");
+    double l1 = 0.0, l5 = 0.0, l15 = 0.0;
+    std::string counts;
+    if (!(in >> l1 >> l5 >> l15 >> counts)) return -1;
+    const auto slash = counts.find('/');
+    if (slash == std::string::npos) return -1;
+    const int others = std::max(0, std::atoi(counts.substr(0, slash).c_str()) - 1);
+    fewest = fewest < 0 ? others : std::min(fewest, others);
+  }
+  return fewest;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Threads that spin while the other core runs the serial gas solve slowed 2-thread runs 2.3 times on the
-  // 2-core machine (docs/performance.md). libgomp reads its wait policy when it loads, so set it and restart
-  // the program once, unless the user chose a policy.
-  if (std::getenv("OMP_WAIT_POLICY") == nullptr) {
+  // How an OpenMP thread waits for the next parallel region (docs/performance.md, "Waiting threads"). A thread
+  // that spins a while hands work over in microseconds instead of a sleep and wake-up each time: on the idle
+  // 2-core machine the paper's DEM case ran 1.45 times and its TFM case 1.2 times faster at 2 threads. A spinning
+  // thread that shares its core with another busy program takes that program's time and waits for its own partner
+  // in turn: with one other busy task the DEM case ran 2.7-3.7 times slower. So threads spin (up to
+  // GOMP_SPINCOUNT = 100000 polls, then sleep) only when no other task is runnable as the program starts, else
+  // they sleep at once (passive). libgomp reads both when it loads, so set them and restart the program once,
+  // unless the user chose either; the run's log says which was taken.
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr) {
+    const int others = other_runnable_tasks();
+    const bool spin = others == 0;
     setenv("OMP_WAIT_POLICY", "passive", 1);
+    setenv("GOMP_SPINCOUNT", spin ? "100000" : "0", 1);
+    setenv("FLUIDBED_WAIT_NOTE",
+           spin ? "threads spin up to 100000 polls before they sleep (no other task was runnable at the start)"
+                : fmt::format("threads sleep when idle ({} other task{} runnable at the start)",
+                              others < 0 ? std::string("?") : std::to_string(others), others == 1 ? " was" : "s were")
+                      .c_str(),
+           1);
     execv("/proc/self/exe", argv);  // returns only on failure: then go on with the default policy
   }
 #ifdef __GLIBC__

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -51,10 +52,16 @@ std::vector<std::string> member_args(const EnsembleOptions& o, const LoadedCase&
   return a;
 }
 
-pid_t spawn(const std::vector<std::string>& args) {
+pid_t spawn(const std::vector<std::string>& args, bool share_cores) {
   const pid_t pid = ::fork();
   if (pid < 0) throw_simulation_error(fmt::format("ensemble: cannot start a member: {}", std::strerror(errno)));
   if (pid == 0) {
+    // Members running side by side share the cores: their threads sleep when idle, unless the user chose how
+    // they wait (apps/fluidbed/main.cpp: a spinning thread on a shared core slows both programs).
+    if (share_cores && std::getenv("FLUIDBED_WAIT_NOTE") != nullptr) {
+      setenv("GOMP_SPINCOUNT", "0", 1);
+      setenv("FLUIDBED_WAIT_NOTE", "threads sleep when idle (an ensemble member among others running at once)", 1);
+    }
     std::vector<char*> argv;
     for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
     argv.push_back(nullptr);
@@ -89,7 +96,7 @@ int run_ensemble(const EnsembleOptions& o) {
   while (next < seeds.size() || !running.empty()) {
     while (next < seeds.size() && running.size() < static_cast<std::size_t>(o.jobs)) {
       const fs::path dir = out / names[next];
-      running[spawn(member_args(o, lc, seeds[next], dir))] = next;
+      running[spawn(member_args(o, lc, seeds[next], dir), o.jobs > 1)] = next;
       log(fmt::format("  {} started", names[next]));
       ++next;
     }

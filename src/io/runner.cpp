@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <csignal>
 #include <filesystem>
 #include <limits>
@@ -488,6 +489,14 @@ class Run {
                                     : PvdCollection(out_ / "particles.pvd"));
     log().info("{}; {} thread{}; t = {:.6g} s to {:.6g} s", model_->describe(), threads_, threads_ == 1 ? "" : "s",
                t_start_, cfg_.run.end_time);
+    if (threads_ > 1) {
+      const char* note = std::getenv("FLUIDBED_WAIT_NOTE");
+      const char* policy = std::getenv("OMP_WAIT_POLICY");
+      const char* spin = std::getenv("GOMP_SPINCOUNT");
+      log().info("OpenMP waiting: {}", note ? std::string(note)
+                                            : fmt::format("OMP_WAIT_POLICY = {}, GOMP_SPINCOUNT = {} (as given)",
+                                                          policy ? policy : "unset", spin ? spin : "unset"));
+    }
   }
 
   void step_until_end() {
