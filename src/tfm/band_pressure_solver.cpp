@@ -166,12 +166,36 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
     x_ = b_;
     // A zero right-hand side (the second P' solve of a TFM step has one) has the answer zero.
     if (std::all_of(b_.begin(), b_.end(), [](double v) { return v == 0.0; })) return;
-    for (int k = 0; k < n_; ++k) {
+    // L y = b by columns, four at a time: the four's own rows first (the triangle, in column order), then each
+    // column's update of the rows below the four, column after column. Every entry takes the same updates in the
+    // same order as one column at a time; the four column passes start on the same row, so each reads what the
+    // one before stored at the same place (a stored vector is read back whole, not from a shifted place).
+    double* y = x_.data();
+    int k = 0;
+    for (; k + 4 <= n_; k += 4) {
+      std::array<const double*, 4> c{};
+      std::array<int, 4> m{};
+      for (int p = 0; p < 4; ++p) {
+        c[static_cast<std::size_t>(p)] = &band_[static_cast<std::size_t>(k + p) * w];
+        m[static_cast<std::size_t>(p)] = std::min(kd_, n_ - 1 - k - p);
+      }
+      std::array<double, 4> yp{y[k], y[k + 1], y[k + 2], y[k + 3]};
+      for (int p = 0; p < 3; ++p)
+        for (int q = p + 1; q < 4 && q - p <= m[static_cast<std::size_t>(p)]; ++q)
+          yp[static_cast<std::size_t>(q)] -= c[static_cast<std::size_t>(p)][q - p] * yp[static_cast<std::size_t>(p)];
+      for (int q = 1; q < 4; ++q) y[k + q] = yp[static_cast<std::size_t>(q)];
+      for (int p = 0; p < 4; ++p) {
+        const double* cp = c[static_cast<std::size_t>(p)] - p;  // cp[r] = L(k + r, k + p)
+        const double v = yp[static_cast<std::size_t>(p)];
+        double* yk = y + k;
+        for (int r = 4; r <= p + m[static_cast<std::size_t>(p)]; ++r) yk[r] -= cp[r] * v;
+      }
+    }
+    for (; k < n_; ++k) {
       const double* ck = &band_[static_cast<std::size_t>(k) * w];
       const int m = std::min(kd_, n_ - 1 - k);
-      const double yk = x_[static_cast<std::size_t>(k)];
-      double* y = &x_[static_cast<std::size_t>(k)];
-      for (int i = 1; i <= m; ++i) y[i] -= ck[i] * yk;
+      const double yk = y[k];
+      for (int i = 1; i <= m; ++i) y[k + i] -= ck[i] * yk;
     }
     for (int k = n_ - 1; k >= 0; --k) {
       const double* ck = &band_[static_cast<std::size_t>(k) * w];

@@ -134,6 +134,9 @@ struct AdvectLine {
   }
 };
 
+// The slot of plane (p, q), p < q, among the planes of cell edges: (0, 1) -> 0, (0, 2) -> 1, (1, 2) -> 2.
+constexpr int edge_plane(int p, int q) { return p + q - 1; }
+
 // Partial elimination of the interphase drag (Syamlal 1998, MFIX): the gas and solids momentum equations of
 // one face are solved together as a 2x2 system, so the drag is fully implicit and never limits dt.
 struct FaceSolve {
@@ -230,6 +233,12 @@ struct TfmSolver<Dim>::Work {
   Field<Dim> rhs_p, p_corr;
   FaceFluxes<Dim> fs, fs_unlimited, fs_corr, fg_shift;
   CellVectorField<Dim> usc;        // solids velocity at cell centres (strain rate)
+  // mu_corner of every interior cell edge, per plane (p, q) with p < q (one plane in 2D, three in 3D): each edge
+  // is shared by the momentum cells of both components around it, so it is computed once a step.
+  std::array<Field<Dim>, Dim * (Dim - 1) / 2> mu_edge;
+  std::array<Field<Dim>, Dim * (Dim - 1) / 2> shear_edge;  // the Eq. 19 shear stress on those edges
+  Field<Dim> div_s;                                         // div u_s of each cell
+  std::array<Field<Dim>, Dim> normal;                       // Eq. 19 normal stress of each cell, per component
   Eigen::VectorXd out_g, out_s;
   std::vector<double> inlet;
   double dense_change = 0.0;
@@ -574,6 +583,41 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
     fill_face_ghosts(w.s0[a]);
     for (FaceFields<Dim>* f : {&w.dg, &w.ds, &w.gs, &w.ss}) (*f)[a].fill(0.0);
   }
+  // The solids stresses (Eq. 19) the momentum cells of both components share: the normal stress of each cell and
+  // the shear stress of each interior cell edge, computed once a step.
+  const IndexBox<Dim>& cells = grid_.domain;
+  const Vec<Dim> h = grid_.h;
+  const FaceFields<Dim>& s0 = w.s0;
+  if (!(w.div_s.box() == cells)) {
+    w.div_s = Field<Dim>(cells, 0);
+    for (Field<Dim>& f : w.normal) f = Field<Dim>(cells, 0);
+  }
+  for_each(cells, [&](const Index<Dim>& cell) {
+    double div = (s0[0][shifted<Dim>(cell, 0, 1)] - s0[0][cell]) / h[0];
+    for (int a = 1; a < Dim; ++a) div += (s0[a][shifted<Dim>(cell, a, 1)] - s0[a][cell]) / h[a];
+    w.div_s[cell] = div;
+    for (int d = 0; d < Dim; ++d)
+      w.normal[d][cell] = 2.0 * mu_s_[cell] * (s0[d][shifted<Dim>(cell, d, 1)] - s0[d][cell]) / h[d] + lambda_s_[cell] * div;
+  });
+  for (int p = 0; p < Dim; ++p)
+    for (int q = p + 1; q < Dim; ++q) {
+      Field<Dim>& mu = w.mu_edge[static_cast<std::size_t>(edge_plane(p, q))];
+      Field<Dim>& shear = w.shear_edge[static_cast<std::size_t>(edge_plane(p, q))];
+      IndexBox<Dim> edges = cells.faces(p).faces(q);
+      if (!(mu.box() == edges)) {
+        mu = Field<Dim>(edges, 0);
+        shear = Field<Dim>(edges, 0);
+      }
+      edges.lo[p] += 1;
+      edges.hi[p] -= 1;
+      edges.lo[q] += 1;
+      edges.hi[q] -= 1;
+      for_each(edges, [&](const Index<Dim>& k) {
+        const double mc = mu_corner(k, p, q);
+        mu[k] = mc;
+        shear[k] = mc * ((s0[p][k] - s0[p][shifted<Dim>(k, q, -1)]) / h[q] + (s0[q][k] - s0[q][shifted<Dim>(k, p, -1)]) / h[p]);
+      });
+    }
   if constexpr (Dim == 2) {
     // The two components read the same inputs and write disjoint outputs.
     side_by_side(two_tasks(static_cast<long>(grid_.domain.count())), [&] { predict_momentum_along<0>(dt); },
@@ -614,15 +658,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
   const Field<Dim>& eps = s_.eps;
   const Field<Dim>& p = s_.p;
   const FaceFields<Dim>& s0 = w.s0;
-  auto div_s = [&](const Index<Dim>& cell) {
-    double div = (s0[0][shifted<Dim>(cell, 0, 1)] - s0[0][cell]) / h[0];
-    for (int a = 1; a < Dim; ++a) div += (s0[a][shifted<Dim>(cell, a, 1)] - s0[a][cell]) / h[a];
-    return div;
-  };
-  // Eq. 19 normal stress of the momentum cell centred on `cell`.
-  auto normal = [&](const Index<Dim>& cell) {
-    return 2.0 * mu_s_[cell] * (s0[d][shifted<Dim>(cell, d, 1)] - s0[d][cell]) / h[d] + lambda_s_[cell] * div_s(cell);
-  };
+  const Field<Dim>& normal = w.normal[d];  // Eq. 19 normal stress of the momentum cell centred on a cell
   // Interior faces of component d and, along the vertical when open, the top face (a ghost pressure keeps P =
   // P_top there).
   IndexBox<Dim> faces = cells.faces(d);
@@ -658,7 +694,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
     const double dpsdx = (p_s_[f] - p_s_[lo]) / h[d];
     // Eq. 19 stress divergence; the Laplacian diagonal is taken implicitly (point-implicit) for stability.
     double diag = 2.0 * (mu_s_[f] + mu_s_[lo]) / (h[d] * h[d]);
-    double visc = (normal(f) - normal(lo)) / h[d];
+    double visc = (normal[f] - normal[lo]) / h[d];
     for (int b = 0; b < Dim; ++b) {
       if (b == d) continue;
       const int pa = std::min(d, b), qa = std::max(d, b);
@@ -676,10 +712,9 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
           }
           continue;
         }
-        const double mc = mu_corner(k, pa, qa);
-        shear[high] = mc * ((s0[pa][k] - s0[pa][shifted<Dim>(k, qa, -1)]) / h[qa] +
-                            (s0[qa][k] - s0[qa][shifted<Dim>(k, pa, -1)]) / h[pa]);
-        diag += mc / (h[b] * h[b]);
+        const auto plane = static_cast<std::size_t>(edge_plane(pa, qa));
+        shear[high] = w.shear_edge[plane][k];
+        diag += w.mu_edge[plane][k] / (h[b] * h[b]);
       }
       visc += (shear[1] - shear[0]) / h[b];
     }
