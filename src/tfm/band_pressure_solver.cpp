@@ -197,17 +197,35 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
       const double yk = y[k];
       for (int i = 1; i <= m; ++i) y[k + i] -= ck[i] * yk;
     }
+    // x = D^-1 y - L^T x by rows from the last. Each row's sum takes the terms of the four answers just found
+    // last, nearest last, from registers: the row waits on the one before it for a multiply, an add and a
+    // subtract only, and reads from memory only answers stored four rows earlier. The farther terms go into four
+    // partial sums in a fixed order (vectorised); the sum rounds the same on every run.
+    double x1 = 0.0, x2 = 0.0, x3 = 0.0, x4 = 0.0;  // x[k + 1] .. x[k + 4]
     for (int k = n_ - 1; k >= 0; --k) {
       const double* ck = &band_[static_cast<std::size_t>(k) * w];
       const int m = std::min(kd_, n_ - 1 - k);
-      const double* z = &x_[static_cast<std::size_t>(k)];
-      // Four partial sums in a fixed order: the dot product vectorises and rounds the same on every run.
-      double s[4] = {0.0, 0.0, 0.0, 0.0};
-      int i = 1;
-      for (; i + 3 <= m; i += 4)
-        for (int l = 0; l < 4; ++l) s[l] += ck[i + l] * z[i + l];
-      for (int l = 0; i <= m; ++i, ++l) s[l] += ck[i] * z[i];
-      x_[static_cast<std::size_t>(k)] = z[0] / ck[0] - ((s[0] + s[1]) + (s[2] + s[3]));
+      const double* z = &y[k];
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+      int i = 5;
+      for (; i + 3 <= m; i += 4) {
+        s0 += ck[i] * z[i];
+        s1 += ck[i + 1] * z[i + 1];
+        s2 += ck[i + 2] * z[i + 2];
+        s3 += ck[i + 3] * z[i + 3];
+      }
+      if (i <= m) s0 += ck[i] * z[i];
+      if (i + 1 <= m) s1 += ck[i + 1] * z[i + 1];
+      if (i + 2 <= m) s2 += ck[i + 2] * z[i + 2];
+      const double c4 = m >= 4 ? ck[4] : 0.0, c3 = m >= 3 ? ck[3] : 0.0, c2 = m >= 2 ? ck[2] : 0.0,
+                   c1 = m >= 1 ? ck[1] : 0.0;
+      const double far = ((s0 + s1) + (s2 + s3)) + ((c4 * x4 + c3 * x3) + c2 * x2);
+      const double xk = z[0] / ck[0] - (far + c1 * x1);
+      y[k] = xk;
+      x4 = x3;
+      x3 = x2;
+      x2 = x1;
+      x1 = xk;
     }
   }
 

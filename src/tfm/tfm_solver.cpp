@@ -486,12 +486,10 @@ void TfmSolver<Dim>::compute_closures_of() {
       const double low = a == kUp ? vg_interstitial(cell) : s_.ug[a][cell];
       rel[a] = usc[a][cell] - 0.5 * (low + s_.ug[a][shifted<Dim>(cell, a, 1)]);
     }
-    double slip;
-    if constexpr (Dim == 2) {
-      slip = std::hypot(rel[0], rel[1]);
-    } else {
-      slip = std::hypot(rel[0], rel[1], rel[2]);
-    }
+    // Slip speeds are far from overflow: the plain root, not hypot's scaled one.
+    double slip2 = rel[0] * rel[0];
+    for (int a = 1; a < Dim; ++a) slip2 += rel[a] * rel[a];
+    const double slip = std::sqrt(slip2);
     // The floor keeps beta / (eps_s rho_s) finite in empty cells.
     beta_c_[cell] = DragLawT::beta(DragInput{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip});
 
