@@ -168,8 +168,22 @@ bool CheckedSparseSolver::bicgstab(const Matrix& a, const Eigen::VectorXd& rhs, 
                                    LinearSolveOutcome& out) {
   using std::abs;
   using std::sqrt;
-  precond_.compute(a);
   take_diagonals(a);
+  // Jacobi: 1 / a_jj, or 1 where the diagonal is absent or zero (Eigen's DiagonalPreconditioner, whose search
+  // for each row's diagonal entry the diagonal layout makes unnecessary).
+  const Eigen::Index n_rows = a.rows();
+  invdiag_.resize(n_rows);
+  const auto d0 = std::find(offsets_.begin(), offsets_.end(), 0);
+  if (by_diagonals_ && d0 != offsets_.end()) {
+    const double* diag = diagonals_.data() + static_cast<std::size_t>(d0 - offsets_.begin()) * static_cast<std::size_t>(n_rows);
+    for (Eigen::Index j = 0; j < n_rows; ++j) invdiag_[j] = diag[j] != 0.0 ? 1.0 / diag[j] : 1.0;
+  } else if (by_diagonals_) {
+    invdiag_.setOnes();
+  } else {
+    Eigen::DiagonalPreconditioner<double> jacobi;
+    jacobi.compute(a);
+    invdiag_ = jacobi.solve(Eigen::VectorXd::Ones(n_rows));
+  }
   const Eigen::Index n = a.cols();
   const Eigen::Index max_iters = max_iterations_ < 0 ? 2 * n : max_iterations_;
   const double tol = tolerance_;
@@ -205,11 +219,11 @@ bool CheckedSparseSolver::bicgstab(const Matrix& a, const Eigen::VectorXd& rhs, 
     }
     const double beta = (rho / rho_old) * (alpha / w);
     p = r + beta * (p - w * v);
-    y = precond_.solve(p);
+    y = invdiag_.array() * p.array();
     multiply(a, y, v);
     alpha = rho / r0.dot(v);
     s = r - alpha * v;
-    z = precond_.solve(s);
+    z = invdiag_.array() * s.array();
     multiply(a, z, t);
     const double tmp = t.squaredNorm();
     w = tmp > 0.0 ? t.dot(s) / tmp : 0.0;

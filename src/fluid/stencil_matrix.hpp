@@ -105,7 +105,7 @@ class CheckedSparseSolver {
 
   double tolerance_ = Eigen::NumTraits<double>::epsilon();  // Eigen's default
   int max_iterations_ = -1;                                 // -1: twice the size, as Eigen
-  Eigen::DiagonalPreconditioner<double> precond_;
+  Eigen::VectorXd invdiag_;  // the Jacobi preconditioner: 1 / a_jj (1 where a_jj is absent or zero)
   Eigen::VectorXd r_, r0_, v_, p_, y_, z_, s_, t_;
 };
 
