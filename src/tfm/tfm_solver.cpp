@@ -634,12 +634,11 @@ double TfmSolver<Dim>::mu_corner(const Index<Dim>& k, int p, int q) const {
   // explicit cross terms cannot bear).
   const Index<Dim> kq = shifted<Dim>(k, q, -1);
   const double m[4] = {mu_s_[shifted<Dim>(kq, p, -1)], mu_s_[kq], mu_s_[shifted<Dim>(k, p, -1)], mu_s_[k]};
-  double inv = 0.0;
-  for (double x : m) {
-    if (x <= 0.0) return 0.0;
-    inv += 1.0 / x;
-  }
-  return 4.0 / inv;
+  // Without branches (dilute and dense cells mix at random along a line): the sum in the same order as a loop
+  // from 0, its value kept unless a cell has none (a NaN goes through, as it did).
+  const double inv = (((0.0 + 1.0 / m[0]) + 1.0 / m[1]) + 1.0 / m[2]) + 1.0 / m[3];
+  const bool none = (m[0] <= 0.0) | (m[1] <= 0.0) | (m[2] <= 0.0) | (m[3] <= 0.0);
+  return none ? 0.0 : 4.0 / inv;
 }
 
 template <int Dim>
