@@ -65,6 +65,21 @@ template <class Law>
   }
 }
 
+/// correction<Law> without branches: the correction is computed and kept unless the data has an extremum there, so
+/// a loop whose upwind sides and extrema fall at random does not mispredict. The same operations as correction in
+/// its order: the same bits.
+template <class Law>
+[[gnu::always_inline]] inline double correction_select(double phi_U, double phi_C, double phi_D) {
+  if constexpr (!Law::high_order) {
+    return 0.0;
+  } else {
+    const double up = phi_C - phi_U;
+    const double down = phi_D - phi_C;
+    const double corr = 0.5 * Law::psi(up / down) * down;
+    return up * down <= 0.0 ? 0.0 : corr;
+  }
+}
+
 /// Face value between cells L (lower index) and R for a face velocity `vel` (positive from L to R);
 /// phi_LL lies before L and phi_RR after R.
 template <class Law>
