@@ -15,9 +15,13 @@ namespace {
 template <int Dim>
 class BandStructuredSolver final : public StructuredSolver<Dim> {
  public:
-  BandStructuredSolver(const IndexBox<Dim>& cells, int band) : cells_(cells), n_(static_cast<int>(cells.count())), kd_(band) {
-    for (int a = 0, s = 1; a < Dim; ++a) {
+  // Rows numbered with the axes in `order`, the first fastest; the band is the stride of the last.
+  BandStructuredSolver(const IndexBox<Dim>& cells, const std::array<int, Dim>& order)
+      : cells_(cells), n_(static_cast<int>(cells.count())) {
+    for (int i = 0, s = 1; i < Dim; ++i) {
+      const int a = order[static_cast<std::size_t>(i)];
       stride_[static_cast<std::size_t>(a)] = s;
+      kd_ = s;
       s *= cells.extent(a);
     }
     const auto n = static_cast<std::size_t>(n_);
@@ -47,27 +51,33 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
                                std::to_string(err) + " (the matrix is singular or not finite)");
       }
     }
-    int r = 0;
-    for_each(cells_, [&](const Index<Dim>& c) { x[c] = x_[static_cast<std::size_t>(r++)]; });
+    for_each(cells_, [&](const Index<Dim>& c) { x[c] = x_[row(c)]; });
   }
 
  private:
-  // The matrix of the problem (rows axis 0 fastest): diagonal and the coupling to the lower neighbour along each
-  // axis (the upper ones follow by symmetry), built as fluid/pressure_correction.cpp's Eigen backend builds it.
+  std::size_t row(const Index<Dim>& c) const {
+    std::size_t r = 0;
+    for (int a = 0; a < Dim; ++a)
+      r += static_cast<std::size_t>(c[a] - cells_.lo[a]) * static_cast<std::size_t>(stride_[static_cast<std::size_t>(a)]);
+    return r;
+  }
+
+  // The matrix of the problem (rows in the solver's order): diagonal and the coupling to the lower neighbour along
+  // each axis (the upper ones follow by symmetry), built as fluid/pressure_correction.cpp's Eigen backend builds it.
   void assemble(const FaceFields<Dim>& coeff, const Field<Dim>& rhs) {
     const IndexBox<Dim>& b = cells_;
-    // An all-Neumann problem pins the first cell: its couplings are dropped from its row and its neighbours'.
+    // An all-Neumann problem pins the first cell (row 0 in every order): its couplings are dropped from its row
+    // and its neighbours'.
     const bool pin = !couples_to_boundary<Dim>(b, coeff);
-    int r = 0;
     for_each(b, [&](const Index<Dim>& c) {
+      const std::size_t r = row(c);
       bool finite = std::isfinite(rhs[c]);
       double diag = 0.0;
       for (int a = 0; a < Dim; ++a) {
         const double lo = coeff[a][c], hi = coeff[a][shifted<Dim>(c, a, 1)];
         finite = finite && std::isfinite(lo) && std::isfinite(hi);
         diag = a == 0 ? lo + hi : diag + lo + hi;
-        low_[static_cast<std::size_t>(a)][static_cast<std::size_t>(r)] =
-            c[a] > b.lo[a] && !(pin && c == shifted<Dim>(b.lo, a, 1)) ? -lo : 0.0;
+        low_[static_cast<std::size_t>(a)][r] = c[a] > b.lo[a] && !(pin && c == shifted<Dim>(b.lo, a, 1)) ? -lo : 0.0;
       }
       if (!finite) {
         throw_non_finite_row<Dim>(c, rhs[c]);
@@ -78,9 +88,8 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
         rb = 0.0;
       }
       if (!(diag > 0.0)) diag = 1.0;  // a cell with no open face: p' is free, keep it at zero
-      diag_[static_cast<std::size_t>(r)] = diag;
-      b_[static_cast<std::size_t>(r)] = rb;
-      ++r;
+      diag_[r] = diag;
+      b_[r] = rb;
     });
   }
 
@@ -276,9 +285,19 @@ std::unique_ptr<StructuredSolver<Dim>> make_band_structured_solver(const Grid<Di
   if (!(grid.owned == grid.domain)) return nullptr;
   for (int a = 0; a < Dim; ++a)
     if (grid.periodic[static_cast<std::size_t>(a)]) return nullptr;
-  const long band = static_cast<long>(grid.domain.count()) / grid.domain.extent(Dim - 1);
-  if (band > kMaxPressureBand) return nullptr;
-  return std::make_unique<BandStructuredSolver<Dim>>(grid.domain, static_cast<int>(band));
+  // The band is the product of every axis but the slowest: the axes in their order (axis 0 fastest) where that
+  // band is narrow enough, else the longest axis slowest (a thin 3D slab: its depth and width within the band).
+  std::array<int, Dim> order{};
+  for (int a = 0; a < Dim; ++a) order[static_cast<std::size_t>(a)] = a;
+  const long count = static_cast<long>(grid.domain.count());
+  if (count / grid.domain.extent(Dim - 1) > kMaxPressureBand) {
+    int longest = Dim - 1;
+    for (int a = 0; a < Dim; ++a)
+      if (grid.domain.extent(a) > grid.domain.extent(longest)) longest = a;
+    std::stable_partition(order.begin(), order.end(), [&](int a) { return a != longest; });
+  }
+  if (count / grid.domain.extent(order[Dim - 1]) > kMaxPressureBand) return nullptr;
+  return std::make_unique<BandStructuredSolver<Dim>>(grid.domain, order);
 }
 
 template std::unique_ptr<StructuredSolver<2>> make_band_structured_solver(const Grid<2>&);

@@ -104,14 +104,23 @@ TEST(BandPressureSolver, PaperGrid2dOpenTop) { check<2>({30, 50}, true); }
 TEST(BandPressureSolver, AllNeumannPinned2d) { check<2>({17, 9}, false); }
 TEST(BandPressureSolver, Thin3dBox) { check<3>({4, 3, 6}, true); }
 
+// Grids whose band with axis 0 fastest is too wide, numbered with the longest axis slowest: a thin slab (band
+// 12 x 2 instead of 12 x 20; pinned: 9 x 3 instead of 9 x 14) and a 2D bed wider than tall (band 10, not 80),
+// whose open top is then the high face of the fastest axis.
+TEST(BandPressureSolver, ThinSlab3dLongestAxisSlowest) { check<3>({12, 20, 2}, true); }
+TEST(BandPressureSolver, ThinSlab3dPinnedLongestAxisSlowest) { check<3>({9, 14, 3}, false); }
+TEST(BandPressureSolver, Wide2dLongestAxisSlowest) { check<2>({80, 10}, true); }
+
 TEST(BandPressureSolver, WideBandIsLeftToTheOtherBackends) {
-  // The 3D slab of cases/tfm3d: band 30 x 50 = 1500.
   Vec<3> e3{};
   for (int a = 0; a < 3; ++a) e3[a] = 1.0;
-  EXPECT_EQ(make_band_structured_solver<3>(Grid<3>::uniform(e3, Index<3>{30, 50, 2}, 0)), nullptr);
+  // The 3D slab of cases/tfm3d: band 30 x 2 = 60 with the height slowest; the column: 16 x 16 = 256 at best.
+  EXPECT_NE(make_band_structured_solver<3>(Grid<3>::uniform(e3, Index<3>{30, 50, 2}, 0)), nullptr);
+  EXPECT_EQ(make_band_structured_solver<3>(Grid<3>::uniform(e3, Index<3>{16, 50, 16}, 0)), nullptr);
   Vec<2> e2{};
   for (int a = 0; a < 2; ++a) e2[a] = 1.0;
-  EXPECT_EQ(make_band_structured_solver<2>(Grid<2>::uniform(e2, Index<2>{kMaxPressureBand + 1, 10}, 0)), nullptr);
+  EXPECT_EQ(make_band_structured_solver<2>(Grid<2>::uniform(e2, Index<2>{kMaxPressureBand + 1, 70}, 0)), nullptr);
+  EXPECT_NE(make_band_structured_solver<2>(Grid<2>::uniform(e2, Index<2>{kMaxPressureBand + 1, 10}, 0)), nullptr);
   EXPECT_NE(make_band_structured_solver<2>(Grid<2>::uniform(e2, Index<2>{kMaxPressureBand, 10}, 0)), nullptr);
 }
 
