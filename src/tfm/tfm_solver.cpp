@@ -786,18 +786,37 @@ void TfmSolver<Dim>::outflow(Eigen::VectorXd& out_g, Eigen::VectorXd& out_s) con
   out_s.resize(n);
   std::array<double, Dim> area{};
   for (int a = 0; a < Dim; ++a) area[a] = face_area(grid_, a);
-  for_each(cells, [&](const Index<Dim>& c) {
-    double og = 0.0, os = 0.0;
+  // Along lines of axis 0 (unit stride in every field, consecutive rows), each axis's four face fields read
+  // through pointers at the line's start: the sums in axis order as cell by cell.
+  const int n0 = cells.extent(0);
+  IndexBox<Dim> lines = cells;
+  lines.hi[0] = lines.lo[0] + 1;
+  for_each(lines, [&](const Index<Dim>& c) {
+    std::array<const double*, Dim> eg{}, ug{}, es{}, us{};
+    std::array<std::ptrdiff_t, Dim> seg{}, sug{}, ses{}, sus{};  // each field's stride to the face above
     for (int a = 0; a < Dim; ++a) {
-      const Index<Dim> hi = shifted<Dim>(c, a, 1);
-      const double tg = area[a] * (w.eg[a][hi] * s_.ug[a][hi] - w.eg[a][c] * s_.ug[a][c]);
-      const double ts = area[a] * (w.es[a][hi] * s_.us[a][hi] - w.es[a][c] * s_.us[a][c]);
-      og = a == 0 ? tg : og + tg;
-      os = a == 0 ? ts : os + ts;
+      eg[a] = w.eg[a].data().data() + w.eg[a].index(c);
+      ug[a] = s_.ug[a].data().data() + s_.ug[a].index(c);
+      es[a] = w.es[a].data().data() + w.es[a].index(c);
+      us[a] = s_.us[a].data().data() + s_.us[a].index(c);
+      seg[a] = static_cast<std::ptrdiff_t>(w.eg[a].stride(a));
+      sug[a] = static_cast<std::ptrdiff_t>(s_.ug[a].stride(a));
+      ses[a] = static_cast<std::ptrdiff_t>(w.es[a].stride(a));
+      sus[a] = static_cast<std::ptrdiff_t>(s_.us[a].stride(a));
     }
-    const int r = cell_row(cells, c);
-    out_g[r] = og;
-    out_s[r] = os;
+    double* og_out = out_g.data() + cell_row(cells, c);
+    double* os_out = out_s.data() + cell_row(cells, c);
+    for (int i = 0; i < n0; ++i) {
+      double og = 0.0, os = 0.0;
+      for (int a = 0; a < Dim; ++a) {
+        const double tg = area[a] * (eg[a][seg[a] + i] * ug[a][sug[a] + i] - eg[a][i] * ug[a][i]);
+        const double ts = area[a] * (es[a][ses[a] + i] * us[a][sus[a] + i] - es[a][i] * us[a][i]);
+        og = a == 0 ? tg : og + tg;
+        os = a == 0 ? ts : os + ts;
+      }
+      og_out[i] = og;
+      os_out[i] = os;
+    }
   });
 }
 
