@@ -52,6 +52,8 @@ inline double psi(Limiter limiter, double r) {
 
 /// High-order correction added to the upwind value on a face: 0.5 psi(r) (phi_D - phi_C),
 /// r = (phi_C - phi_U) / (phi_D - phi_C), C the upwind cell, D the downwind one, U the cell upwind of C.
+/// Computed, then kept or dropped by a select rather than a branch, so that loops whose extrema fall at random do
+/// not mispredict (the discarded value may be inf or NaN; no floating-point trap is enabled).
 template <class Law>
 [[gnu::always_inline]] inline double correction(double phi_U, double phi_C, double phi_D) {
   if constexpr (!Law::high_order) {
@@ -59,23 +61,8 @@ template <class Law>
   } else {
     const double up = phi_C - phi_U;
     const double down = phi_D - phi_C;
-    // A local extremum or a flat region (r <= 0 or undefined): every TVD limiter falls back to upwind.
-    if (up * down <= 0.0) return 0.0;
-    return 0.5 * Law::psi(up / down) * down;
-  }
-}
-
-/// correction<Law> without branches: the correction is computed and kept unless the data has an extremum there, so
-/// a loop whose upwind sides and extrema fall at random does not mispredict. The same operations as correction in
-/// its order: the same bits.
-template <class Law>
-[[gnu::always_inline]] inline double correction_select(double phi_U, double phi_C, double phi_D) {
-  if constexpr (!Law::high_order) {
-    return 0.0;
-  } else {
-    const double up = phi_C - phi_U;
-    const double down = phi_D - phi_C;
     const double corr = 0.5 * Law::psi(up / down) * down;
+    // A local extremum or a flat region (r <= 0 or undefined): every TVD limiter falls back to upwind.
     return up * down <= 0.0 ? 0.0 : corr;
   }
 }

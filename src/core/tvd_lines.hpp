@@ -15,7 +15,7 @@ template <class Law>
                                                        double phi_RR) {
   const bool fwd = vel >= 0.0;
   const double u = fwd ? phi_LL : phi_RR, c = fwd ? phi_L : phi_R, d = fwd ? phi_R : phi_L;
-  return c + correction_select<Law>(u, c, d);
+  return c + correction<Law>(u, c, d);
 }
 
 /// out[i] = face_value(vel[i], phi[i - 2s], phi[i - s], phi[i], phi[i + s]) for 0 <= i < n: the faces of a line

@@ -555,7 +555,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
       if (scheme != ConvectionScheme::Upwind && !half) {
         const bool fwd = fm > 0.0;
         const double phi_far = P[kf + along(fwd ? -2 : 1)];
-        const double cc = tvd::correction_select<Law>(phi_far, fwd ? P[kf - sfd] : P[kf], fwd ? P[kf] : P[kf - sfd]);
+        const double cc = tvd::correction<Law>(phi_far, fwd ? P[kf - sfd] : P[kf], fwd ? P[kf] : P[kf - sfd]);
         b_src += fm * cc;
       }
     }
@@ -566,7 +566,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
       if (scheme != ConvectionScheme::Upwind) {
         const bool fwd = fp > 0.0;
         const double phi_far = P[kf + along(fwd ? -1 : 2)];
-        const double cc = tvd::correction_select<Law>(phi_far, fwd ? P[kf] : P[kf + sfd], fwd ? P[kf + sfd] : P[kf]);
+        const double cc = tvd::correction<Law>(phi_far, fwd ? P[kf] : P[kf + sfd], fwd ? P[kf + sfd] : P[kf]);
         b_src -= fp * cc;
       }
       // Across the component, per axis e: faces at the corners b -/+ 1/2.
@@ -591,7 +591,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
             if (far >= cells.lo[e] && far < cells.hi[e]) {
               const double phi_far = P[kf + (far - b) * sfe];
               const double cc =
-                  tvd::correction_select<Law>(phi_far, fwd ? P[kf - sfe] : P[kf], fwd ? P[kf] : P[kf - sfe]);
+                  tvd::correction<Law>(phi_far, fwd ? P[kf - sfe] : P[kf], fwd ? P[kf] : P[kf - sfe]);
               b_src += fs * cc;
             }
           }
@@ -610,7 +610,7 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
             if (far >= cells.lo[e] && far < cells.hi[e]) {
               const double phi_far = P[kf + (far - b) * sfe];
               const double cc =
-                  tvd::correction_select<Law>(phi_far, fwd ? P[kf] : P[kf + sfe], fwd ? P[kf + sfe] : P[kf]);
+                  tvd::correction<Law>(phi_far, fwd ? P[kf] : P[kf + sfe], fwd ? P[kf + sfe] : P[kf]);
               b_src -= fn * cc;
             }
           }
