@@ -67,22 +67,23 @@ struct AdvectLine {
   void run(tvd::Limiter limiter, const FaceFields<Dim>& vel, const Grid<Dim>& g, const Index<Dim>& f, double* adv) {
     const Field<Dim>& u = vel[d];
     const double* pu = u.data().data() + u.index(f);
-    // Velocity of the momentum cells' faces along axis a on this line: vl[i] (the low face of face i's cell) for
-    // i in [first, last).
-    auto low_velocity = [&](int a, int first, int last, double* vl) {
+    // Velocity of the momentum cells' faces along axis a on the line starting at face `line`: vl[i] (the low face
+    // of face i's cell) for i in [0, count). On the line one step up along a it gives this line's high faces.
+    auto low_velocity = [&](int a, const Index<Dim>& line, int count, double* vl) {
       if (a == d) {
+        const double* pl = u.data().data() + u.index(line);
         const auto su = static_cast<std::ptrdiff_t>(u.stride(a));
-        for (int i = first; i < last; ++i) vl[i - first] = 0.5 * (pu[i - su] + pu[i]);
+        for (int i = 0; i < count; ++i) vl[i] = 0.5 * (pl[i - su] + pl[i]);
       } else {
         const Field<Dim>& v = vel[a];
-        const double* pv = v.data().data() + v.index(f);
+        const double* pv = v.data().data() + v.index(line);
         const auto sd = static_cast<std::ptrdiff_t>(v.stride(d));
-        for (int i = first; i < last; ++i) vl[i - first] = 0.5 * (pv[i - sd] + pv[i]);
+        for (int i = 0; i < count; ++i) vl[i] = 0.5 * (pv[i - sd] + pv[i]);
       }
     };
     // Axis 0: the faces of cells i - 1 | i for i = 0 .. n.
     {
-      low_velocity(0, 0, n + 1, v0.data());
+      low_velocity(0, f, n + 1, v0.data());
       tvd::face_fluxes(limiter, n + 1, v0.data(), pu, static_cast<std::ptrdiff_t>(u.stride(0)), f0.data());
       const double h = g.h[0];
       for (int i = 0; i < n; ++i) {
@@ -90,32 +91,21 @@ struct AdvectLine {
         div[i] = (v0[i + 1] - v0[i]) / h;
       }
     }
-    Index<Dim> next_prev = f;
     for (int a = 1; a < Dim; ++a) {
       const auto su = static_cast<std::ptrdiff_t>(u.stride(a));
       // The high face of this line's cells is the low face of the next line's: velocity and flux at the line
       // shifted by one along a.
       Index<Dim> up = f;
       ++up[a];
-      {
-        const double* pu_up = pu + su;
-        const Field<Dim>& v = vel[a];
-        if (a == d) {
-          for (int i = 0; i < n; ++i) v_hi[i] = 0.5 * (pu_up[i - su] + pu_up[i]);
-        } else {
-          const double* pv = v.data().data() + v.index(up);
-          const auto sd = static_cast<std::ptrdiff_t>(v.stride(d));
-          for (int i = 0; i < n; ++i) v_hi[i] = 0.5 * (pv[i - sd] + pv[i]);
-        }
-        tvd::face_fluxes(limiter, n, v_hi.data(), pu_up, su, f_hi.data());
-      }
+      low_velocity(a, up, n, v_hi.data());
+      tvd::face_fluxes(limiter, n, v_hi.data(), pu + su, su, f_hi.data());
       Index<Dim> below = f;
       --below[a];
       if (a == 1 && has_prev && prev == below) {
         v_lo.swap(v1_prev);
         f_lo.swap(f1_prev);
       } else {
-        low_velocity(a, 0, n, v_lo.data());
+        low_velocity(a, f, n, v_lo.data());
         tvd::face_fluxes(limiter, n, v_lo.data(), pu, su, f_lo.data());
       }
       const double h = g.h[a];
@@ -128,7 +118,7 @@ struct AdvectLine {
         f1_prev.swap(f_hi);
       }
     }
-    prev = next_prev;
+    prev = f;
     has_prev = true;
     for (int i = 0; i < n; ++i) adv[i] = adv[i] - pu[i] * div[i];
   }
