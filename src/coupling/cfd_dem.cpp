@@ -5,7 +5,10 @@
 #include <numbers>
 #include <type_traits>
 
+#include <fmt/format.h>
+
 #include "coupling/voidage.hpp"
+#include "core/error.hpp"
 #include "fluid/drag.hpp"
 
 namespace fluidbed {
@@ -13,7 +16,7 @@ namespace fluidbed {
 template <int Dim>
 CfdDemSimulation<Dim>::CfdDemSimulation(DemSolver<Dim> dem, std::optional<GasSolver<Dim>> gas, CouplingConfig coupling)
     : dem_(std::move(dem)), gas_(std::move(gas)), coupling_(coupling) {
-  depth_ = coupling_.depth > 0.0 ? coupling_.depth : dem_.config().species[0].diameter;
+  depth_ = coupling_.depth > 0.0 ? coupling_.depth : largest_diameter();
   if (gas_) {
     const IndexBox<Dim>& box = gas_->grid().owned;
     for (Field<Dim>* f : {&eps_, &eps_gas_old_, &eps_gas_, &beta_}) *f = Field<Dim>(box, 0);
@@ -43,7 +46,32 @@ void CfdDemSimulation<Dim>::deposit() {
   // beta) and the K-weighted mean particle velocity, so that the gas receives what the particles feel (Newton's
   // third law).
   deposition_.deposit(dem_.particles(), weights_, g, depth_, DepositedFields<Dim>{&eps_, &us_, &beta_, &us_gas_});
+  refuse_negative_voidage();
   clip_voidage();
+}
+
+// A cell holding more particle volume than it has is not a dense bed but a wrong volume basis (a 2D slab thinner
+// than its spheres, a cell smaller than a particle); clipping it to eps_min would hide a drag several times the
+// bed's weight, so the run stops and says where.
+template <int Dim>
+void CfdDemSimulation<Dim>::refuse_negative_voidage() const {
+  const std::vector<double>& e = eps_.data();
+  const auto low = std::min_element(e.begin(), e.end());
+  if (low == e.end() || *low >= 0.0) return;
+  const auto bad = std::count_if(e.begin(), e.end(), [](double v) { return v < 0.0; });
+  std::string basis = Dim == 2 ? fmt::format("the 2D slab of coupling.depth = {} m", depth_) : std::string("the cell volume");
+  throw_simulation_error(fmt::format(
+      "at t = {} s the voidage is {:.4g} (below zero) in {} of {} gas cells: the particles there hold more volume "
+      "than {} gives them; the slab must be at least as deep as the largest particle ({} m) and a cell wider than "
+      "a particle", time(), *low, bad, e.size(), basis, largest_diameter()));
+}
+
+template <int Dim>
+double CfdDemSimulation<Dim>::largest_diameter() const {
+  const ParticleStore<Dim>& p = dem_.particles();
+  double r = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) r = std::max(r, p.radius[i]);
+  return 2.0 * r;
 }
 
 template <int Dim>

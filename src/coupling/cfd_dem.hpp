@@ -60,6 +60,8 @@ class CfdDemSimulation {
  private:
   /// The voidage the gas and the drag see: the counted one clipped to [eps_min, 1].
   void clip_voidage();
+  void refuse_negative_voidage() const;
+  double largest_diameter() const;
   void deposit();
   void update_particle_forces();
 
