@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <optional>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -100,11 +102,75 @@ std::pair<double, double> read_contact_law(CaseReader& r, DemConfig& dem) {
                                "rolling model (Ai et al. 2011 Eq. 16)", R::non_negative());
   m.impact_speed = r.number("contact.impact_speed", 1.0, "m/s", "impact speed at which a Hertz contact's duration "
                             "is judged (default time step and its check; t_c ~ v^(-1/5))", R::positive());
-  m.wall_material.youngs_modulus = r.number("contact.wall_youngs_modulus", 7e10, "Pa", "Young's modulus of the walls "
-                                            "(Hertz, Mindlin)", R::positive());
-  m.wall_material.poisson_ratio = r.number("contact.wall_poisson_ratio", 0.25, "", "Poisson ratio of the walls",
-                                           R::Range{-1.0, 0.5, true, false});
+  // Walls as stiff as the stiffest particles unless given: a default of its own would set the wall contacts'
+  // duration, and so the DEM step, without the user's say.
+  ElasticMaterial stiffest = dem.material_of(0);
+  for (const ElasticMaterial& e : dem.material) {
+    if (e.youngs_modulus > stiffest.youngs_modulus) stiffest = e;
+  }
+  m.wall_material.youngs_modulus = r.number("contact.wall_youngs_modulus", stiffest.youngs_modulus, "Pa",
+                                            "Young's modulus of the walls (Hertz, Mindlin)", R::positive());
+  r.describe_default("contact.wall_youngs_modulus", "the stiffest species' youngs_modulus");
+  m.wall_material.poisson_ratio = r.number("contact.wall_poisson_ratio", stiffest.poisson_ratio, "",
+                                           "Poisson ratio of the walls", R::Range{-1.0, 0.5, true, false});
+  r.describe_default("contact.wall_poisson_ratio", "the stiffest species' poisson_ratio");
   return {mu_r, mu_rw};
+}
+
+// Keys the chosen contact law needs or ignores. Hertz and Mindlin take their stiffness from the particles'
+// moduli, which set the DEM step (t_c ~ E^(-2/5)): a default there would choose the cost of the run (glass's 7e10
+// Pa: some 40 times the steps of a softened 1e7 Pa), so each species gives its own. Keys the law does not read
+// are accepted with a note, so a user sees they change nothing.
+void check_contact_keys(CaseReader& r, CaseConfig& c) {
+  const ContactModelConfig& m = c.dem.contact;
+  const bool hertz = m.normal == NormalModel::Hertz;
+  const bool elastic = hertz || m.tangential == TangentialModel::Mindlin;
+  const std::string law = hertz ? "contact.normal = \"hertz\"" : "contact.tangential = \"mindlin\"";
+  for (std::size_t s = 0; s < c.dem.n_species(); ++s) {
+    const std::string key = fmt::format("species[{}].youngs_modulus", s);
+    if (elastic && !r.has(key)) {
+      const DemConfig soft = [&] {
+        DemConfig d = c.dem;
+        for (ElasticMaterial& e : d.material) e.youngs_modulus = 1e7;
+        d.contact.wall_material.youngs_modulus = 1e7;
+        return d;
+      }();
+      r.fail(key, fmt::format("{} takes the contact stiffness from each species' Young's modulus: give it (glass "
+                              "6e10-7e10 Pa, sand 7e10 Pa; CFD-DEM of bubbling beds often softens it to 1e7-1e8 Pa). "
+                              "It sets the DEM step: the default step would be {:g} s at 7e10 Pa, {:g} s at 1e7 Pa",
+                              law, default_dem_time_step(c.dem), default_dem_time_step(soft)));
+    }
+  }
+  if (!elastic) {
+    std::vector<std::string> unused;
+    for (std::size_t s = 0; s < c.dem.n_species(); ++s) {
+      for (const char* k : {"youngs_modulus", "poisson_ratio"}) {
+        if (r.has(fmt::format("species[{}].{}", s, k))) unused.push_back(fmt::format("species[{}].{}", s, k));
+      }
+    }
+    for (const char* k : {"contact.wall_youngs_modulus", "contact.wall_poisson_ratio"}) {
+      if (r.has(k)) unused.push_back(k);
+    }
+    if (!unused.empty()) {
+      c.notes.push_back(fmt::format("{}: read by the Hertz and Mindlin laws only; this case's linear springs "
+                                    "(contact.stiffness) do not use {}", fmt::join(unused, ", "),
+                                    unused.size() > 1 ? "them" : "it"));
+    }
+  }
+  if (hertz && r.has("contact.stiffness")) {
+    c.notes.push_back("contact.stiffness: the linear spring's; contact.normal = \"hertz\" takes its stiffness from the "
+                      "species' youngs_modulus and does not use it");
+  }
+  if (m.rolling != RollingModel::None) {
+    bool any = false;
+    for (const InteractionParams& p : c.dem.pair) any = any || p.rolling_friction > 0.0;
+    for (const InteractionParams& p : c.dem.wall) any = any || p.rolling_friction > 0.0;
+    if (!any) {
+      c.notes.push_back(fmt::format("contact.rolling = \"{}\" with a rolling friction of 0 for every pair and wall: "
+                                    "the rolling model resists nothing (contact.rolling_friction sets mu_r)",
+                                    to_string(m.rolling)));
+    }
+  }
 }
 
 // The size of one species' particles: a fixed diameter (the paper), or a distribution of the randomly placed ones
@@ -308,7 +374,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
                            "number fraction of the randomly placed particles", R::between(0.0, 1.0));
     // Elastic constants: read by the Hertz and Mindlin contact laws only (contact.normal, contact.tangential).
     c.dem.material[s].youngs_modulus = r.number(p + "youngs_modulus", 7e10, "Pa", "Young's modulus of the particles "
-                                                "(Hertz, Mindlin)", R::positive());
+                                                "(Hertz, Mindlin: required there)", R::positive());
     c.dem.material[s].poisson_ratio = r.number(p + "poisson_ratio", 0.25, "", "Poisson ratio of the particles",
                                                R::Range{-1.0, 0.5, true, false});
   }
@@ -346,6 +412,7 @@ void read_case(CaseReader& r, CaseConfig& c) {
     c.dem.pair[static_cast<std::size_t>(a) * ns + static_cast<std::size_t>(b)] = ip;
     c.dem.pair[static_cast<std::size_t>(b) * ns + static_cast<std::size_t>(a)] = ip;
   }
+  check_contact_keys(r, c);
 
   // [dem]
   const bool dt_given = r.has("dem.time_step");
@@ -687,6 +754,46 @@ InletSchedule read_schedule(CaseReader& r, const std::string& p, const std::stri
   return s;
 }
 
+// The output intervals a model step must divide for every row and frame to fall on k * interval
+// (docs/output-format.md): frames, monitor rows and periodic checkpoints.
+std::vector<std::pair<const char*, double>> output_intervals(const OutputConfig& o) {
+  std::vector<std::pair<const char*, double>> v{{"output.interval", o.interval},
+                                                {"output.monitor_interval", o.monitor_interval}};
+  if (o.checkpoint_interval > 0.0) v.emplace_back("output.checkpoint_interval", o.checkpoint_interval);
+  return v;
+}
+
+// The number of DEM steps of `dt` an interval holds, when it is a whole number.
+std::optional<std::int64_t> whole_steps(double interval, double dt) {
+  const double n = interval / dt;
+  if (!(n >= 1.0) || std::abs(n - std::round(n)) > 1e-6 * n) return std::nullopt;
+  return std::llround(n);
+}
+
+// The most DEM steps per gas step, at most `most`, whose gas step divides every output interval that is a whole
+// number of DEM steps (the derived DEM step is rounded so that decimal intervals are).
+int substeps_dividing_outputs(const OutputConfig& o, double dt, int most) {
+  std::int64_t common = 0;
+  for (const auto& [key, interval] : output_intervals(o)) {
+    if (const auto n = whole_steps(interval, dt)) common = std::gcd(common, *n);
+  }
+  if (common == 0) return most;
+  for (int n = most; n > 1; --n) {
+    if (common % n == 0) return n;
+  }
+  return 1;
+}
+
+// Rows and frames of an interval the model step does not divide fall on the first step after each instant.
+void note_outputs_between_steps(CaseConfig& c, double step) {
+  for (const auto& [key, interval] : output_intervals(c.output)) {
+    if (!whole_steps(interval, step)) {
+      c.notes.push_back(fmt::format("{} = {:g} s is not a whole number of model steps ({:g} s): its outputs fall on "
+                                    "the first step after each multiple of it, not on the multiple", key, interval, step));
+    }
+  }
+}
+
 void read_gas(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
@@ -965,9 +1072,20 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     }
     cc.depth = c.domain.depth;
   } else {
-    cc.depth = r.number("coupling.depth", c.model == Model::Dem ? c.dem.species[0].diameter : 0.004, "m",
+    // A monolayer's slab is as deep as its largest sphere, whatever the order the species are listed in.
+    double d_largest = 0.0;
+    if (c.model == Model::Dem) {
+      for (const Species& sp : c.dem.species) d_largest = std::max(d_largest, sp.d_max());
+    }
+    cc.depth = r.number("coupling.depth", c.model == Model::Dem ? d_largest : 0.004, "m",
                         "bed depth that turns particle volume into a volume fraction (one diameter: a monolayer); "
                         "2D only (3D: domain.depth)", R::positive());
+    r.describe_default("coupling.depth", "the largest particle diameter of any species");
+    if (c.model == Model::Dem && cc.depth < d_largest * (1.0 - 1e-12)) {
+      c.notes.push_back(fmt::format("coupling.depth = {:g} m is thinner than the largest particle ({:g} m): its spheres "
+                                    "hold more volume per cell than a slab their size; a packed layer of them may "
+                                    "reach a voidage below zero, which stops the run", cc.depth, d_largest));
+    }
   }
   cc.eps_min = r.number("coupling.eps_min", 0.3, "", "smallest voidage the gas and the drag see", R::Range{0.0, 1.0, true, true});
   const bool substeps_derived = c.model == Model::Dem && !r.has("dem.time_step") && !r.has("coupling.dem_substeps");
@@ -986,7 +1104,8 @@ void read_gas(CaseReader& r, CaseConfig& c) {
       stokes = std::min(stokes, sp.density * sp.diameter * sp.diameter / (18.0 * g.mu_g));
     }
     gas_dt_max = std::min(courant, 0.5 * stokes);
-    substeps_default = static_cast<int>(std::clamp(std::floor(gas_dt_max / c.dem.dt * (1.0 + 1e-12)), 1.0, 1000.0));
+    const int most = static_cast<int>(std::clamp(std::floor(gas_dt_max / c.dem.dt * (1.0 + 1e-12)), 1.0, 1000.0));
+    substeps_default = substeps_dividing_outputs(c.output, c.dem.dt, most);
   }
   cc.dem_substeps = static_cast<int>(r.integer("coupling.dem_substeps", substeps_default,
                                                "DEM steps per gas step; default 1 when dem.time_step is given, else "
@@ -997,8 +1116,10 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     r.describe_default("coupling.dem_substeps", "1, or derived with dem.time_step");
     c.notes.push_back(fmt::format("coupling.dem_substeps not given: {} DEM steps per gas step (gas step {:g} s, at "
                                   "most {:.3g} s for a Courant number of 0.5 on the inflow and half the Stokes time "
-                                  "of the smallest particle)", cc.dem_substeps, cc.dem_substeps * c.dem.dt, gas_dt_max));
+                                  "of the smallest particle, and a whole fraction of the output intervals)",
+                                  cc.dem_substeps, cc.dem_substeps * c.dem.dt, gas_dt_max));
   }
+  if (c.model == Model::Dem) note_outputs_between_steps(c, c.gas_enabled ? c.dem.dt * cc.dem_substeps : c.dem.dt);
   const std::string law = r.string("coupling.drag_law", "ergun-wen-yu", "gas-particle drag law (docs/model.md): the "
                                    "paper's Eqs. 13-14, Gidaspow (1994), Di Felice (1994), Beetstra et al. (2007) or "
                                    "Koch & Hill (2001); CFD-DEM and TFM",
@@ -1168,8 +1289,8 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) r.set_override(o);
   LoadedCase out;
   read_case(r, out.config);
+  read_output(r, out.config);  // before the gas: a derived gas step divides the output intervals
   read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
-  read_output(r, out.config);
   read_probes(r, out.config);
   read_averages(r, out.config);
   r.reject_unknown_keys();

@@ -149,6 +149,33 @@ expect 0 "note: settle.cache .*cache3.csv will not be reused \(no record\)" "a s
 bad particle_id_twice "twice.csv: row 4, column 1: duplicate id 4" 'particles.source = "file"' \
   "particles.file = \"$WORK/twice.csv\""
 
+# Issue 27: a law's required property is asked for (item 3); a particle deeper than the box blames the depth
+# (item 10); a slab thinner than its spheres stops the run at its first voidage below zero (item 1).
+bad hertz_without_modulus 'species\[0\].youngs_modulus: contact.normal = "hertz" takes the contact stiffness.*at 7e10 Pa' \
+  'contact.normal = "hertz"'
+bad particle_deeper_than_box "domain.depth: 0.002 m is shallower than a particle of species\[0\].diameter = 0.004 m" \
+  "case.dimension = 3" "domain.depth = 0.002" "grid.cell_depth = 0.002"
+cat > "$WORK/thin_slab.toml" <<'TOML'
+case.name = "thin-slab"
+case.end_time = 0.001
+domain.width = 0.04
+domain.height = 0.1
+species = [{diameter = 0.002}]
+particles.count = 150
+particles.fill_height = 0.03
+settle.enabled = false
+grid.cell_width = 0.01
+grid.cell_height = 0.01
+inlet.velocity = 0.5
+inlet.jet = []
+coupling.depth = 0.0002
+output.checkpoint_interval = 0.0
+TOML
+expect 0 "warning: coupling.depth = 0.0002 m is too thin for the largest particles" "check warns of a slab thinner than its spheres" \
+  "$FLUIDBED" check "$WORK/thin_slab.toml"
+expect 3 "at t = 0 s the voidage is -[0-9.]+ \(below zero\) in [0-9]+ of 40 gas cells.*coupling.depth = 0.0002 m" \
+  "a voidage below zero stops the run" "$FLUIDBED" run "$WORK/thin_slab.toml" --quiet --out "$WORK/thin_slab"
+
 # Output folder that cannot be written.
 touch "$WORK/not-a-folder"
 expect 2 "cannot" "unwritable output folder" "$FLUIDBED" run "$WORK/ok.toml" --quiet --out "$WORK/not-a-folder/out"

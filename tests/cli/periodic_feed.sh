@@ -95,7 +95,7 @@ output.particles_csv = true
 output.checkpoint_interval = 0.0
 TOML
 expect 0 "periodic axes +x and z" "3D: check reports x and z periodic" "$FLUIDBED" check "$WORK/feed3d.toml"
-expect 0 "depth, periodic in z" "3D: check says the depth is periodic" "$FLUIDBED" check "$WORK/feed3d.toml"
+expect 0 "depth, periodic in x and z" "3D: check says both x and z are periodic" "$FLUIDBED" check "$WORK/feed3d.toml"
 run_ok "3D periodic feed: 1 thread" run "$WORK/feed3d.toml" --out "$WORK/one3d" --threads 1
 run_ok "3D periodic feed: 2 threads" run "$WORK/feed3d.toml" --out "$WORK/two3d" --threads 2
 same_results "3D, 1 vs 2 threads" "$WORK/one3d" "$WORK/two3d"
