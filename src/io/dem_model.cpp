@@ -11,6 +11,7 @@
 
 #include "analysis/cell_view.hpp"
 #include "analysis/layer_tracers.hpp"
+#include "fluid/gas_boundary.hpp"
 #include "analysis/mixing_index.hpp"
 #include "coupling/cfd_dem.hpp"
 #include "core/error.hpp"
@@ -506,7 +507,9 @@ class DemModel final : public ModelRun {
       // (2D: per metre of depth, as mass_in).
       double bottom = config_.domain.width;
       if constexpr (Dim == 3) bottom *= config_.domain.depth;
-      v.back() = r.mass_in / (config_.gas.rho_g * bottom);
+      // Before the first gas step (the row at t = 0), the schedules' value at that time.
+      v.back() = sim_.gas_steps() == 0 ? inlet_mean_velocity(config_.gas.boundary, sim_.gas().grid(), sim_.time())
+                                       : r.mass_in / (config_.gas.rho_g * bottom);
       v[1] = sim_.gas().pressure_drop();
       v[3] = r.mass_residual;
       v[5] = r.mass_balance_relative;

@@ -19,6 +19,7 @@
 #include <spdlog/spdlog.h>
 #include <sys/file.h>
 #include <unistd.h>
+#include <variant>
 
 #include "analysis/bed_surface.hpp"
 #include "analysis/bubble_tracker.hpp"
@@ -151,21 +152,62 @@ BubbleTracker::State load_bubble_state(const Hdf5File& f) {
   return s;
 }
 
-void save_tracers(Hdf5File& f, const CellTracers& t) {
-  f.create_group("tracers");
-  f.write("tracers/id", t.id);
-  f.write("tracers/x", t.x);
-  f.write("tracers/y", t.y);
-  f.write("tracers/layer", t.layer);
+// The layer tracer balls (the paper's Fig. 4b/c) of a 2D or a 3D run.
+using TracerBalls = std::variant<BallTracers<2>, BallTracers<3>>;
+
+template <int Dim>
+CellGeometry<Dim> view_geometry(const FieldView& fv) {
+  CellGeometry<Dim> g;
+  for (int a = 0; a < Dim; ++a) {
+    const auto k = static_cast<std::size_t>(a);
+    g.n[a] = fv.n[k];
+    g.h[a] = fv.h[k];
+    g.origin[a] = fv.origin[k];
+  }
+  return g;
 }
 
-CellTracers load_tracers(const Hdf5File& f, const Grid2& grid) {
+// Balls over the bed of the initial voidage, one per cell below its surface; none without a bed.
+template <int Dim>
+std::optional<TracerBalls> fresh_tracers(const FieldView& fv, int layers) {
+  const CellGeometry<Dim> geo = view_geometry<Dim>(fv);
+  const double h = fv.eps ? bed_surface_height<Dim>(CellView<Dim>{geo, fv.eps}).value_or(0.0) : 0.0;
+  if (!(h > 0.0)) return std::nullopt;
+  return TracerBalls(std::in_place_type<BallTracers<Dim>>, geo, h, layers);
+}
+
+void save_tracers(Hdf5File& f, const TracerBalls& balls) {
+  std::visit([&](const auto& t) {
+    f.create_group("tracers");
+    f.write("tracers/id", t.id);
+    f.write("tracers/x", t.x);
+    f.write("tracers/y", t.y);
+    if (!t.z.empty()) f.write("tracers/z", t.z);
+    f.write("tracers/layer", t.layer);
+  }, balls);
+}
+
+template <int Dim>
+TracerBalls load_tracers(const Hdf5File& f, const FieldView& fv) {
   try {
-    return CellTracers(grid, f.read_int64("tracers/id"), f.read_double("tracers/x"), f.read_double("tracers/y"),
-                       f.read_int32("tracers/layer"));
+    std::array<std::vector<double>, Dim> pos;
+    pos[0] = f.read_double("tracers/x");
+    pos[1] = f.read_double("tracers/y");
+    if constexpr (Dim == 3) pos[2] = f.read_double("tracers/z");
+    return TracerBalls(std::in_place_type<BallTracers<Dim>>, view_geometry<Dim>(fv), f.read_int64("tracers/id"),
+                       std::move(pos), f.read_int32("tracers/layer"));
   } catch (const Error& e) {
     throw_input_error(fmt::format("{}: {}", f.path().string(), e.what()));
   }
+}
+
+// One step of the balls with the model's solids velocity (cell centres, every component).
+void advance_tracers(TracerBalls& balls, const FieldView& fv, double dt) {
+  std::visit([&]<int Dim>(BallTracers<Dim>& t) {
+    std::array<CellView<Dim>, Dim> u;
+    for (int a = 0; a < Dim; ++a) u[static_cast<std::size_t>(a)] = CellView<Dim>{view_geometry<Dim>(fv), fv.us[static_cast<std::size_t>(a)]};
+    t.advance(u, dt);
+  }, balls);
 }
 
 const char* model_key(Model m) { return m == Model::Tfm ? "tfm" : "dem"; }
@@ -412,22 +454,29 @@ class Run {
       checkpoints_.next = 1;  // none at t = 0
     }
     const FieldView fv = model_->fields();
-    // The cell tracers follow the 2D solids field only; the bubble tracker works in either dimension.
-    const bool planar = fv.has_grid() && fv.dimension == 2;
-    if (planar && restart_) {
+    // The cell tracers follow the solids field of either dimension.
+    const bool moved = fv.has_grid() && fv.has_solids_velocity();
+    const bool three_d = fv.dimension == 3;
+    if (moved && restart_) {
       // The balls and their colours as saved: recolouring them from the bed at the restart time would move them
       // to other layers.
       if (restart_file_->has("tracers/id")) {
-        tracers_.emplace(load_tracers(*restart_file_, fv.grid2()));
+        tracers_.emplace(three_d ? load_tracers<3>(*restart_file_, fv) : load_tracers<2>(*restart_file_, fv));
       } else if (cfg_.output.tracers) {
         log().warn("the checkpoint holds no cell tracers: no tracers/*.csv from this restart");
       }
-    } else if (planar && cfg_.output.tracers) {
+    } else if (moved && cfg_.output.tracers) {
       // Balls of the paper's Fig. 4b/c over the initial bed.
-      const double h = fv.eps ? bed_surface_height(fv.grid2(), fv.field2(fv.eps)).value_or(0.0) : 0.0;
-      if (h > 0.0) tracers_.emplace(fv.grid2(), h, cfg_.particles.layers);
+      tracers_ = three_d ? fresh_tracers<3>(fv, cfg_.particles.layers) : fresh_tracers<2>(fv, cfg_.particles.layers);
+      if (!tracers_) log().warn("the initial voidage shows no bed surface: no tracers/*.csv");
     }
-    if (tracers_) tracers_->set_periodic(0, cfg_.domain.periodic[0]);  // balls cross a periodic side too
+    if (tracers_) {
+      // Balls cross a periodic side too.
+      std::visit([&](auto& t) {
+        t.set_periodic(0, cfg_.domain.periodic[0]);
+        if (three_d) t.set_periodic(2, cfg_.domain.periodic[2]);
+      }, *tracers_);
+    }
     if (fv.has_grid() && fv.eps && fv.has_gas_velocity()) {
       bubbles_.emplace(cfg_.bubble);
       if (restart_ && restart_file_->has("bubble/tracked")) bubbles_->restore(load_bubble_state(*restart_file_));
@@ -520,9 +569,7 @@ class Run {
         if (tracers_) {
           // The step the model took (the two-fluid model's step is adaptive), not the clock's difference.
           const FieldView fv = model_->fields();
-          if (fv.has_solids_velocity()) {
-            tracers_->advance(fv.field2(fv.us[0]), fv.field2(fv.us[1]), model_->last_step());
-          }
+          if (fv.has_solids_velocity()) advance_tracers(*tracers_, fv, model_->last_step());
         }
         observe(t);
         if (checkpoints_.due(t, dt_) && !landed(t)) periodic_checkpoint(t);
@@ -649,7 +696,7 @@ class Run {
       }
     }
     if (tracers_) {
-      write_file_atomic(out_ / frame_file_name("tracers", index, "csv"), tracer_csv(*tracers_), Sync::Atomic);
+      write_file_atomic(out_ / frame_file_name("tracers", index, "csv"), std::visit([](const auto& t) { return tracer_csv(t); }, *tracers_), Sync::Atomic);
     }
   }
 
@@ -774,7 +821,7 @@ class Run {
 
   std::unique_ptr<ModelRun> model_;
   Schedule frames_, monitors_, checkpoints_, probe_rows_;
-  std::optional<CellTracers> tracers_;
+  std::optional<TracerBalls> tracers_;
   std::optional<BubbleTracker> bubbles_;
   std::optional<BubbleSeries> population_;
   std::optional<ProbeSeries> probes_;

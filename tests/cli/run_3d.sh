@@ -91,10 +91,30 @@ for r in rows:
     assert 0.0 <= float(r["nose_z_m"]) <= 0.03
 PY
 
+# Issue 27 item 7: 3D runs write the layer tracer balls (ball_id,x,y,z,layer), one per cell under the bed surface.
+check "3d: tracers/*.csv frames with the 3D header" python3 - "$WORK/full/tracers" <<'PY'
+import csv, os, sys
+files = sorted(os.listdir(sys.argv[1]))
+assert len(files) == 9, files
+rows = list(csv.reader(open(os.path.join(sys.argv[1], files[0]))))
+assert rows[0] == ["ball_id", "x", "y", "z", "layer"], rows[0]
+balls = [[float(v) for v in r] for r in rows[1:]]
+assert len(balls) % 15 == 0 and len(balls) >= 15, len(balls)  # whole layers of 5 x 3 cells
+assert all(0 < b[3] < 0.03 for b in balls) and {int(b[4]) for b in balls} == {0, 1}
+PY
+# Issue 27 item 17: the t = 0 row's inflow is U(0), the jet open from t = 0 (before: the initial solve's, 1.8 m/s):
+# 1.8 m/s outside the 2 cm disc, 30 m/s over it, pi (0.01)^2 of the 0.05 x 0.03 m bottom.
+check "3d: inlet_velocity_m_s at t = 0 is the schedules' U(0)" python3 - "$WORK/full/monitor.csv" <<'PY'
+import csv, math, sys
+row = next(csv.DictReader(open(sys.argv[1])))
+u = 1.8 + (30.0 - 1.8) * math.pi * 0.01 ** 2 / (0.05 * 0.03)
+assert float(row["time_s"]) == 0.0 and abs(float(row["inlet_velocity_m_s"]) - u) < 1e-9 * u, (row["inlet_velocity_m_s"], u)
+PY
+
 # (b) a restart from the mid-run checkpoint into a fresh folder ends in the same state as the straight run.
 run_ok "3d: restart T/2 to T" run "$WORK/c3d.toml" --out "$WORK/restart" --threads 1 --restart "$mid"
 check "3d: the restart's log names it" grep -q '(restart from' "$WORK/restart/log.txt"
-for f in particles/000008.csv particles/000008.vtu fields/000008.vti; do
+for f in particles/000008.csv particles/000008.vtu fields/000008.vti tracers/000008.csv; do
   check "3d restart: $f identical" cmp "$WORK/full/$f" "$WORK/restart/$f"
 done
 # The rows the restarted run wrote (t > T/2) equal the straight run's.
