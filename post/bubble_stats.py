@@ -12,6 +12,11 @@ bubble_population.hpp; docs/analysis.md, "Bubble statistics"):
 - bubble fraction: bubble area (volume) over bed area (volume) above the distributor zone, mean and standard deviation
   over the samples of the window.
 
+Slugs and plugs (bubbles.csv's last column `slug` = 1: a void across the whole cross-section of the column) are not
+free bubbles: their rows are set aside from every statistic above and from the comparison with the correlations,
+counted (`slug_samples`), and drawn apart in the figures ("slug / plug"). Files written before the column read as
+slug = 0, and bubble_frames.csv without its `slugs` column as no slug.
+
 Usage: bubble_stats.py OUT_DIR [--t0 T] [--t1 T] [--u U --u-mf UMF] [--a0 A0] [--h0 H0] [--distributor-height H]
                        [--heights 0.1,0.2] [--bins 10] [--out FIGURE.png] [--table TABLE.csv]
 OUT_DIR holds bubbles.csv and bubble_frames.csv; the dimension is read from the header (volume_m3: 3D).
@@ -35,6 +40,21 @@ def read_csv(path):
 
 def num(col):
     return np.array([float(v) if v != "" else np.nan for v in col])
+
+
+def flags(cols, name, n):
+    """An integer column (bubbles.csv `slug`, bubble_frames.csv `slugs`) as an int array of n values; 0 where the
+    file has no such column (written before it) or the cell is empty."""
+    col = cols.get(name) if cols else None
+    if col is None:
+        return np.zeros(n, dtype=int)
+    return np.array([int(float(v)) if v.strip() not in ("", "nan") else 0 for v in col], dtype=int)
+
+
+def slug_mask(bubbles):
+    """True for the bubbles.csv rows that are slugs or plugs (column `slug` = 1; none in a file without it)."""
+    n = len(bubbles.get("time_s", [])) if bubbles else 0
+    return flags(bubbles, "slug", n) == 1
 
 
 def darton_diameter(h, u, u_mf, a0=0.0, g=G):
@@ -83,35 +103,45 @@ def binned(x, y, edges):
 
 
 def crossings(bubbles, height, t0, t1):
-    """Upward crossings of height by the centroid between consecutive samples of the same id, in (t0, t1]."""
+    """Upward crossings of height by the centroid between consecutive samples of the same id, in (t0, t1]; with a
+    `slug` mask, only between two samples that are both free bubbles (a void that is a slug at either sample is
+    set aside)."""
     ids, t, y = bubbles["id"], bubbles["time_s"], bubbles["centroid_y_m"]
+    slug = bubbles.get("slug", np.zeros(len(t), dtype=bool))
     n = 0
     last = {}
     for k in np.argsort(t, kind="stable"):
         i = ids[k]
         if i in last:
-            tp, yp = last[i]
-            if t0 < t[k] <= t1 and yp < height <= y[k]:
+            tp, yp, sp = last[i]
+            if t0 < t[k] <= t1 and yp < height <= y[k] and not sp and not slug[k]:
                 n += 1
-        last[i] = (t[k], y[k])
+        last[i] = (t[k], y[k], slug[k])
     return n
 
 
 def bubble_statistics(bubbles, frames, t0=None, t1=None, u=None, u_mf=None, a0=0.0, distributor_height=0.0,
                       heights=None, bins=10, dimension=None, g=G, h0=0.0):
     """The statistics as a dict of numpy arrays. bubbles: columns of bubbles.csv (as read_csv() gives them; numbers
-    converted here); frames: columns of bubble_frames.csv."""
+    converted here); frames: columns of bubble_frames.csv. Rows with slug = 1 (slugs and plugs) are left out of
+    every statistic and of the correlation; their number in the window is slug_samples, their heights and
+    diameters slug_h, slug_d, slug_u (for the figures), and frame_slugs the sum of bubble_frames.csv's `slugs`."""
     dimension = dimension or (3 if "volume_m3" in bubbles else 2)
     b = {"id": np.array([int(v) for v in bubbles["id"]]), "time_s": num(bubbles["time_s"]),
          "centroid_y_m": num(bubbles["centroid_y_m"]), "d": num(bubbles["equivalent_diameter_m"]),
-         "u": num(bubbles["u_centroid_m_s"])}
+         "u": num(bubbles["u_centroid_m_s"]), "slug": slug_mask(bubbles)}
     ft, frac = num(frames["time_s"]), num(frames["bubble_fraction"])
     t0 = ft.min() if t0 is None else t0
     t1 = ft.max() if t1 is None else t1
-    inw = (b["time_s"] >= t0) & (b["time_s"] <= t1)
+    window = (b["time_s"] >= t0) & (b["time_s"] <= t1)
+    inw = window & ~b["slug"]
+    slugs = window & b["slug"]
     h = b["centroid_y_m"][inw] - distributor_height
     d, ub = b["d"][inw], b["u"][inw]
     out = {"dimension": dimension, "t0": t0, "t1": t1}
+    out["slug_samples"] = int(slugs.sum())
+    out["slug_h"] = b["centroid_y_m"][slugs] - distributor_height
+    out["slug_d"], out["slug_u"] = b["d"][slugs], b["u"][slugs]
     top = h.max() if h.size else 1.0
     h_edges = np.linspace(0.0, top, bins + 1) if h.size else np.linspace(0.0, 1.0, bins + 1)
     out["h"] = 0.5 * (h_edges[1:] + h_edges[:-1])
@@ -131,6 +161,7 @@ def bubble_statistics(bubbles, frames, t0=None, t1=None, u=None, u_mf=None, a0=0
     out["frequency"] = np.array([crossings(b, hh + distributor_height, t0, t1) / span if span > 0 else np.nan
                                  for hh in heights])
     fw = (ft >= t0) & (ft <= t1)
+    out["frame_slugs"] = int(flags(frames, "slugs", ft.size)[fw].sum())
     out["fraction_mean"] = float(np.mean(frac[fw])) if fw.any() else np.nan
     out["fraction_std"] = float(np.std(frac[fw])) if fw.any() else np.nan
     return out
@@ -150,6 +181,26 @@ def write_table(s, path):
         for hh, fq in zip(s["frequency_height"], s["frequency"]):
             w.writerow(["frequency_per_s", hh, fq, "", "", ""])
         w.writerow(["bubble_fraction", "", s["fraction_mean"], s["fraction_std"], "", ""])
+        w.writerow(["bubble_samples", "", "", "", s["samples"], ""])
+        w.writerow(["slug_samples_set_aside", "", "", "", s["slug_samples"], ""])
+        w.writerow(["frame_slugs", "", "", "", s["frame_slugs"], ""])
+
+
+def slug_note(s):
+    """'N slug / plug samples set aside' of a statistics dict."""
+    n = s.get("slug_samples", 0)
+    return f"{n} slug / plug sample{'' if n == 1 else 's'} set aside"
+
+
+def plot_slugs(ax_d, ax_u, s, colour="k", label="slug / plug"):
+    """The slug and plug samples, which the statistics leave out, as open squares: diameter against height and,
+    where they have one, rise velocity against diameter."""
+    if not s.get("slug_samples"):
+        return
+    ax_d.plot(s["slug_h"], s["slug_d"], "s", ms=5, mfc="none", color=colour, label=label)
+    ok = np.isfinite(s["slug_d"]) & np.isfinite(s["slug_u"])
+    if ok.any():
+        ax_u.plot(s["slug_d"][ok], s["slug_u"][ok], "s", ms=5, mfc="none", color=colour, label=label)
 
 
 def figure(s, path):
@@ -164,6 +215,7 @@ def figure(s, path):
     ax[0].set_ylabel("equivalent diameter (m)")
     ax[1].errorbar(s["D"], s["u_mean"], yerr=s["u_std"], fmt="o", ms=4, label="run (centroid)")
     ax[1].plot(s["D"], s["u_theory"], "k-", label=f"{rise_constant(s['dimension'])} $\\sqrt{{gD}}$")
+    plot_slugs(ax[0], ax[1], s, colour="C3")
     ax[1].set_xlabel("equivalent diameter D (m)")
     ax[1].set_ylabel("rise velocity (m/s)")
     ax[2].plot(s["frequency_height"], s["frequency"], "o-")
@@ -172,7 +224,8 @@ def figure(s, path):
     ax[2].set_title(f"bubble fraction {s['fraction_mean']:.3g} $\\pm$ {s['fraction_std']:.2g}")
     for a in ax[:2]:
         a.legend(fontsize=8)
-    fig.suptitle(f"{s['dimension']}D, t = {s['t0']:.3g} to {s['t1']:.3g} s")
+    fig.suptitle(f"{s['dimension']}D, t = {s['t0']:.3g} to {s['t1']:.3g} s, {s['samples']} bubble samples"
+                 + (f" ({slug_note(s)}: not in the statistics)" if s.get("slug_samples") else ""))
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -213,7 +266,8 @@ def run_statistics(folder, case, dimension, g=G, bins=8):
     heights = [top * k / 4 for k in (1, 2, 3)]
     s = bubble_statistics(bub, frm, t0, t1, u, u_mf, heights=heights, bins=bins, dimension=dimension, g=g)
     if s["samples"] == 0:
-        return None, f"no bubble sample in {why} ({t0:.3g} to {t1:.3g} s)"
+        return None, (f"no bubble sample in {why} ({t0:.3g} to {t1:.3g} s)"
+                      + (f"; {slug_note(s)}" if s["slug_samples"] else ""))
     s["window"] = why
     s["u"], s["u_mf"], s["g"] = u, u_mf, g
     return s, None
@@ -235,6 +289,7 @@ def figure_runs(entries, path):
         ax[1].errorbar(s["D"][ok], s["u_mean"][ok], yerr=s["u_std"][ok], fmt="o", ms=4, color=c, label=label)
         ax[1].plot(s["D"], s["u_theory"], "--", color=c,
                    label=f"{rise_constant(s['dimension'])} $\\sqrt{{gD}}$ ({s['dimension']}D)")
+        plot_slugs(ax[0], ax[1], s, colour=c, label="slug / plug" if len(entries) == 1 else f"{label}: slug / plug")
         ax[2].plot(s["frequency_height"], s["frequency"], "o-", color=c,
                    label=f"{label}: fraction {s['fraction_mean']:.3g} $\\pm$ {s['fraction_std']:.2g}")
     ax[0].set_xlabel("centroid height above distributor (m)")
@@ -254,8 +309,9 @@ def figure_runs(entries, path):
 
 def table_runs(entries):
     """Markdown lines: per run the window, the samples, the means against the correlations, frequency, fraction."""
-    lines = ["| run | window (s) | bubble samples | mean D (m) | correlation D at mean height (m) | mean u_centroid "
-             "(m/s) | C sqrt(g D) at mean D (m/s) | frequency (1/s) at heights (m) | bubble fraction |",
+    lines = ["| run | window (s) | bubble samples (slugs / plugs set aside) | mean D (m) | correlation D at mean "
+             "height (m) | mean u_centroid (m/s) | C sqrt(g D) at mean D (m/s) | frequency (1/s) at heights (m) | "
+             "bubble fraction |",
              "|---|---|---|---|---|---|---|---|---|"]
     for label, s in entries:
         h_mean = float(np.nansum(s["h"] * s["d_count"]) / max(np.sum(s["d_count"]), 1))
@@ -263,7 +319,7 @@ def table_runs(entries):
                 if s["u"] is not None and s["u"] > s["u_mf"] else np.nan)
         theory = rise_constant(s["dimension"]) * np.sqrt(s["g"] * s["d_all_mean"])
         freq = ", ".join(f"{f:.2f} at {h:.2f}" for h, f in zip(s["frequency_height"], s["frequency"]))
-        lines.append(f"| {label} | {s['t0']:.3g}-{s['t1']:.3g} ({s['window']}) | {s['samples']} | "
+        lines.append(f"| {label} | {s['t0']:.3g}-{s['t1']:.3g} ({s['window']}) | {s['samples']} ({slug_note(s)}) | "
                      f"{s['d_all_mean']:.3f} | {corr:.3f} (h = {h_mean:.2f} m, {correlation_name(s['dimension'])}) | "
                      f"{s['u_all_mean']:.2f} | {theory:.2f} (C = {rise_constant(s['dimension'])}) | {freq} | "
                      f"{s['fraction_mean']:.3f} ± {s['fraction_std']:.3f} |")
@@ -291,7 +347,7 @@ def main():
     s = bubble_statistics(bub, frm, a.t0, a.t1, a.u, a.u_mf, a.a0, a.distributor_height, heights, a.bins, h0=a.h0)
     write_table(s, a.table)
     figure(s, a.out)
-    print(f"wrote {a.table} and {a.out}")
+    print(f"wrote {a.table} and {a.out}: {s['samples']} bubble samples, {slug_note(s)}")
 
 
 if __name__ == "__main__":

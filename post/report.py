@@ -40,6 +40,8 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 PAPER_INSTANTS = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0]
 # A frame this close to an instant is "at" it (the runner stamps frames k * interval exactly).
 AT_INSTANT = 0.005
+# Rounding slack (s) when a frame's or row's distance from an instant is compared with half its series' interval.
+TIME_SLACK = 1e-9
 # Panels of a run that has no frame at any of the paper's instants (a short run, another output interval).
 OWN_INSTANTS = 6
 # Instants of the paper's Table 2.
@@ -199,11 +201,11 @@ def jets_of(case):
 
 
 def gravity_of(case):
-    """|g| of a resolved case.toml (domain.gravity, formerly dem.gravity: x, y components), else 9.81."""
+    """|g| of a resolved case.toml (domain.gravity, formerly dem.gravity: x, y(, z) components), else 9.81."""
     for section in ("domain", "dem", "gas"):
         g = case.get(section, {}).get("gravity") if isinstance(case.get(section), dict) else None
-        if isinstance(g, list) and len(g) == 2 and all(isinstance(c, (int, float)) for c in g):
-            magnitude = math.hypot(g[0], g[1])
+        if isinstance(g, list) and len(g) in (2, 3) and all(isinstance(c, (int, float)) for c in g):
+            magnitude = math.sqrt(sum(c * c for c in g))
             if magnitude > 0:
                 return magnitude
         elif isinstance(g, (int, float)) and g > 0:
@@ -323,14 +325,26 @@ def span_of(frames):
     return times[0], times[-1], spacing
 
 
+def nearest_within(times, t):
+    """Index of the time nearest to t, or None unless it lies within half the series' interval of t (the median
+    spacing of its times; 0 for a single time, which then counts only at t itself). An instant the run did not
+    reach (beyond its last time + half an interval), or one in a gap of its output, has none."""
+    times = np.asarray(times, dtype=float)
+    ok = np.isfinite(times)
+    if not ok.any():
+        return None
+    spacing = float(np.median(np.diff(times[ok]))) if ok.sum() > 1 else 0.0
+    dist = np.where(ok, np.abs(times - t), np.inf)
+    k = int(np.argmin(dist))
+    return k if dist[k] <= 0.5 * max(spacing, 0.0) + TIME_SLACK else None
+
+
 def nearest_frame(frames, t):
-    """The frame nearest to time t, if t lies within the run's frames (half a frame spacing past either end)."""
+    """The frame nearest to time t, if it lies within half the run's frame interval of t (nearest_within)."""
     if not frames:
         return None
-    first, last, spacing = span_of(frames)
-    if t < first - 0.5 * spacing - AT_INSTANT or t > last + 0.5 * spacing + AT_INSTANT:
-        return None
-    return min(frames, key=lambda fr: abs(fr[0] - t))
+    k = nearest_within([fr[0] for fr in frames], t)
+    return None if k is None else frames[k]
 
 
 def own_instants(frames, n=OWN_INSTANTS):
@@ -340,10 +354,13 @@ def own_instants(frames, n=OWN_INSTANTS):
 
 
 def choose_panels(runs, frames_of, what):
-    """One row per run with frames: the columns are the paper's instants that some run reaches; a run reaching
-    none of them gets its own instants (up to OWN_INSTANTS frames spread over it). Returns (rows, columns, notes):
-    rows [(run, [frame or None per column])], notes for summary.md on every run or panel left out and on frames
-    shown away from the instant."""
+    """One row per run with frames: the columns are the paper's instants that some run reaches, and a panel shows
+    only a frame within half the run's frame interval of its column's instant (nearest_frame), else None ('–'). A
+    run reaching none of them keeps its row: all '–' when some other run sets the columns (its own frames are not
+    put under instants they are not at), its own instants (up to OWN_INSTANTS frames spread over it) when no run
+    reaches any. Returns (rows, n_cols, notes, columns): rows [(run, [frame or None per column])], notes for
+    summary.md on every run or panel left out and on frames shown away from the instant, columns the instants of
+    the columns ([] when every row shows its own instants)."""
     notes = []
     with_frames = []
     for r in runs:
@@ -358,7 +375,10 @@ def choose_panels(runs, frames_of, what):
         frames = frames_of(r)
         first, last, _ = span_of(frames)
         chosen = [nearest_frame(frames, t) for t in columns]
-        if not any(chosen):
+        if columns and not any(chosen):
+            notes.append(f"{r.label}: no {what} within half its frame interval of the paper's instants (its frames "
+                         f"run from {first:.3g} to {last:.3g} s): its row is '–' at every instant shown")
+        elif not any(chosen):
             own = own_instants(frames, max(n_cols, 1))
             chosen = [next(fr for fr in frames if fr[0] == t) for t in own] + [None] * max(0, n_cols - len(own))
             notes.append(f"{r.label}: no {what} at the paper's instants (its frames run from {first:.3g} to "
@@ -367,13 +387,14 @@ def choose_panels(runs, frames_of, what):
             missing = [t for t, fr in zip(columns, chosen) if fr is None]
             if missing:
                 notes.append(f"{r.label}: no panel at t = " + ", ".join(f"{t:g}" for t in missing)
-                             + f" s (its frames run from {first:.3g} to {last:.3g} s)")
+                             + f" s ('–': no frame within half its frame interval; its frames run from {first:.3g} "
+                             f"to {last:.3g} s)")
             off = [(t, fr[0]) for t, fr in zip(columns, chosen) if fr is not None and abs(fr[0] - t) > AT_INSTANT]
             if off:
                 notes.append(f"{r.label}: no frame within {AT_INSTANT * 1e3:g} ms of every instant; the nearest are "
                              "shown: " + ", ".join(f"{fr:.3g} s for {t:g} s" for t, fr in off))
         rows.append((r, chosen))
-    return rows, n_cols, notes
+    return rows, n_cols, notes, columns
 
 
 # ------------------------------------------------------------------------------------------------------- figures
@@ -437,6 +458,19 @@ def empty_panel(ax):
     ax.set_axis_off()
 
 
+def missing_panel(ax, run, column, instant):
+    """The panel of an instant the run has no frame at (within half its frame interval): '–', and in the first
+    column the run's label, so that its row stays named."""
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for spine in ax.spines.values():
+        spine.set_visible(False)
+    ax.text(0.5, 0.5, "–", ha="center", va="center", transform=ax.transAxes, fontsize=14, color="0.45")
+    ax.set_title(f"{instant:g} s: –", fontsize=7, color="0.45")
+    if column == 0:
+        ax.set_ylabel(run.label, fontsize=7)
+
+
 def figure_voidage(runs, path, notes, depth_averaged=False):
     """Voidage maps; a 3D run shows its mid-depth slice, or with depth_averaged its depth-averaged voidage (then
     only the 3D runs have rows)."""
@@ -448,7 +482,7 @@ def figure_voidage(runs, path, notes, depth_averaged=False):
                 notes.append(f"{r.label}: 3D; its panels show the mid-depth slice z = D/2 (the middle cell layer, or "
                              "the mean of the two layers either side of the plane); voidage_depth_averaged.png has "
                              "the depth average")
-    rows, n_cols, why = choose_panels(runs, lambda r: r.fields, "field frames")
+    rows, n_cols, why, columns = choose_panels(runs, lambda r: r.fields, "field frames")
     notes += why
     if not rows or n_cols == 0:
         return "no fields.pvd frames in any run"
@@ -458,6 +492,9 @@ def figure_voidage(runs, path, notes, depth_averaged=False):
         for b in range(n_cols):
             ax = axes[a][b]
             fr = frames[b] if b < len(frames) else None
+            if fr is None and columns:
+                missing_panel(ax, run, b, columns[b])
+                continue
             f = read_vti(fr[1]) if fr else None
             if f is None:
                 if fr is not None:
@@ -529,7 +566,7 @@ def figure_particles(runs, kind, path, notes):
             if r not in mixed:
                 notes.append(f"{r.label}: left out, its particles are all of one species")
         candidates = mixed
-    rows, n_cols, why = choose_panels(candidates, frames_of, what)
+    rows, n_cols, why, columns = choose_panels(candidates, frames_of, what)
     notes += why
     if not rows or n_cols == 0:
         return f"no {what} in any run"
@@ -548,7 +585,10 @@ def figure_particles(runs, kind, path, notes):
             ax = axes[a][b]
             fr = frames[b] if b < len(frames) else None
             if fr is None:
-                empty_panel(ax)
+                if columns:
+                    missing_panel(ax, run, b, columns[b])
+                else:
+                    empty_panel(ax)
                 continue
             if kind == "tracers":
                 c = read_csv(fr[1])
@@ -594,8 +634,99 @@ def figure_particles(runs, kind, path, notes):
     return None
 
 
-def figure_curves(runs, source, column, ylabel, title, path, notes):
-    """One curve per run of `column` against time; a column ending in '*' is a prefix (one curve per match)."""
+def number(table, key):
+    """table[key] when it is a number (not a bool), else None."""
+    v = table.get(key) if isinstance(table, dict) else None
+    return float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else None
+
+
+def bed_weight_per_area(run):
+    """(value in Pa, how it was found) of the weight of the run's bed per unit area of the bottom, less the
+    buoyancy of the gas it displaces, the pressure drop that carries a fluidized bed; (None, why not) when the run
+    folder does not give it. From the most direct quantity the folder has:
+    1. monitor.csv's solids_mass_per_depth_kg_m (the solids in the domain per metre of depth; 3D: of the box over
+       domain.depth) at its first row, over domain.width: g M / A;
+    2. else (a monitor.csv from before the per-depth columns) a CFD-DEM run's solids_mass_kg, the slab's particles,
+       over domain.width x coupling.depth (2D; default 0.004 m) or x domain.depth (3D);
+    3. else a two-fluid run's initial bed from case.toml, (1 - tfm.eps_initial) tfm.particle_density g
+       tfm.packed_height.
+    The buoyancy correction (1 - rho_g / rho_p) of 1 and 2 takes gas.density and the particle density
+    (tfm.particle_density, or the one density of every [[species]]); without them, or with species of different
+    densities, the weight is not corrected (said in how). g is |domain.gravity| (9.81 m/s^2 without one)."""
+    case = run.case or {}
+    domain = case.get("domain", {}) if isinstance(case.get("domain"), dict) else {}
+    gas = case.get("gas", {}) if isinstance(case.get("gas"), dict) else {}
+    tfm = case.get("tfm", {}) if isinstance(case.get("tfm"), dict) else {}
+    coupling = case.get("coupling", {}) if isinstance(case.get("coupling"), dict) else {}
+    g = run.gravity
+    width = number(domain, "width")
+    if width is None and run.domain() is not None:
+        d = run.domain()
+        width = d[1] - d[0]
+    rho_g = number(gas, "density")
+    if run.model == "tfm":
+        rho_p = number(tfm, "particle_density")
+    else:
+        dens = {number(sp, "density") for sp in run.species}
+        rho_p = dens.pop() if len(dens) == 1 else None
+    mon = run.monitor or {}
+
+    def first_value(column):
+        v = numeric(mon, column)
+        v = v[np.isfinite(v)]
+        return float(v[0]) if v.size else None
+
+    mass, how = None, None
+    per_depth = first_value("solids_mass_per_depth_kg_m")
+    if per_depth is not None and width:
+        mass, how = per_depth / width, "monitor.csv solids_mass_per_depth_kg_m at its first row / domain.width"
+    elif run.model == "dem" and first_value("solids_mass_kg") is not None and width:
+        depth = number(domain, "depth") if run.dimension == 3 else number(coupling, "depth") or 0.004
+        if depth:
+            mass = first_value("solids_mass_kg") / (width * depth)
+            how = (f"monitor.csv solids_mass_kg at its first row / (domain.width x "
+                   f"{'domain.depth' if run.dimension == 3 else 'coupling.depth'})")
+    if mass is not None:
+        if rho_g is not None and rho_p and rho_p > rho_g:
+            return g * mass * (1.0 - rho_g / rho_p), f"g M / A (1 - rho_g / rho_p), M / A from {how}"
+        return g * mass, f"g M / A, M / A from {how} (no buoyancy correction: no single particle and gas density)"
+    eps, height = number(tfm, "eps_initial"), number(tfm, "packed_height")
+    if run.model == "tfm" and rho_p is not None and eps is not None and height is not None:
+        return ((rho_p - (rho_g or 0.0)) * (1.0 - eps) * g * height,
+                "(rho_p - rho_g) (1 - eps) g H of case.toml's initial bed (tfm.particle_density, gas.density, "
+                "tfm.eps_initial, tfm.packed_height)")
+    if run.monitor is None:
+        return None, "no monitor.csv"
+    return None, ("neither monitor.csv's solids_mass_per_depth_kg_m (or a CFD-DEM run's solids_mass_kg) with "
+                  "case.toml's domain.width, nor a two-fluid bed in case.toml")
+
+
+def bed_weight_lines(ax, run, line, n_runs, notes):
+    """The horizontal line of bed_weight_per_area() in the colour of the run's curve, or a note why there is none."""
+    try:
+        value, how = bed_weight_per_area(run)
+    except (TypeError, ValueError, ZeroDivisionError, AttributeError) as e:  # an odd case.toml skips the line only
+        value, how = None, f"{type(e).__name__}: {e}"
+    if value is None or not math.isfinite(value):
+        notes.append(f"{run.label}: no bed-weight line ({how})")
+        return
+    label = "bed weight / area" if n_runs == 1 else f"bed weight / area, {run.label}"
+    ax.axhline(value, color=line.get_color(), linestyle="--", linewidth=1.0, label=label)
+    notes.append(f"{run.label}: bed weight / area {value:.1f} Pa = {how}")
+
+
+def figure_pressure_drop(runs, path, notes):
+    """monitor.csv pressure_drop_Pa against time, one curve per run, with the bed's weight per unit area as a
+    dashed horizontal line of the run's colour (bed_weight_per_area; none, with a note, where the run does not give
+    it)."""
+    shown = [r for r in runs if r.monitor is not None and "pressure_drop_Pa" in r.monitor]
+    return figure_curves(runs, "monitor", "pressure_drop_Pa", "pressure drop (Pa)", "Bed pressure drop", path, notes,
+                         after=lambda ax, run, line: bed_weight_lines(ax, run, line, len(shown), notes))
+
+
+def figure_curves(runs, source, column, ylabel, title, path, notes, after=None):
+    """One curve per run of `column` against time; a column ending in '*' is a prefix (one curve per match).
+    after(ax, run, line), where given, is called after the run's last curve."""
     fig, ax = plt.subplots(figsize=(6, 4))
     drawn = 0
     for run in runs:
@@ -613,9 +744,11 @@ def figure_curves(runs, source, column, ylabel, title, path, notes):
             if not ok.any():
                 continue
             label = run.label if len(names) == 1 else f"{run.label} {name}"
-            ax.plot(t[ok], v[ok], marker=".", markersize=3, label=label)
+            line, = ax.plot(t[ok], v[ok], marker=".", markersize=3, label=label)
             drawn += 1
             shown += 1
+        if shown and after is not None:
+            after(ax, run, line)
         if shown == 0:
             why = f"{source}.csv has no values of {column}" if names else f"{source}.csv has no column {column}"
             if names and source == "bubble":
@@ -816,11 +949,12 @@ def figure_time_averages(runs, path, notes):
 # ------------------------------------------------------------------------------------------------------ tables
 
 def nearest_row(cols, t):
-    """Index of the bubble.csv row whose time is nearest to t."""
+    """Index of the bubble.csv row whose time is nearest to t, or None unless it lies within half the file's
+    sampling interval of t (nearest_within): an instant after the run ended, or in a gap of its rows, has none."""
     times = numeric(cols, "time_s")
-    if times.size == 0 or not np.isfinite(times).any():
+    if times.size == 0:
         return None
-    return int(np.nanargmin(np.abs(times - t)))
+    return nearest_within(times, t)
 
 
 def detachment_time(cols):
@@ -884,11 +1018,12 @@ def table2(runs):
     if not with_bubble:
         return ["No run with a jet has a bubble.csv: Table 2 skipped."] + [""] + note
     lines.append("Values are the bubble.csv rows nearest in time to each instant (the row's own time in brackets); "
-                 "'–' where the row has no bubble. The bubble rise velocity U_b is that of the bubble's centroid "
-                 "(centroid_rise_velocity_m_s, the usual definition in bubble-tracking studies), and U_th/U_mf = "
-                 "(gas velocity at the nose - U_b) / U_mf uses it; the nose rise velocity (rise_velocity_m_s, the "
-                 "nose on the jet's vertical line) is beside it: while the bubble grows on the jet the nose rises "
-                 "about twice as fast as the centroid.")
+                 "'–' where the row has no bubble, and where the run has no row within half its sampling interval "
+                 "of the instant (an instant after the run ended). The bubble rise velocity U_b is that of the "
+                 "bubble's centroid (centroid_rise_velocity_m_s, the usual definition in bubble-tracking studies), "
+                 "and U_th/U_mf = (gas velocity at the nose - U_b) / U_mf uses it; the nose rise velocity "
+                 "(rise_velocity_m_s, the nose on the jet's vertical line) is beside it: while the bubble grows on "
+                 "the jet the nose rises about twice as fast as the centroid.")
     lines.append("")
     head = "| t (s) |"
     sep = "|---|"
@@ -897,12 +1032,14 @@ def table2(runs):
                  f" U_th/U_mf (from U_b) | nose rise velocity (m/s) |")
         sep += "---|---|---|---|"
     lines += [head, sep]
+    unreached = {}
     for t in TABLE2_TIMES:
         line = f"| {t} |"
         for r in with_bubble:
             k = nearest_row(r.bubble, t)
             if k is None:
                 line += " – | – | – | – |"
+                unreached.setdefault(r.label, []).append(t)
                 continue
             get = lambda c: r.bubble.get(c, [""] * (k + 1))[k]  # noqa: E731
             u_th = centroid_throughflow(get('nose_gas_velocity_m_s'), get('centroid_rise_velocity_m_s'),
@@ -912,6 +1049,9 @@ def table2(runs):
                      f" {cell(u_th)} |"
                      f" {cell(get('rise_velocity_m_s'))} |")
         lines.append(line)
+    if unreached:
+        lines += ["", "No bubble.csv row within half the sampling interval ('–'): " + "; ".join(
+            f"{lab} at t = {', '.join(f'{t:g}' for t in ts)} s" for lab, ts in unreached.items()) + "."]
     if no_bubble:
         lines += ["", f"Left out, no bubble.csv: {', '.join(no_bubble)}."]
     if note:
@@ -1164,9 +1304,8 @@ def write_report(folders, out, labels=None, animate=False):
         ("time_averages.png", "Time-averaged fields of the [averages] window (post/averages.py)",
          lambda p, n: figure_time_averages(runs, p, n)),
     ] if any(os.path.isfile(os.path.join(r.folder, "averages.csv")) for r in runs) else []) + [
-        ("pressure_drop.png", "Bed pressure drop",
-         lambda p, n: figure_curves(runs, "monitor", "pressure_drop_Pa", "pressure drop (Pa)", "Bed pressure drop",
-                                    p, n)),
+        ("pressure_drop.png", "Bed pressure drop, with the bed weight per unit area (dashed)",
+         lambda p, n: figure_pressure_drop(runs, p, n)),
         ("mixing_index.png", "Lacey mixing index",
          lambda p, n: figure_curves(runs, "monitor", "lacey*", "Lacey index M", "Mixing index", p, n)),
     ] + ([

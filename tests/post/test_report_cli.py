@@ -3,7 +3,9 @@
 blank, and summary.md's Table 2 and detachment times are the bubble.csv values.
 Issue 11 (item 17): a --set sweep of one case in two folders gets one label per folder, --label renames runs
 (one per folder, else exit 2), a bed without a jet has no Table 2 column, and runs that end before the paper's
-first instant keep their rows in voidage.png with the reason in summary.md.
+first instant keep their rows in voidage.png with the reason in summary.md. Table 2 is '–' at the instants after
+the runs end (0.06 s), and pressure_drop.png's bed weight / area is g M / A (1 - rho_g / rho_p) of each run's own
+monitor.csv and case.toml.
 argv[1]: the fluidbed binary, argv[2]: the repository root."""
 import csv
 import os
@@ -125,12 +127,19 @@ def main():
                 rows = table[1:]
                 with open(os.path.join(folder, "case.toml"), "rb") as f:
                     u_mf = tomllib.load(f)["bubble"]["u_mf"]
-                k = int(np.argmin([abs(float(row[0]) - t) for row in rows]))
+                times = [float(row[0]) for row in rows]
+                k = int(np.argmin([abs(tk - t) for tk in times]))
                 # Four cells per run: gas velocity at the nose [row time], centroid rise velocity U_b,
                 # (gas - U_b) / U_mf, nose rise velocity.
                 got = cells[4 * r:4 * r + 4]
                 row = rows[k]
-                if row[3] == "":
+                if abs(times[k] - t) > 0.5 * float(np.median(np.diff(times))) + 1e-9:
+                    # The run ended before t (these end at 0.06 s): no row within half an interval, '–'.
+                    if got != ["–"] * 4:
+                        fail(f"Table 2 at t = {t}, run {r}: {got}, but its bubble.csv ends at {times[-1]} s")
+                    if f"{os.path.basename(folder)} at t = 0.2, 0.3, 0.4, 0.5 s" not in summary:
+                        fail(f"Table 2 does not name the instants {os.path.basename(folder)} did not reach")
+                elif row[3] == "":
                     if not all(g.startswith("–") for g in got):
                         fail(f"Table 2 at t = {t}, run {r}: {got} but bubble.csv has no bubble")
                 else:
@@ -141,6 +150,18 @@ def main():
                     if got != want:
                         fail(f"Table 2 at t = {t}, run {r}: {got} != {want}")
                 checked += 1
+        # pressure_drop.png's bed-weight line: g M / A (1 - rho_g / rho_p) from the run's own monitor.csv and
+        # resolved case.toml (domain.width, gas.density, the species' or tfm.particle_density).
+        for folder in (dem, tfm):
+            with open(os.path.join(folder, "case.toml"), "rb") as f:
+                case = tomllib.load(f)
+            mon = list(csv.DictReader(open(os.path.join(folder, "monitor.csv"))))
+            rho_p = (case["tfm"]["particle_density"] if case["case"]["model"] == "tfm"
+                     else case["species"][0]["density"])
+            want = (9.81 * float(mon[0]["solids_mass_per_depth_kg_m"]) / case["domain"]["width"]
+                    * (1 - case["gas"]["density"] / rho_p))
+            if f"{os.path.basename(folder)}: bed weight / area {want:.1f} Pa" not in summary:
+                fail(f"summary.md has no bed weight / area of {want:.1f} Pa for {folder}")
         print(f"report of two real runs: 10 figures, {checked} Table 2 cells match bubble.csv")
         print("1 passed, 0 failed")
 
