@@ -768,7 +768,8 @@ void describe_regime(Report& r, const CaseConfig& c, double bed_height) {
   double u = 0.0;  // the background inflow at its peak over the run (jets aside)
   for (int k = 0; k <= 200; ++k) u = std::max(u, std::abs(background_inlet_velocity(c.gas.boundary, c.run.end_time * k / 200.0)));
   const bool three_d = c.domain.dimension == 3;
-  const double width = three_d ? std::min(c.domain.width, c.domain.depth) : c.domain.width;
+  // A slug spans the column: in a pseudo-2D slab every void touches the front and back, so the width counts.
+  const double width = three_d ? std::max(c.domain.width, c.domain.depth) : c.domain.width;
   const double h = c.model == Model::Tfm ? c.tfm.packed_height : bed_height;
   const double excess = u - *u_mf;
   const double sd = 0.07 * std::sqrt(g * width);
