@@ -21,7 +21,7 @@ TfmConfig in_3d(TfmConfig c, double depth) {
   return c;
 }
 
-// The 2D small bed of tfm_solver_test.cpp as a 3 x 35 x 3 column: the paper's 0.54 m bed at eps_initial, fed at
+// The 2D small bed of test_tfm_solver.cpp as a 3 x 35 x 3 column: the paper's 0.54 m bed at eps_initial, fed at
 // the Ergun U_mf of Eq. 13. The discrete bed surface leaves part of the top cell's weight to the averaged surface
 // face (~0.7% of the bed, as in 2D), inside the 1% criterion.
 TfmConfig bed_at_rest_3d(SolidsRheology rheology) {
