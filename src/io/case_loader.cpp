@@ -799,12 +799,21 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
   // [grid]: one staggered grid for the gas, the voidage and the two-fluid model.
   const bool three_d = c.domain.dimension == 3;
-  const double dx = r.number("grid.cell_width", 0.02, "m", "gas cell width (the paper: 0.02 m)", R::positive());
-  const double dy = r.number("grid.cell_height", dx, "m", "gas cell height", R::positive());
+  // DEM alone without a [grid]: cells near the paper's 0.02 m that divide the domain, so that a box of any size
+  // needs no grid it does not use (the cells then serve turning the gas on with --set only).
+  const bool grid_given = r.has("grid.cell_width") || r.has("grid.cell_height") || r.has("grid.cell_depth");
+  const bool fitted = !needs_gas && !grid_given;
+  const auto fit = [](double length, double min_cells) { return length / std::max(min_cells, std::round(length / 0.02)); };
+  const double dx = r.number("grid.cell_width", fitted ? fit(c.domain.width, 2.0) : 0.02, "m",
+                             "gas cell width (the paper: 0.02 m)", R::positive());
+  r.describe_default("grid.cell_width", "0.02; gas off and no [grid]: the nearest that divides the width");
+  const double dy = r.number("grid.cell_height", fitted ? fit(c.domain.height, 2.0) : dx, "m", "gas cell height",
+                             R::positive());
   double dz = 0.0;
   if (three_d) {
-    dz = r.number("grid.cell_depth", std::min(dx, c.domain.depth), "m", "gas cell depth (z); 3D only; default: "
-                  "grid.cell_width, or the whole depth when that is less", R::positive());
+    dz = r.number("grid.cell_depth", fitted ? fit(c.domain.depth, 1.0) : std::min(dx, c.domain.depth), "m",
+                  "gas cell depth (z); 3D only; default: grid.cell_width, or the whole depth when that is less",
+                  R::positive());
     r.describe_default("grid.cell_depth", "min(cell_width, domain.depth)");
   } else if (r.has("grid.cell_depth")) {
     r.fail("grid.cell_depth", "a 2D case (case.dimension = 2) has one layer of cells; set case.dimension = 3 for "
@@ -839,13 +848,15 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   c.grid.dz = three_d ? c.domain.depth / c.grid.nz : 0.0;
   // The gas solver's rule (GasSolver refuses fewer cells), here so that `check` refuses what `run` would, gas or not.
   // Across the depth one layer is allowed: a slab one cell deep between front and back walls.
+  const std::string who = needs_gas ? "the gas needs" : "the grid needs (the gas is off, but --set gas.enabled=true "
+                                                         "would use it)";
   if (c.grid.nx < 2) {
-    r.fail("grid.cell_width", fmt::format("{} m leaves {} cell across the domain width {} m; the gas needs at least 2",
-                                          dx, c.grid.nx, c.domain.width));
+    r.fail("grid.cell_width", fmt::format("{} m leaves {} cell across the domain width {} m; {} at least 2",
+                                          dx, c.grid.nx, c.domain.width, who));
   }
   if (c.grid.ny < 2) {
-    r.fail("grid.cell_height", fmt::format("{} m leaves {} cell over the domain height {} m; the gas needs at least 2",
-                                           dy, c.grid.ny, c.domain.height));
+    r.fail("grid.cell_height", fmt::format("{} m leaves {} cell over the domain height {} m; {} at least 2",
+                                           dy, c.grid.ny, c.domain.height, who));
   }
 
   GasConfig& g = c.gas;
@@ -1082,9 +1093,9 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                         "2D only (3D: domain.depth)", R::positive());
     r.describe_default("coupling.depth", "the largest particle diameter of any species");
     if (c.model == Model::Dem && cc.depth < d_largest * (1.0 - 1e-12)) {
-      c.notes.push_back(fmt::format("coupling.depth = {:g} m is thinner than the largest particle ({:g} m): its spheres "
-                                    "hold more volume per cell than a slab their size; a packed layer of them may "
-                                    "reach a voidage below zero, which stops the run", cc.depth, d_largest));
+      c.notes.push_back(fmt::format("coupling.depth = {:g} m is thinner than the largest particle ({:g} m): the slab the "
+                                    "2D bed stands for does not hold its largest spheres, and a packed layer of them "
+                                    "may reach a voidage below zero, which stops the run", cc.depth, d_largest));
     }
   }
   cc.eps_min = r.number("coupling.eps_min", 0.3, "", "smallest voidage the gas and the drag see", R::Range{0.0, 1.0, true, true});
@@ -1285,6 +1296,20 @@ void read_averages(CaseReader& r, CaseConfig& c) {
   a.enabled = a.t_end > a.t_start;
 }
 
+// Keys of earlier versions that are no longer read, with what replaced them (dem.gravity is still read, as an
+// alias of domain.gravity): a case file of an earlier version gets the new name, not "unknown key".
+void refuse_renamed_keys(const CaseReader& r) {
+  const std::pair<const char*, const char*> renamed[] = {
+      {"domain.top_wall", "is now domain.particle_top: \"wall\" for top_wall = true, \"open\" for false (or "
+                          "\"outflow\": leaving particles removed and counted)"},
+      {"tfm.inlet_noise", "is now inlet.noise, shared by both models (the same +- fraction per bottom cell, fixed in "
+                          "time)"},
+  };
+  for (const auto& [old_key, now] : renamed) {
+    if (r.has(old_key)) r.fail(old_key, fmt::format("{} {}", old_key, now));
+  }
+}
+
 LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) r.set_override(o);
   LoadedCase out;
@@ -1293,6 +1318,7 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
   read_probes(r, out.config);
   read_averages(r, out.config);
+  refuse_renamed_keys(r);
   r.reject_unknown_keys();
   // What the gas solver and the bubble tracker check when they are built, so that `check` refuses what `run`
   // would (the TFM's own check, tfm::validate, runs in read_tfm).

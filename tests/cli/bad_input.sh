@@ -109,7 +109,7 @@ expect 0 "bubble.u_mf\) +1.800 m/s" "the paper's case keeps U_mf = 1.8" "$FLUIDB
 # check covers every species (item 12) and refuses what run refuses, gas on or off.
 expect 0 "species 1 +d = 0.002 m.*contact duration 0-1" "check: every species and pair" \
   bash -c "'$FLUIDBED' check '$WORK/ok.toml' --set 'species=[{diameter = 0.004}, {diameter = 0.002}]' | tr '\n' ' '"
-bad grid_one_cell "grid.cell_width: 0.6 m leaves 1 cell across the domain width 0.6 m; the gas needs at least 2" \
+bad grid_one_cell "grid.cell_width: 0.6 m leaves 1 cell across the domain width 0.6 m; the grid needs .*at least 2" \
   "grid.cell_width = 0.6" "grid.cell_height = 0.02"
 expect 2 "grid.cell_width: 0.6 m leaves 1 cell" "run refuses the same grid" \
   "$FLUIDBED" run "$WORK/grid_one_cell.toml" --quiet --out "$WORK/grid1"
@@ -175,6 +175,16 @@ expect 0 "warning: coupling.depth = 0.0002 m is too thin for the largest particl
   "$FLUIDBED" check "$WORK/thin_slab.toml"
 expect 3 "at t = 0 s the voidage is -[0-9.]+ \(below zero\) in [0-9]+ of 40 gas cells.*coupling.depth = 0.0002 m" \
   "a voidage below zero stops the run" "$FLUIDBED" run "$WORK/thin_slab.toml" --quiet --out "$WORK/thin_slab"
+
+# Issue 28 item 5: keys of earlier versions name their replacement; DEM alone in a small box needs no [grid].
+bad old_top_wall 'domain.top_wall: domain.top_wall is now domain.particle_top: "wall" for top_wall = true' \
+  "domain.top_wall = true"
+expect 2 "tfm.inlet_noise: tfm.inlet_noise is now inlet.noise" "an old TFM key names its new one" \
+  "$FLUIDBED" check "$ROOT/cases/gera1998/tfm.toml" --set tfm.inlet_noise=0.1
+grep -v '^particles.count' "$WORK/ok.toml" > "$WORK/small_box.toml"
+printf 'domain.width = 0.03\ndomain.height = 0.05\nparticles.count = 20\n' >> "$WORK/small_box.toml"
+expect 0 "" "a gas-off case in a 0.03 m box without [grid] runs" "$FLUIDBED" run "$WORK/small_box.toml" --quiet \
+  --out "$WORK/small_box"
 
 # Output folder that cannot be written.
 touch "$WORK/not-a-folder"
