@@ -129,7 +129,8 @@ int main(int argc, char** argv) {
   run->add_option("--threads", ro.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
   run->add_option("--set", sets, "override a case key: SECTION.KEY=VALUE (repeatable)");
   run->add_option("--restart", ro.restart,
-                  "continue from this HDF5 checkpoint, or 'latest': the newest valid one of the output folder");
+                  "continue from this HDF5 checkpoint, or 'latest': the valid one of the output folder with the "
+                  "latest simulated time");
   run->add_flag("--overwrite", ro.overwrite, "a new run may replace the results already in the output folder");
   run->add_option("--allow-changed", ro.allow_changed,
                   "with --restart: accept this case key (or section) differing from the checkpoint's (repeatable)");

@@ -1,6 +1,7 @@
 #include "io/checkpoint_set.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <system_error>
@@ -97,11 +98,31 @@ std::vector<CheckpointFile> list_checkpoints(const fs::path& dir) {
 
 LatestCheckpoint find_latest_checkpoint(const fs::path& dir) {
   LatestCheckpoint r;
+  // The simulated time each checkpoint holds (its root attribute `time`, which final.h5's name lacks): file times
+  // follow a copy of the folder (cp -r), not the run.
+  struct Candidate {
+    double time;
+    fs::path path;
+  };
+  std::vector<Candidate> candidates;
   for (const CheckpointFile& c : list_checkpoints(dir)) {
     if (c.path.filename().string().rfind("failed-", 0) == 0) continue;
     try {
-      const Hdf5File f = Hdf5File::open(c.path);
-      f.verify();
+      const double t = Hdf5File::open(c.path).attribute_double("/", "time");
+      if (!std::isfinite(t)) throw_input_error(fmt::format("{}: corrupt: time {} is not a number", c.path.string(), t));
+      candidates.push_back({t, c.path});
+    } catch (const Error& e) {
+      r.skipped.push_back(e.what());
+    }
+  }
+  // Latest simulated time first; equal times (a run that ends on a checkpoint time) by name, so the pick is the
+  // same whatever order the files were written or copied in.
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.time != b.time ? a.time > b.time : a.path.filename() > b.path.filename();
+  });
+  for (const Candidate& c : candidates) {
+    try {
+      Hdf5File::open(c.path).verify();
       r.path = c.path;
       return r;
     } catch (const Error& e) {

@@ -19,14 +19,16 @@ struct CheckpointFile {
 /// Checkpoint files of `dir` (checkpoints/), newest written first; temporaries (*.tmp.<pid>) are not listed.
 std::vector<CheckpointFile> list_checkpoints(const std::filesystem::path& dir);
 
-/// What `--restart latest` chose: the newest checkpoint that passes Hdf5File::verify(), and the newer ones
-/// it skipped with the reason.
+/// What `--restart latest` chose: the checkpoint of the latest simulated time that passes Hdf5File::verify(), and
+/// the ones it skipped with the reason (later ones that fail verify(), and any whose time cannot be read).
 struct LatestCheckpoint {
   std::filesystem::path path;                ///< empty when none passed
   std::vector<std::string> skipped;          ///< "<file>: <reason>"
 };
 
-/// The newest valid checkpoint of `dir` (failed-*.h5, the state a run failed in, is not a candidate).
+/// The valid checkpoint of `dir` with the latest simulated time (the root attribute `time`; equal times by name,
+/// the greater first), whatever the files' modification times (failed-*.h5, the state a run failed in, is not a
+/// candidate).
 LatestCheckpoint find_latest_checkpoint(const std::filesystem::path& dir);
 
 /// Keep the `keep` newest periodic checkpoints t<time>.h5 of `dir`, deleting older ones; `just_written` (which

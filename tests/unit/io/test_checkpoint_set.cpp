@@ -136,5 +136,38 @@ TEST(Checkpoints, LatestSkipsADamagedNewestAndFailedStates) {
   EXPECT_TRUE(find_latest_checkpoint(dir / "none").path.empty());
 }
 
+TEST(Checkpoints, LatestIsTheLatestSimulatedTimeWhateverTheFileTimes) {
+  // A run folder copied with cp -r: the copies' modification times follow the copy, not the run (here t = 0.1917 s
+  // written after t = 0.1998 s, and final.h5 the oldest on the clock).
+  const test::ScratchDir scratch;
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "t0.199800.h5", 0.1998);
+  set_age(dir / "t0.199800.h5", 50);
+  write_checkpoint(dir / "t0.191700.h5", 0.1917);
+  set_age(dir / "t0.191700.h5", 10);
+  EXPECT_EQ(find_latest_checkpoint(dir).path, dir / "t0.199800.h5");
+  write_checkpoint(dir / "final.h5", 0.2);
+  set_age(dir / "final.h5", 90);
+  EXPECT_EQ(find_latest_checkpoint(dir).path, dir / "final.h5");
+  // A failed state is never a candidate, however late its time.
+  write_checkpoint(dir / "failed-t0.250000.h5", 0.25);
+  EXPECT_EQ(find_latest_checkpoint(dir).path, dir / "final.h5");
+  // Equal simulated times (a run that ends at a checkpoint time): the same pick whichever was written last.
+  write_checkpoint(dir / "t0.200000.h5", 0.2);
+  set_age(dir / "t0.200000.h5", 95);
+  const fs::path tie = find_latest_checkpoint(dir).path;
+  set_age(dir / "t0.200000.h5", 5);
+  EXPECT_EQ(find_latest_checkpoint(dir).path, tie);
+  EXPECT_EQ(tie, dir / "t0.200000.h5");  // by name, the latest first, as list_checkpoints() orders equal times
+  // The latest damaged: skipped with its reason, then the next latest in simulated time (not the newest file).
+  for (const char* name : {"t0.200000.h5", "final.h5"}) {
+    fs::resize_file(dir / name, fs::file_size(dir / name) / 2);
+  }
+  set_age(dir / "t0.191700.h5", 1);
+  const LatestCheckpoint latest = find_latest_checkpoint(dir);
+  EXPECT_EQ(latest.path, dir / "t0.199800.h5");
+  EXPECT_EQ(latest.skipped.size(), 2u);
+}
+
 }  // namespace
 }  // namespace fluidbed
