@@ -49,6 +49,53 @@ struct Region {
   }
 };
 
+// Regions that span the bed's cross-section: a cell in every column along each horizontal axis (x; x and z in 3D).
+// Such a void parts the bed above it from the bed below (a slug, or a plug lifted off the distributor), so it is no
+// bubble rising through the bed. Without wrap-around in the labels, a connected region has every column exactly when
+// it touches both side walls, and along a periodic axis the whole axis is the test either way.
+template <int Dim>
+std::vector<std::uint8_t> spanning_regions(const CellGeometry<Dim>& g, const std::vector<int>& label, int n_regions) {
+  std::vector<std::uint8_t> spans(static_cast<std::size_t>(n_regions), 1);
+  for (int a = 0; a < Dim; a += 2) {  // the horizontal axes: 0, and 2 in 3D (axis 1 is up)
+    const std::size_t n = static_cast<std::size_t>(g.n[a]);
+    std::vector<std::uint8_t> column(spans.size() * n, 0);  // [region][column along a]
+    for (std::size_t k = 0; k < label.size(); ++k) {
+      if (label[k] < 0) continue;
+      column[static_cast<std::size_t>(label[k]) * n + static_cast<std::size_t>(g.cell_of(k)[a])] = 1;
+    }
+    for (std::size_t l = 0; l < spans.size(); ++l) {
+      spans[l] = spans[l] && std::all_of(column.begin() + static_cast<std::ptrdiff_t>(l * n),
+                                         column.begin() + static_cast<std::ptrdiff_t>((l + 1) * n),
+                                         [](std::uint8_t c) { return c != 0; });
+    }
+  }
+  return spans;
+}
+
+// The frame of a sample: the bed between the distributor zone and the surface row j_surf, the bubbles in it; slugs
+// are counted apart, neither in the bubble count nor in the bubble measure.
+template <int Dim>
+BubbleFrame frame_of(double t, const CellGeometry<Dim>& g, int j_surf, double y_dist,
+                     const std::vector<BubbleRecord<Dim>>& now) {
+  BubbleFrame f;
+  f.time = t;
+  if (j_surf >= 0) {
+    f.bed_height = g.face(1, j_surf + 1);
+    double across = g.length(0);
+    if constexpr (Dim == 3) across *= g.length(2);
+    f.bed_measure = std::max(0.0, *f.bed_height - y_dist) * across;
+  }
+  for (const BubbleRecord<Dim>& b : now) {
+    if (b.slug) {
+      ++f.slugs;
+    } else {
+      f.bubble_measure += b.size;
+      ++f.bubbles;
+    }
+  }
+  return f;
+}
+
 }  // namespace
 
 template <int Dim>
@@ -109,6 +156,7 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
       }
     }
   }
+  const std::vector<std::uint8_t> spans = spanning_regions<Dim>(g, label, n_regions);
   const double cell_measure = g.cell_measure();
   const auto is_bubble = [&](int l) {
     const Region<Dim>& r = region[static_cast<std::size_t>(l)];
@@ -151,6 +199,7 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
     BubbleRecord<Dim> b;
     b.time = t;
     b.cells = r.cells;
+    b.slug = spans[static_cast<std::size_t>(l)] != 0;
     b.size = static_cast<double>(r.cells) * cell_measure;
     // Circle of the same area (2D), sphere of the same volume V = pi d^3 / 6 (3D).
     b.equivalent_diameter =
@@ -237,17 +286,7 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
   for (std::size_t k = 0; k < n_cells; ++k)
     if (label[k] >= 0) owner_[k] = id_of_region[static_cast<std::size_t>(label[k])];
 
-  BubbleFrame f;
-  f.time = t;
-  if (j_surf >= 0) {
-    f.bed_height = g.face(1, j_surf + 1);
-    double across = g.length(0);
-    if constexpr (Dim == 3) across *= g.length(2);
-    f.bed_measure = std::max(0.0, *f.bed_height - y_dist) * across;
-  }
-  for (const BubbleRecord<Dim>& b : now) f.bubble_measure += b.size;
-  f.bubbles = static_cast<int>(now.size());
-  frames_.push_back(f);
+  frames_.push_back(frame_of<Dim>(t, g, j_surf, y_dist, now));
 
   current_ = std::move(now);
   return current_;
@@ -325,9 +364,9 @@ std::string opt(const std::optional<double>& v) { return v ? fmt::format("{}", *
 std::string bubbles_csv_header(int dimension) {
   if (dimension == 3)
     return "time_s,id,event,parents,volume_m3,equivalent_diameter_m,centroid_x_m,centroid_y_m,centroid_z_m,nose_m,"
-           "tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s";
+           "tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s,slug";
   return "time_s,id,event,parents,area_m2,equivalent_diameter_m,centroid_x_m,centroid_y_m,nose_m,tail_m,"
-         "aspect_ratio,u_centroid_m_s,u_nose_m_s";
+         "aspect_ratio,u_centroid_m_s,u_nose_m_s,slug";
 }
 
 template <int Dim>
@@ -335,7 +374,8 @@ std::string bubbles_csv_row(const BubbleRecord<Dim>& b) {
   std::string row = fmt::format("{},{},{},{},{},{}", b.time, b.id, bubble_event_name(b.event), join_ids(b.parents),
                                 b.size, b.equivalent_diameter);
   for (int a = 0; a < Dim; ++a) row += fmt::format(",{}", b.centroid[a]);
-  row += fmt::format(",{},{},{},{},{}", b.nose, b.tail, b.aspect_ratio, opt(b.u_centroid), opt(b.u_nose));
+  row += fmt::format(",{},{},{},{},{},{}", b.nose, b.tail, b.aspect_ratio, opt(b.u_centroid), opt(b.u_nose),
+                     b.slug ? 1 : 0);
   return row;
 }
 
@@ -346,12 +386,12 @@ std::string bubble_events_csv_row(const BubbleEventRecord& e) {
 }
 
 std::string bubble_frames_csv_header() {
-  return "time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction";
+  return "time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction,slugs";
 }
 
 std::string bubble_frames_csv_row(const BubbleFrame& f) {
-  return fmt::format("{},{},{},{},{},{}", f.time, opt(f.bed_height), f.bed_measure, f.bubble_measure, f.bubbles,
-                     f.bubble_fraction());
+  return fmt::format("{},{},{},{},{},{},{}", f.time, opt(f.bed_height), f.bed_measure, f.bubble_measure, f.bubbles,
+                     f.bubble_fraction(), f.slugs);
 }
 
 template class BubblePopulation<2>;

@@ -2,8 +2,10 @@
 // Every bubble of a bed, followed from sample to sample (issue 15, item 1): connected regions above the voidage
 // threshold, less the freeboard and the distributor zone, associated between consecutive samples by the cells they
 // share. Gives persistent ids, the events birth, split, coalescence, eruption and disappearance, and per bubble and
-// sample its size, equivalent diameter, centroid, nose, tail, aspect ratio and rise velocities. docs/analysis.md
-// ("Bubble population") gives the definitions and the columns of bubbles.csv, bubble_events.csv, bubble_frames.csv.
+// sample its size, equivalent diameter, centroid, nose, tail, aspect ratio and rise velocities; a void that spans
+// the cross-section (a slug, a plug lifted off the distributor) is followed too but flagged, and not counted as a
+// bubble. docs/analysis.md ("Bubble population") gives the definitions and the columns of bubbles.csv,
+// bubble_events.csv, bubble_frames.csv.
 #include <array>
 #include <cstddef>
 #include <map>
@@ -38,6 +40,9 @@ struct BubbleRecord {
   BubbleEvent event = BubbleEvent::None;
   std::vector<int> parents;  ///< ids it came from at this sample (split: the parent; coalescence: all merged)
   std::size_t cells = 0;
+  /// The void spans the cross-section (a cell in every column along x, and along z in 3D): a slug or a plug lifted
+  /// off the distributor. Followed like a bubble, but not counted as one (BubbleFrame).
+  bool slug = false;
   double size = 0.0;                   ///< m^2 (2D) or m^3 (3D): cells times the cell measure
   double equivalent_diameter = 0.0;    ///< m: circle sqrt(4 A / pi) in 2D, sphere (6 V / pi)^(1/3) in 3D
   std::array<double, Dim> centroid{};  ///< m, mean of the cell centres
@@ -63,8 +68,9 @@ struct BubbleFrame {
   double time = 0.0;                 ///< s
   std::optional<double> bed_height;  ///< m, bed_surface_height(); empty without a bed
   double bed_measure = 0.0;          ///< m^2 / m^3 between distributor_height and the bed surface, whole width
-  double bubble_measure = 0.0;       ///< m^2 / m^3, sum of the bubbles' sizes
-  int bubbles = 0;                   ///< number of bubbles
+  double bubble_measure = 0.0;       ///< m^2 / m^3, sum of the bubbles' sizes (slugs not included)
+  int bubbles = 0;                   ///< number of bubbles, slugs not included
+  int slugs = 0;                     ///< number of voids that span the cross-section (BubbleRecord::slug)
   /// bubble_measure / bed_measure, the fraction of the bed occupied by bubbles; 0 without a bed.
   double bubble_fraction() const { return bed_measure > 0.0 ? bubble_measure / bed_measure : 0.0; }
 };
@@ -119,7 +125,7 @@ class BubblePopulation {
 };
 
 /// bubbles.csv header: time_s,id,event,parents,area_m2 (3D: volume_m3),equivalent_diameter_m,centroid_x_m,
-/// centroid_y_m,(centroid_z_m,)nose_m,tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s.
+/// centroid_y_m,(centroid_z_m,)nose_m,tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s,slug.
 std::string bubbles_csv_header(int dimension);
 /// One bubbles.csv line (no newline); parents separated by ';'.
 template <int Dim>
@@ -127,7 +133,7 @@ std::string bubbles_csv_row(const BubbleRecord<Dim>& b);
 /// bubble_events.csv header: time_s,event,id,others,height_m.
 std::string bubble_events_csv_header();
 std::string bubble_events_csv_row(const BubbleEventRecord& e);
-/// bubble_frames.csv header: time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction.
+/// bubble_frames.csv header: time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction,slugs.
 std::string bubble_frames_csv_header();
 std::string bubble_frames_csv_row(const BubbleFrame& f);
 

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -245,6 +247,87 @@ TYPED_TEST(BubblePopulationTest, RestoredStateSamplesTheSame) {
   EXPECT_NE(expected[2].find("coalescence"), std::string::npos);
 }
 
+// A 0.06 m column, 6 cells of 0.01 m across (and 6 deep in 3D), bed surface at 0.5 m. Voids are boxes of cells
+// [i0, i1) x [j0, j1) x [k0, k1) (k ignored in 2D).
+template <int Dim>
+struct Column {
+  using Void = std::array<int, 6>;
+  CellGeometry<Dim> g;
+  std::vector<double> v;
+  Column() {
+    g.n[0] = 6;
+    g.n[1] = ny;
+    if constexpr (Dim == 3) g.n[2] = 6;
+    g.h.fill(h);
+    g.origin.fill(0.0);
+  }
+  CellView<Dim> frame(const std::vector<Void>& voids, int lift) {
+    v.assign(g.cells(), eps_bed);
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const Index<Dim> c = g.cell_of(k);
+      if (c[1] >= freeboard_row) v[k] = 1.0;
+      for (const Void& b : voids) {
+        const bool in_z = Dim == 2 || (c[Dim - 1] >= b[4] && c[Dim - 1] < b[5]);
+        if (in_z && c[0] >= b[0] && c[0] < b[1] && c[1] >= b[2] + lift && c[1] < b[3] + lift) v[k] = 1.0;
+      }
+    }
+    return {g, v.data()};
+  }
+};
+
+TYPED_TEST(BubblePopulationTest, AVoidAcrossTheColumnIsASlugNotABubble) {
+  // A plug lifted off the distributor leaves a void across the whole section: two overlapping boxes, a step between
+  // them, that together hold every column (and every depth in 3D); 4 x 6 + 3 x 6 - 3 = 39 cells per depth, D_eq =
+  // 0.070 m in 2D (0.077 m in 3D) in the 0.06 m column. A free bubble of 3 x 3 (x 3) cells rises above it; a void
+  // on the left wall across half the width is no slug, nor (3D) one across the width but half the depth.
+  constexpr int Dim = TypeParam::value;
+  Column<Dim> col;
+  using Void = typename Column<Dim>::Void;
+  std::vector<Void> voids = {{0, 4, 10, 16, 0, 6}, {3, 6, 13, 19, 0, 6}, {1, 4, 30, 33, 1, 4}, {0, 3, 40, 43, 0, 6}};
+  if (Dim == 3) voids.push_back({0, 6, 45, 47, 0, 3});
+  const std::size_t slug_cells = (4 * 6 + 3 * 6 - 3) * (Dim == 3 ? 6 : 1);
+  const std::size_t others = Dim == 3 ? 1 + 2 : 1 + 1;  // the bubble, the wall void (and the half-depth one)
+  BubblePopulation<Dim> pop(PopulationConfig{});
+  const double dt = 0.02;
+  int slug_id = -1;
+  for (int s = 0; s < 2; ++s) {
+    const auto r = pop.observe(s * dt, col.frame(voids, s));  // everything one row higher at the second sample
+    ASSERT_EQ(r.size(), others + 1);
+    double measure = 0.0;
+    std::size_t slugs = 0;
+    for (const BubbleRecord<Dim>& b : r) {
+      const std::string row = bubbles_csv_row(b);
+      EXPECT_EQ(row.substr(row.rfind(',')), b.slug ? ",1" : ",0") << row;
+      if (!b.slug) {
+        measure += b.size;
+        continue;
+      }
+      ++slugs;
+      EXPECT_EQ(b.cells, slug_cells);
+      std::printf("slug %dD, sample %d: cells exact %zu computed %zu, D_eq %.4f m, id %d\n", Dim, s, slug_cells,
+                  b.cells, b.equivalent_diameter, b.id);
+      if (s == 0) {
+        slug_id = b.id;
+      } else {
+        // Followed like a bubble: the same id, rising one row per sample.
+        EXPECT_EQ(b.id, slug_id);
+        EXPECT_EQ(b.event, BubbleEvent::None);
+        ASSERT_TRUE(b.u_centroid);
+        EXPECT_NEAR(*b.u_centroid, h / dt, 1e-9 * h / dt);
+      }
+    }
+    EXPECT_EQ(slugs, 1u);
+    const BubbleFrame& f = pop.frames().back();
+    std::printf("frame %dD, sample %d: bubbles %d (exact %zu), slugs %d (exact 1)\n", Dim, s, f.bubbles, others,
+                f.slugs);
+    EXPECT_EQ(f.bubbles, static_cast<int>(others));
+    EXPECT_EQ(f.slugs, 1);
+    EXPECT_DOUBLE_EQ(f.bubble_measure, measure);
+    const std::string frame = bubble_frames_csv_row(f);
+    EXPECT_EQ(frame.substr(frame.rfind(',')), ",1") << frame;
+  }
+}
+
 TEST(BubblePopulation, CsvColumns) {
   BubbleRecord<3> b;
   b.time = 0.5;
@@ -256,8 +339,21 @@ TEST(BubblePopulation, CsvColumns) {
   b.u_centroid = 0.25;
   EXPECT_EQ(bubbles_csv_header(3),
             "time_s,id,event,parents,volume_m3,equivalent_diameter_m,centroid_x_m,centroid_y_m,centroid_z_m,nose_m,"
-            "tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s");
-  EXPECT_EQ(bubbles_csv_row(b), "0.5,3,coalescence,1;3,0.002,0,0.1,0.2,0.3,0,0,0,0.25,");
+            "tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s,slug");
+  EXPECT_EQ(bubbles_csv_row(b), "0.5,3,coalescence,1;3,0.002,0,0.1,0.2,0.3,0,0,0,0.25,,0");
+  b.slug = true;
+  EXPECT_EQ(bubbles_csv_row(b), "0.5,3,coalescence,1;3,0.002,0,0.1,0.2,0.3,0,0,0,0.25,,1");
+  EXPECT_EQ(bubbles_csv_header(2), "time_s,id,event,parents,area_m2,equivalent_diameter_m,centroid_x_m,centroid_y_m,"
+                                   "nose_m,tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s,slug");
+  BubbleFrame f;
+  f.time = 0.5;
+  f.bed_height = 0.4;
+  f.bed_measure = 0.2;
+  f.bubble_measure = 0.05;
+  f.bubbles = 2;
+  f.slugs = 1;
+  EXPECT_EQ(bubble_frames_csv_header(), "time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction,slugs");
+  EXPECT_EQ(bubble_frames_csv_row(f), "0.5,0.4,0.2,0.05,2,0.25,1");
   EXPECT_THROW(BubblePopulation<2>(PopulationConfig{.eps_threshold = 1.5}), Error);
 }
 
