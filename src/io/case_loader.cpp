@@ -250,6 +250,8 @@ void read_species_size(CaseReader& r, const std::string& p, Species& sp) {
     z.d_min = *std::min_element(z.diameters.begin(), z.diameters.end());
     z.d_max = *std::max_element(z.diameters.begin(), z.diameters.end());
   }
+  // A range that holds next to nothing of its law (cut-offs far in a tail) is a slip, not a bed.
+  if (const auto refusal = size_range_refusal(z, p)) r.fail(p + refusal->key, refusal->message);
   sp.diameter = size_moments(z).m1;
 }
 

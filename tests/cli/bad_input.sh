@@ -176,6 +176,12 @@ expect 0 "warning: coupling.depth = 0.0002 m is too thin for the largest particl
 expect 3 "at t = 0 s the voidage is -[0-9.]+ \(below zero\) in [0-9]+ of 40 gas cells.*coupling.depth = 0.0002 m" \
   "a voidage below zero stops the run" "$FLUIDBED" run "$WORK/thin_slab.toml" --quiet --out "$WORK/thin_slab"
 
+# Item 4: a size range far in a tail of its law is refused naming the species and its keys (before: NaN reached the
+# user as `dem.skin: -nan`, or every particle sat at d_min).
+bad normal_far_tail "species\[0\]\.d_min: the cut-offs species\[0\]\.d_min = 0.006 m and species\[0\]\.d_max = 0.007 m lie" \
+  'species = [{size_distribution = "normal", mean = 0.004, std = 0.0001, d_min = 0.006, d_max = 0.007}]'
+bad lognormal_far_tail "species\[0\]\.d_min: .*species\[0\]\.median = 0.001 m and species\[0\]\.sigma = 0.1" \
+  'species = [{size_distribution = "log-normal", median = 0.001, sigma = 0.1, d_min = 0.0025, d_max = 0.003}]'
 # Issue 28 item 5: keys of earlier versions name their replacement; DEM alone in a small box needs no [grid].
 bad old_top_wall 'domain.top_wall: domain.top_wall is now domain.particle_top: "wall" for top_wall = true' \
   "domain.top_wall = true"
