@@ -596,8 +596,14 @@ def figure_particles(runs, kind, path, notes):
                     empty_panel(ax)
                     continue
                 ball = d[4] if d else 0.02  # the paper's balls have the diameter of a cell
-                colours = np.array(LAYER_COLOURS)[numeric(c, "layer").astype(int) % 2]
-                scatter_colours(ax, numeric(c, "x"), numeric(c, "y"), colours, ball, scale)
+                x, y, layer = numeric(c, "x"), numeric(c, "y"), numeric(c, "layer").astype(int)
+                if run.dimension == 3 and run.depth and "z" in c:
+                    # A 3D bed's balls (one per cell): the slab of one ball's width about the mid-depth plane.
+                    # (with an even number of cells across, the two layers either side of it, as the voidage slice).
+                    cut = np.abs(numeric(c, "z") - 0.5 * run.depth) <= 0.5 * ball * (1.0 + 1e-9)
+                    x, y, layer = x[cut], y[cut], layer[cut]
+                colours = np.array(LAYER_COLOURS)[layer % 2]
+                scatter_colours(ax, x, y, colours, ball, scale)
             else:
                 p = read_vtu(fr[1])
                 if p is not None and run.dimension == 3 and run.depth:

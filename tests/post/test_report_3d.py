@@ -91,6 +91,17 @@ def make_run(folder, with_dimension, rng):
         write_vtu(os.path.join(folder, "particles", f"{k:06d}.vtu"), rng)
         entries_f.append(f'<DataSet timestep="{t}" group="" part="0" file="fields/{k:06d}.vti"/>')
         entries_p.append(f'<DataSet timestep="{t}" group="" part="0" file="particles/{k:06d}.vtu"/>')
+    # Tracer balls of a 3D run (ball_id,x,y,z,layer): one per cell of the lower half, two layers.
+    os.makedirs(os.path.join(folder, "tracers"))
+    for k in range(2):
+        with open(os.path.join(folder, "tracers", f"{k:06d}.csv"), "w") as f:
+            f.write("ball_id,x,y,z,layer\n")
+            n = 0
+            for kz in range(NZ):
+                for j in range(NY // 2):
+                    for i in range(NX):
+                        f.write(f"{n},{(i + 0.5) * H},{(j + 0.5) * H},{(kz + 0.5) * H},{j * 2 // (NY // 2)}\n")
+                        n += 1
     for name, entries in (("fields", entries_f), ("particles", entries_p)):
         with open(os.path.join(folder, f"{name}.pvd"), "w") as f:
             f.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
@@ -132,10 +143,12 @@ def main():
         if runs[0].dimension != 3 or runs[0].depth != DEPTH:
             fail(f"run dimension {runs[0].dimension}, depth {runs[0].depth}")
         summary = open(os.path.join(out, "summary.md")).read()
-        for name in ("voidage.png", "voidage_depth_averaged.png", "layers_particles.png"):
+        for name in ("voidage.png", "voidage_depth_averaged.png", "layers_particles.png", "layers_tracers.png"):
             path = os.path.join(out, "figures", name)
             if not os.path.isfile(path) or not not_blank(path):
                 fail(f"{name} missing or blank; summary:\n{summary}")
+        if "no tracer frames" in summary:
+            fail(f"the 3D run's tracer frames were not read:\n{summary}")
         for text in ("its panels show the mid-depth slice z = D/2", "the spheres the mid-depth plane z = D/2 cuts",
                      "Depth-averaged voidage maps of the 3D runs: ![" ):
             if text not in summary:
