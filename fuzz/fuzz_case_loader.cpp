@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // toml++ 3.3.0 (Debian 12) reaches __builtin_unreachable() on some non-ASCII code points outside strings

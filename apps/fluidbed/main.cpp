@@ -14,10 +14,10 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
-#include "io/case_check.hpp"
-#include "io/case_loader.hpp"
-#include "io/ensemble.hpp"
-#include "io/runner.hpp"
+#include "config/case_check.hpp"
+#include "config/case_loader.hpp"
+#include "run/ensemble.hpp"
+#include "run/runner.hpp"
 
 #ifndef FLUIDBED_POST_DIR
 #define FLUIDBED_POST_DIR "post"

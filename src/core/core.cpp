@@ -1,6 +1,5 @@
 // Anchor translation unit for the header-mostly core library; instantiates the generic types so that every
 // header is compiled once on its own.
-#include "core/comm.hpp"
 #include "core/error.hpp"
 #include "core/field.hpp"
 #include "core/field2.hpp"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/periodic_halo.hpp"
+#include "parallel/periodic_halo.hpp"
 
 namespace fluidbed {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/comm.hpp"
+#include "parallel/comm.hpp"
 #include "core/field.hpp"
 #include "core/field2.hpp"
 #include "core/grid.hpp"

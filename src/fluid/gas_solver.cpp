@@ -13,7 +13,7 @@
 #include <omp.h>
 
 #include "core/error.hpp"
-#include "core/periodic_halo.hpp"
+#include "parallel/periodic_halo.hpp"
 #include "fluid/stencil_matrix.hpp"
 
 namespace fluidbed {

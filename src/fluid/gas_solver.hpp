@@ -7,7 +7,7 @@
 #include <array>
 #include <memory>
 
-#include "core/comm.hpp"
+#include "parallel/comm.hpp"
 #include "core/field.hpp"
 #include "core/field2.hpp"
 #include "core/grid.hpp"

@@ -217,18 +217,6 @@ void CsvWriter::write_line(const std::string& line) {
 // ---------------------------------------------------------------------------------------------------------------
 // Particle CSV
 
-std::vector<std::size_t> order_by_id(const ParticleStore<2>& particles) {
-  std::vector<std::size_t> order(particles.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return particles.id[a] < particles.id[b]; });
-  return order;
-}
-
-void write_particles_csv(const std::filesystem::path& path, const ParticleStore<2>& particles, Sync sync) {
-  write_particles_csv(path, particle_arrays(particles), sync);
-}
-
 std::vector<std::size_t> ParticleArrays::order_by_id() const {
   std::vector<std::size_t> order(size());
   std::iota(order.begin(), order.end(), std::size_t{0});

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "core/domain.hpp"
-#include "dem/particle_store.hpp"
 #include "io/atomic_file.hpp"
 #include "io/particle_arrays.hpp"
 
@@ -82,14 +81,8 @@ inline const char* particle_csv_header_of(int dimension) {
 /// The optional last column of a particle CSV file: each particle's own diameter, m.
 inline constexpr const char* particle_csv_diameter_column = "diameter";
 
-/// Storage slots of `particles` in increasing id order (ties in storage order), for output that does not
-/// depend on how the store happens to be sorted.
-std::vector<std::size_t> order_by_id(const ParticleStore<2>& particles);
-
-/// Write `particles` sorted by id at full precision, atomically. Throws Error(BadInput) when it cannot write.
-void write_particles_csv(const std::filesystem::path& path, const ParticleStore<2>& particles,
-                         Sync sync = Sync::Durable);
-/// The same from plain arrays, in their dimension (a 2D view gives exactly the bytes of the overload above).
+/// Write `particles` (a particle_arrays() view of a store, in its dimension) sorted by id at full precision,
+/// atomically. Throws Error(BadInput) when it cannot write.
 void write_particles_csv(const std::filesystem::path& path, const ParticleArrays& particles,
                          Sync sync = Sync::Durable);
 

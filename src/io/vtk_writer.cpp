@@ -280,10 +280,6 @@ void write_vtu(const std::filesystem::path& path, double time, const ParticleArr
   file.write(path, "UnstructuredGrid");
 }
 
-void write_vtu(const std::filesystem::path& path, double time, const ParticleStore<2>& particles) {
-  write_vtu(path, time, particle_arrays(particles));
-}
-
 namespace {
 
 PvdCollection open_series(const std::filesystem::path& out_dir, const std::string& name,
@@ -316,10 +312,6 @@ std::size_t FieldSeries::write(double time, const Grid2& grid, const std::vector
 
 ParticleSeries::ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time)
     : out_dir_(out_dir), pvd_(open_series(out_dir, "particles", restart_time)) {}
-
-std::size_t ParticleSeries::write(double time, const ParticleStore<2>& particles, bool with_csv) {
-  return write(time, particle_arrays(particles), with_csv);
-}
 
 std::size_t ParticleSeries::write(double time, const ParticleArrays& particles, bool with_csv) {
   const std::size_t index = pvd_.next_index();

@@ -11,7 +11,6 @@
 
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
-#include "dem/particle_store.hpp"
 #include "io/particle_arrays.hpp"
 #include "io/pvd.hpp"
 
@@ -62,13 +61,11 @@ void write_vti(const std::filesystem::path& path, const VtiGrid& grid, double ti
 void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
                const std::vector<VtiArray>& cell_data);
 
-/// Write an UnstructuredGrid of one VTK_VERTEX per particle, sorted by particle id (the store is not modified).
-/// Point arrays: id (Int64), species (Int32), diameter (Float64, m), velocity (Float64 x3, z = 0, m/s),
-/// angular_velocity (Float64 scalar: spin about z, rad/s, anticlockwise positive), layer (Int32);
-/// FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
-void write_vtu(const std::filesystem::path& path, double time, const ParticleStore<2>& particles);
-/// The same from plain arrays in their dimension; in 3D the points and velocities have their z and
-/// angular_velocity is a Float64 x 3 vector (rad/s). A 2D view gives exactly the bytes of the overload above.
+/// Write an UnstructuredGrid of one VTK_VERTEX per particle of `particles` (a particle_arrays() view of a store),
+/// sorted by particle id. Point arrays: id (Int64), species (Int32), diameter (Float64, m), velocity (Float64 x3,
+/// z = 0 in 2D, m/s), angular_velocity (2D: Float64 scalar, spin about z, rad/s, anticlockwise positive; 3D:
+/// Float64 x 3), layer (Int32); FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be
+/// written.
 void write_vtu(const std::filesystem::path& path, double time, const ParticleArrays& particles);
 
 /// The field frames of a run: `<out_dir>/fields/NNNNNN.vti` listed in `<out_dir>/fields.pvd`.
@@ -94,8 +91,6 @@ class ParticleSeries {
  public:
   explicit ParticleSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
   /// Write one frame (and its CSV when `with_csv`); returns its frame number.
-  std::size_t write(double time, const ParticleStore<2>& particles, bool with_csv = false);
-  /// The same in either dimension.
   std::size_t write(double time, const ParticleArrays& particles, bool with_csv = false);
   const PvdCollection& collection() const { return pvd_; }
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 
 namespace fluidbed {
 

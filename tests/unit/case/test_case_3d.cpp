@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "io/case_check.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_check.hpp"
+#include "config/case_loader.hpp"
 #include "unit/case/case_errors.hpp"
 
 namespace fluidbed {

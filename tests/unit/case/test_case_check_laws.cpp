@@ -9,8 +9,8 @@
 #include <string>
 
 #include "dem/contact_model.hpp"
-#include "io/case_check.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_check.hpp"
+#include "config/case_loader.hpp"
 #include "unit/case/case_errors.hpp"
 
 namespace fluidbed {

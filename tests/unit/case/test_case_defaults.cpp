@@ -10,8 +10,8 @@
 #include "core/error.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_solver.hpp"
-#include "io/case_check.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_check.hpp"
+#include "config/case_loader.hpp"
 #include "unit/case/case_errors.hpp"
 
 namespace fluidbed {

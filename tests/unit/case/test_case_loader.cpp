@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "io/case_loader.hpp"
-#include "io/case_reader.hpp"
+#include "config/case_loader.hpp"
+#include "config/case_reader.hpp"
 #include "unit/case/case_errors.hpp"
 
 namespace fluidbed {

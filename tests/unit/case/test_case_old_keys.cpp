@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 #include "unit/case/case_errors.hpp"
 
 namespace fluidbed {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 
 namespace fluidbed {
 namespace {

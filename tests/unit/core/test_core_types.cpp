@@ -1,7 +1,7 @@
 // The dimension-generic core: boxes, grids, ghost-layered fields and the serial communicator.
 #include <gtest/gtest.h>
 
-#include "core/comm.hpp"
+#include "parallel/comm.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "core/vec.hpp"

@@ -8,7 +8,7 @@
 #include <type_traits>
 
 #include "fluid/drag.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 #include "unit/case/case_errors.hpp"
 
 namespace fluidbed {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/comm.hpp"
+#include "parallel/comm.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "fluid/gas_solver.hpp"
 

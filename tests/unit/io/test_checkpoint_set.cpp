@@ -3,7 +3,7 @@
 #include <chrono>
 #include <thread>
 
-#include "io/checkpoint_set.hpp"
+#include "run/checkpoint_set.hpp"
 #include "io/hdf5_file.hpp"
 #include "test_helpers.hpp"
 

@@ -100,7 +100,7 @@ TEST(ParticlesCsv, WritesSortedByIdAndReadsBackBitExact) {
   ParticleStore<2> p = test::sample_particles(0.1 / 3.0);
   p.vx[2] = -0.0;
   p.omega[0] = 1e-300;
-  write_particles_csv(dir / "p.csv", p);
+  write_particles_csv(dir / "p.csv", particle_arrays(p));
   const std::string text = test::slurp(dir / "p.csv");
   EXPECT_EQ(text.substr(0, text.find('\n')), "id,x,y,vx,vy,omega,species");
   const auto rows = read_particles_csv(dir / "p.csv");
@@ -164,7 +164,7 @@ TEST(ParticlesCsv, ThreeDimensionalRoundTripIsBitExact) {
   }
   // A file of one dimension is refused, by name, by a case of the other.
   for (const auto& [dim, file] : {std::pair{2, "p.csv"}, std::pair{3, "q.csv"}}) {
-    if (dim == 3) write_particles_csv(dir / file, test::sample_particles(0.0));
+    if (dim == 3) write_particles_csv(dir / file, particle_arrays(test::sample_particles(0.0)));
     try {
       read_particles_csv(dir / file, dim);
       ADD_FAILURE() << "accepted " << file << " as " << dim << "D";

@@ -92,7 +92,7 @@ TEST(VtkWriter, UnstructuredGridSortedByIdWithoutTouchingStore) {
   const auto& dir = scratch.path;
   const ParticleStore<2> store = test::sample_particles(0.25);
   const ParticleStore<2> before = store;
-  write_vtu(dir / "p.vtu", 0.25, store);
+  write_vtu(dir / "p.vtu", 0.25, particle_arrays(store));
   EXPECT_EQ(store.id, before.id);  // the store's order is not changed
 
   const auto parsed = parse_vtk(test::slurp(dir / "p.vtu"));
@@ -139,7 +139,7 @@ TEST(VtkWriter, UnstructuredGridSortedByIdWithoutTouchingStore) {
 TEST(VtkWriter, EmptyParticleStoreGivesEmptyPiece) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  write_vtu(dir / "p.vtu", 1.0, ParticleStore<2>{});
+  write_vtu(dir / "p.vtu", 1.0, particle_arrays(ParticleStore<2>{}));
   const auto parsed = parse_vtk(test::slurp(dir / "p.vtu"));
   EXPECT_NE(parsed.header.find(R"(<Piece NumberOfPoints="0" NumberOfCells="0">)"), std::string::npos);
   EXPECT_TRUE(parsed.values<std::int64_t>("id").empty());
@@ -194,7 +194,7 @@ TEST(VtkWriter, CompressedInVtkBlocksBitForBit) {
 
   // 20,000 particles: 480,000 bytes of points are 7 full blocks and a last one of 21,248 bytes.
   const ParticleStore<2> store = test::sample_particles(0.25, test::sample_large_particles);
-  write_vtu(dir / "p.vtu", 0.25, store);
+  write_vtu(dir / "p.vtu", 0.25, particle_arrays(store));
   const std::string text = test::slurp(dir / "p.vtu");
   const auto vtu = parse_vtk(text);
   expect_vtk_block_layout(vtu, 10);
@@ -225,9 +225,9 @@ TEST(VtkWriter, CompressedBytesDoNotDependOnThreadCount) {
   const ParticleStore<2> store = test::sample_particles(0.5, test::sample_large_particles);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  write_vtu(dir / "one.vtu", 0.5, store);
+  write_vtu(dir / "one.vtu", 0.5, particle_arrays(store));
   omp_set_num_threads(4);
-  write_vtu(dir / "four.vtu", 0.5, store);
+  write_vtu(dir / "four.vtu", 0.5, particle_arrays(store));
   omp_set_num_threads(threads);
   EXPECT_EQ(test::slurp(dir / "one.vtu"), test::slurp(dir / "four.vtu"));
 }
@@ -235,7 +235,7 @@ TEST(VtkWriter, CompressedBytesDoNotDependOnThreadCount) {
 TEST(VtkWriter, UnwritableFolderIsBadInput) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  EXPECT_THROW(write_vtu(dir / "nope" / "p.vtu", 0.0, test::sample_particles(0.0)), Error);
+  EXPECT_THROW(write_vtu(dir / "nope" / "p.vtu", 0.0, particle_arrays(test::sample_particles(0.0))), Error);
 }
 
 // Writes the series that tests/post/test_vtk_readback.py reads with python-vtk: into $FLUIDBED_VTK_SAMPLE_DIR
@@ -258,7 +258,7 @@ TEST(VtkWriter, WritesSampleSeriesForReadback) {
                VtiArray::vector("gas_velocity", f.ug, f.vg)});
     fields.add(t, vti);
     const std::string vtu = frame_file_name("particles", particles.next_index(), "vtu");
-    write_vtu(dir / vtu, t, test::sample_particles(t));
+    write_vtu(dir / vtu, t, particle_arrays(test::sample_particles(t)));
     particles.add(t, vtu);
   }
   // Files of several compression blocks (a last block full and a last block partial) and an empty piece.
@@ -268,8 +268,8 @@ TEST(VtkWriter, WritesSampleSeriesForReadback) {
             {VtiArray::scalar("voidage", lf.voidage), VtiArray::scalar("pressure", lf.pressure),
              VtiArray::vector("gas_velocity", lf.ug, lf.vg)});
   write_vtu(dir / "large.vtu", test::sample_time(1),
-            test::sample_particles(test::sample_time(1), test::sample_large_particles));
-  write_vtu(dir / "empty.vtu", 0.0, ParticleStore<2>{});
+            particle_arrays(test::sample_particles(test::sample_time(1), test::sample_large_particles)));
+  write_vtu(dir / "empty.vtu", 0.0, particle_arrays(ParticleStore<2>{}));
   const auto entries = read_pvd(dir / "fields.pvd");
   ASSERT_EQ(entries.size(), static_cast<std::size_t>(test::sample_frames));
   EXPECT_EQ(entries.back().file, "fields/000002.vti");
@@ -327,7 +327,7 @@ TEST(VtkWriter, WritesSample3dForReadback) {
 TEST(VtkWriter, TwoDimensionalViewGivesTheStoreBytes) {
   const test::ScratchDir scratch;
   const ParticleStore p = test::sample_particles(0.05);
-  write_vtu(scratch.path / "a.vtu", 0.05, p);
+  write_vtu(scratch.path / "a.vtu", 0.05, particle_arrays(p));
   write_vtu(scratch.path / "b.vtu", 0.05, particle_arrays(p));
   EXPECT_EQ(test::slurp(scratch.path / "a.vtu"), test::slurp(scratch.path / "b.vtu"));
   const Grid2 grid = test::sample_grid();
@@ -356,7 +356,7 @@ TEST(VtkSeries, NumbersFramesAndContinuesAfterRestart) {
       const double t = 0.1 * k;
       const auto f = test::sample_fields(t);
       EXPECT_EQ(fields.write(t, grid, {VtiArray::scalar("voidage", f.voidage)}), static_cast<std::size_t>(k));
-      EXPECT_EQ(particles.write(t, test::sample_particles(t), k % 2 == 0), static_cast<std::size_t>(k));
+      EXPECT_EQ(particles.write(t, particle_arrays(test::sample_particles(t)), k % 2 == 0), static_cast<std::size_t>(k));
     }
   }
   EXPECT_TRUE(std::filesystem::exists(out / "fields" / "000003.vti"));
@@ -370,7 +370,7 @@ TEST(VtkSeries, NumbersFramesAndContinuesAfterRestart) {
   EXPECT_EQ(particles.collection().entries().size(), 2u);
   const auto f = test::sample_fields(0.15);
   EXPECT_EQ(fields.write(0.15, grid, {VtiArray::scalar("voidage", f.voidage)}), 2u);
-  EXPECT_EQ(particles.write(0.15, test::sample_particles(0.15)), 2u);
+  EXPECT_EQ(particles.write(0.15, particle_arrays(test::sample_particles(0.15))), 2u);
   const auto e = read_pvd(out / "fields.pvd");
   ASSERT_EQ(e.size(), 3u);
   EXPECT_EQ(e[2].time, 0.15);

@@ -7,8 +7,8 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
-#include "io/case_loader.hpp"
-#include "io/dem_model.hpp"
+#include "config/case_loader.hpp"
+#include "models/dem_model.hpp"
 
 namespace fluidbed {
 namespace {

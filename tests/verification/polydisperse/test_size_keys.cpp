@@ -9,10 +9,10 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
-#include "io/case_check.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_check.hpp"
+#include "config/case_loader.hpp"
 #include "io/csv.hpp"
-#include "io/dem_model.hpp"
+#include "models/dem_model.hpp"
 
 namespace fluidbed {
 namespace {

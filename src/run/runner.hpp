@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 
 namespace fluidbed {
 

@@ -1,4 +1,4 @@
-#include "io/probe_series.hpp"
+#include "run/probe_series.hpp"
 
 #include <string>
 

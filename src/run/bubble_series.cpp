@@ -1,4 +1,4 @@
-#include "io/bubble_series.hpp"
+#include "run/bubble_series.hpp"
 
 #include <cstdint>
 #include <string>

@@ -10,7 +10,7 @@
 
 #include "analysis/time_average.hpp"
 #include "io/hdf5_file.hpp"
-#include "io/model_run.hpp"
+#include "models/model_run.hpp"
 
 namespace fluidbed {
 

@@ -9,7 +9,7 @@
 #include "analysis/bubble_population.hpp"
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
-#include "io/model_run.hpp"
+#include "models/model_run.hpp"
 
 namespace fluidbed {
 

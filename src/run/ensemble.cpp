@@ -1,4 +1,4 @@
-#include "io/ensemble.hpp"
+#include "run/ensemble.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -14,7 +14,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 
 namespace fluidbed {
 

@@ -7,7 +7,7 @@
 
 #include "analysis/probes.hpp"
 #include "io/csv.hpp"
-#include "io/model_run.hpp"
+#include "models/model_run.hpp"
 
 namespace fluidbed {
 

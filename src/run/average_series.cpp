@@ -1,4 +1,4 @@
-#include "io/average_series.hpp"
+#include "run/average_series.hpp"
 
 #include <algorithm>
 #include <iterator>

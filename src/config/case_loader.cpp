@@ -1,4 +1,4 @@
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include "core/error.hpp"
 #include "dem/contact_law.hpp"
 #include "fluid/gas_boundary.hpp"
-#include "io/case_check.hpp"
+#include "config/case_check.hpp"
 #include "io/csv.hpp"
-#include "io/dem_model.hpp"
+#include "config/settle_record.hpp"
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -267,7 +267,8 @@ void check_species_plausible(const CaseReader& r, const std::string& p, const Sp
   check_particle_plausible(r, p + (list ? "diameters" : "d_max"), sp.d_max(), p + "density", sp.density, domain, cell);
 }
 
-void read_case(CaseReader& r, CaseConfig& c) {
+// [case] and [domain]: what every model reads.
+void read_case_and_domain(CaseReader& r, CaseConfig& c) {
   using R = CaseReader;
   // [case]
   c.name = r.required_string("case.name", "name of the case; the default output folder is out/<name>");
@@ -360,9 +361,10 @@ void read_case(CaseReader& r, CaseConfig& c) {
     wl.back = !wl.outflow(4) && !c.domain.periodic[2];
     wl.front = !wl.outflow(5) && !c.domain.periodic[2];
   }
+}
 
-  if (c.model == Model::Tfm) return;  // the particle keys belong to the discrete model
-
+void read_species(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
   // [[species]]
   const std::size_t ns = std::max<std::size_t>(1, r.table_count("species", "particle species; default: one species"));
   c.dem.species.assign(ns, Species{});
@@ -389,7 +391,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
     const std::string p = fmt::format("species[{}].", s);
     check_species_plausible(r, p, c.dem.species[s], c.domain, std::nullopt);
   }
+}
 
+void read_contact(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  const std::size_t ns = c.dem.n_species();
   // [contact]
   const R::Range restitution{0.0, 1.0, true, false};
   c.dem.stiffness = r.number("contact.stiffness", 800.0, "N/m", "spring stiffness k of Eqs. 2-3", R::positive());
@@ -415,7 +421,10 @@ void read_case(CaseReader& r, CaseConfig& c) {
     c.dem.pair[static_cast<std::size_t>(b) * ns + static_cast<std::size_t>(a)] = ip;
   }
   check_contact_keys(r, c);
+}
 
+void read_dem(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
   // [dem]
   const bool dt_given = r.has("dem.time_step");
   c.dem.dt = r.number("dem.time_step", default_dem_time_step(c.dem), "s",
@@ -470,7 +479,12 @@ void read_case(CaseReader& r, CaseConfig& c) {
                                   "bed with sticking contacts: sticking springs there oscillate until they slide "
                                   "(the paper case steps at 1e-4 s for this reason)", c.dem.dt, dt_bed));
   }
+}
 
+void read_insertion(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  const bool three_d = c.domain.dimension == 3;
+  const std::size_t ns = c.dem.n_species();
   // [insertion]: a feed of new particles during the run.
   {
     InsertionConfig& in = c.dem.insertion;
@@ -512,7 +526,11 @@ void read_case(CaseReader& r, CaseConfig& c) {
       }
     }
   }
+}
 
+void read_particles(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  const bool three_d = c.domain.dimension == 3;
   // [particles]
   const std::string source = r.string("particles.source", "random",
                                       "random: place at random (then settle, see [settle]); file: read a CSV "
@@ -565,7 +583,10 @@ void read_case(CaseReader& r, CaseConfig& c) {
   }
   c.particles.layers = static_cast<int>(r.integer("particles.layers", 6, "colour layers of the initial bed (Fig. 4)",
                                                   R::between(1, 1000)));
+}
 
+void read_settle(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
   // [settle]
   c.settle.enabled = r.boolean("settle.enabled", true, "settle the random placement in vacuum before t = 0") &&
                      c.particles.source != ParticleSource::File;
@@ -590,6 +611,18 @@ void read_case(CaseReader& r, CaseConfig& c) {
   c.gas_enabled = r.boolean("gas.enabled", true, "couple the particles to the gas (false: DEM alone, in vacuum)");
   c.max_overlap_fraction = r.number("dem.max_overlap_fraction", 0.1, "",
                                     "the run fails when an overlap exceeds this fraction of the diameter", R::positive());
+}
+
+// The sections of the case, in the key table's order; the particle sections belong to the discrete model.
+void read_case(CaseReader& r, CaseConfig& c) {
+  read_case_and_domain(r, c);
+  if (c.model == Model::Tfm) return;
+  read_species(r, c);
+  read_contact(r, c);
+  read_dem(r, c);
+  read_insertion(r, c);
+  read_particles(r, c);
+  read_settle(r, c);
 }
 
 void read_tfm(CaseReader& r, CaseConfig& c) {
@@ -796,7 +829,15 @@ void note_outputs_between_steps(CaseConfig& c, double step) {
   }
 }
 
-void read_gas(CaseReader& r, CaseConfig& c) {
+// The grid keys as given (the cells' sizes before the grid rounds them to whole cells) and the number of
+// inlet.jet tables: what the later sections' defaults derive from.
+struct GasKeys {
+  double dx = 0.0, dy = 0.0, dz = 0.0;  ///< m
+  std::size_t jet_tables = 0;
+};
+
+// [grid]: the cells of the gas, the voidage and the two-fluid model.
+void read_grid(CaseReader& r, CaseConfig& c, GasKeys& k) {
   using R = CaseReader;
   const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
   // [grid]: one staggered grid for the gas, the voidage and the two-fluid model.
@@ -860,7 +901,14 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     r.fail("grid.cell_height", fmt::format("{} m leaves {} cell over the domain height {} m; {} at least 2",
                                            dy, c.grid.ny, c.domain.height, who));
   }
+  k.dx = dx;
+  k.dy = dy;
+  k.dz = dz;
+}
 
+void read_gas_phase(CaseReader& r, CaseConfig& c, const GasKeys& k) {
+  using R = CaseReader;
+  const double dx = k.dx;
   GasConfig& g = c.gas;
   g.rho_g = r.number("gas.density", 1.205, "kg/m^3", "gas density rho_g", R::positive());
   g.mu_g = r.number("gas.viscosity", 1.8e-5, "Pa s", "gas viscosity mu_g", R::positive());
@@ -930,7 +978,15 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   const std::string top = r.string("gas.top", "outlet", "top boundary: pressure outlet or wall", {"outlet", "wall"});
   g.boundary.top = top == "outlet" ? TopBoundary::PressureOutlet : TopBoundary::Wall;
   g.boundary.top_pressure = r.number("gas.top_pressure", 0.0, "Pa", "gauge pressure at the outlet");
+}
 
+void read_plates(CaseReader& r, CaseConfig& c);
+
+void read_inlet(CaseReader& r, CaseConfig& c, GasKeys& keys) {
+  using R = CaseReader;
+  const bool three_d = c.domain.dimension == 3;
+  const double dx = keys.dx, dz = keys.dz;
+  GasConfig& g = c.gas;
   // [inlet]
   g.boundary.inlet_velocity = r.number("inlet.velocity", 1.8, "m/s",
                                        "superficial gas velocity through the whole bottom (the paper: U_mf = 1.8 m/s)");
@@ -953,6 +1009,7 @@ void read_gas(CaseReader& r, CaseConfig& c) {
                                     "time, total inflow unchanged", R::Range{0.0, 1.0, false, true});
   g.boundary.noise_seed = c.seed;
   const std::size_t nj = r.table_count("inlet.jet", "jets through the bottom, replacing the background inflow");
+  keys.jet_tables = nj;
   g.boundary.jets.clear();
   for (std::size_t k = 0; k < nj; ++k) {
     const std::string p = fmt::format("inlet.jet[{}].", k);
@@ -1022,6 +1079,14 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     if (j.t_end < j.t_start) r.fail(p + "end", "the jet closes before it opens");
     g.boundary.jets.push_back(j);
   }
+  read_plates(r, c);
+}
+
+// [[inlet.plate]]: blocks of equal holes, each hole a jet appended after the inlet.jet ones.
+void read_plates(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  const bool three_d = c.domain.dimension == 3;
+  GasConfig& g = c.gas;
   const std::size_t np = r.table_count("inlet.plate", "perforated distributor plates: blocks of equal holes (2D slots, "
                                        "3D discs), each hole a jet");
   for (std::size_t k = 0; k < np; ++k) {
@@ -1071,7 +1136,12 @@ void read_gas(CaseReader& r, CaseConfig& c) {
       }
     }
   }
+}
 
+void read_coupling(CaseReader& r, CaseConfig& c) {
+  using R = CaseReader;
+  const bool three_d = c.domain.dimension == 3;
+  GasConfig& g = c.gas;
   // [coupling]
   CouplingConfig& cc = c.coupling;
   const std::string vm = r.string("coupling.voidage", "bilinear", "how particle volume is shared among cells: "
@@ -1157,7 +1227,14 @@ void read_gas(CaseReader& r, CaseConfig& c) {
   cc.pressure_gradient_force = r.boolean("coupling.pressure_force", true, "apply -V_p grad P to each particle");
 
   if (c.model == Model::Tfm) read_tfm(r, c);  // before [bubble]: the U_mf default needs the solids
+}
 
+void read_bubble(CaseReader& r, CaseConfig& c, const GasKeys& k) {
+  using R = CaseReader;
+  const bool needs_gas = c.model == Model::Tfm || c.gas_enabled;
+  const double dx = k.dx;
+  const std::size_t nj = k.jet_tables;
+  GasConfig& g = c.gas;
   // [bubble]
   BubbleConfig& b = c.bubble;
   b.grid = c.grid.grid2();
@@ -1199,6 +1276,17 @@ void read_gas(CaseReader& r, CaseConfig& c) {
     r.fail("bubble.min_volume", "a 2D case measures bubbles by area (bubble.min_area); set case.dimension = 3");
   }
   (void)needs_gas;
+}
+
+// [grid], [gas], [inlet], [coupling] and [bubble], in that order (the key table's): read (and checked) even when the
+// gas is off, so toggling gas.enabled is safe.
+void read_gas(CaseReader& r, CaseConfig& c) {
+  GasKeys k;
+  read_grid(r, c, k);
+  read_gas_phase(r, c, k);
+  read_inlet(r, c, k);
+  read_coupling(r, c);
+  read_bubble(r, c, k);
 }
 
 void read_output(CaseReader& r, CaseConfig& c) {

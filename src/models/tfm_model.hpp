@@ -2,8 +2,8 @@
 // The two-fluid model behind the run driver.
 #include <memory>
 
-#include "io/case_config.hpp"
-#include "io/model_run.hpp"
+#include "config/case_config.hpp"
+#include "models/model_run.hpp"
 
 namespace fluidbed {
 

@@ -1,20 +1,13 @@
 #pragma once
-// The discrete-particle model behind the run driver: DEM alone, or CFD-DEM when the case has gas.
+// What a settled bed and a case's files are, from the case alone: the record that decides whether a settle cache
+// stands for this bed (the DEM model writes and reads the cache; `check` says whether it will be reused), and the
+// paths a case file names.
 #include <filesystem>
-#include <memory>
 #include <string>
 
-#include "io/case_config.hpp"
-#include "io/model_run.hpp"
-
-namespace spdlog { class logger; }
+#include "config/case_config.hpp"
 
 namespace fluidbed {
-
-/// Build the model; with `fresh` the particles are created (read, or placed and settled) and coloured by
-/// layer; otherwise the state comes from a checkpoint through load().
-std::unique_ptr<ModelRun> make_dem_model(const CaseConfig& config, const std::string& out_dir, bool fresh,
-                                         spdlog::logger& log);
 
 /// What a settled bed depends on (particles, placement, contact law, time step, settling criteria), one
 /// `key = value` line each at full precision: stored beside the settle cache as `<cache>.record` and compared
@@ -30,10 +23,5 @@ std::string settle_cache_mismatch(const CaseConfig& config, const std::filesyste
 
 /// A path of the case file (particles.file, settle.cache): absolute as given, else relative to the case's folder.
 std::filesystem::path case_relative_path(const std::string& case_file, const std::string& path);
-
-/// Particles of a CSV file (2D `id,x,y,vx,vy,omega,species`; 3D adds z, vz and omega_x, omega_y, omega_z), checked against
-/// the case (species, the domain of dem.domain) by check_particle_rows.
-template <int Dim>
-ParticleStore<Dim> particles_from_csv(const std::string& path, const DemConfig& dem);
 
 }  // namespace fluidbed

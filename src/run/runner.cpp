@@ -1,4 +1,4 @@
-#include "io/runner.hpp"
+#include "run/runner.hpp"
 
 #include <array>
 #include <atomic>
@@ -26,13 +26,13 @@
 #include "analysis/layer_tracers.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
-#include "io/average_series.hpp"
-#include "io/bubble_series.hpp"
-#include "io/probe_series.hpp"
-#include "io/checkpoint_set.hpp"
+#include "run/average_series.hpp"
+#include "run/bubble_series.hpp"
+#include "run/probe_series.hpp"
+#include "run/checkpoint_set.hpp"
 #include "io/csv.hpp"
-#include "io/dem_model.hpp"
-#include "io/tfm_model.hpp"
+#include "models/dem_model.hpp"
+#include "models/tfm_model.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/pvd.hpp"
 #include "io/vtk_writer.hpp"

@@ -1,4 +1,4 @@
-#include "io/case_reader.hpp"
+#include "config/case_reader.hpp"
 
 #include <algorithm>
 #include <charconv>

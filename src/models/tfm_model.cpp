@@ -1,4 +1,4 @@
-#include "io/tfm_model.hpp"
+#include "models/tfm_model.hpp"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "io/case_check.hpp"
+#include "config/case_check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include "dem/contact_model.hpp"
 #include "fluid/drag.hpp"
 #include "fluid/gas_boundary.hpp"
-#include "io/case_loader.hpp"
+#include "config/case_loader.hpp"
 #include "io/csv.hpp"
-#include "io/dem_model.hpp"
+#include "config/settle_record.hpp"
 
 namespace fluidbed {
 

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "io/case_config.hpp"
-#include "io/case_reader.hpp"
+#include "config/case_config.hpp"
+#include "config/case_reader.hpp"
 
 namespace fluidbed {
 

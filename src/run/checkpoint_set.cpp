@@ -1,4 +1,4 @@
-#include "io/checkpoint_set.hpp"
+#include "run/checkpoint_set.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,4 @@
+// The parallel layer's headers compile on their own (the MPI work fills this folder: ranks, halos, reductions,
+// particle exchange).
+#include "parallel/comm.hpp"
+#include "parallel/periodic_halo.hpp"
