@@ -9,7 +9,7 @@
 #include "coupling/cfd_dem.hpp"
 #include "coupling/voidage.hpp"
 #include "dem/packing.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 #include "fluid/gas_solver.hpp"
 
 namespace {

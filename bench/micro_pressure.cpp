@@ -7,8 +7,8 @@
 #include <cmath>
 #include <memory>
 
-#include "fluid/pressure_correction.hpp"
-#include "fluid/structured_solver_hypre.hpp"
+#include "numerics/pressure_correction.hpp"
+#include "numerics/structured_solver_hypre.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/tvd_limiter.hpp"
-#include "tfm/band_pressure_solver.hpp"
+#include "numerics/tvd_limiter.hpp"
+#include "numerics/band_pressure_solver.hpp"
 #include "tfm/tfm_solver.hpp"
 
 namespace {

@@ -8,7 +8,7 @@
 #include "core/error.hpp"
 #include "dem/contact_law.hpp"
 #include "dem/contact_model.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "config/case_loader.hpp"
 #include "io/csv.hpp"

@@ -9,7 +9,7 @@
 
 #include "coupling/voidage.hpp"
 #include "core/error.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace fluidbed {
 

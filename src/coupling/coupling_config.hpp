@@ -1,6 +1,6 @@
 #pragma once
 // Configuration of the two-way CFD-DEM coupling (paper section 2.1.1).
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace fluidbed {
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/tvd_limiter.hpp"
+#include "numerics/tvd_limiter.hpp"
 #include "core/vec.hpp"
 
 namespace fluidbed {

@@ -1,5 +1,5 @@
 #include "fluid/gas_solver.hpp"
-#include "fluid/structured_solver_hypre.hpp"
+#include "numerics/structured_solver_hypre.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
@@ -14,7 +14,7 @@
 
 #include "core/error.hpp"
 #include "parallel/periodic_halo.hpp"
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/stencil_matrix.hpp"
 
 namespace fluidbed {
 

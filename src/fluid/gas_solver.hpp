@@ -15,7 +15,7 @@
 #include "core/vec.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "fluid/gas_config.hpp"
-#include "fluid/pressure_correction.hpp"
+#include "numerics/pressure_correction.hpp"
 
 namespace fluidbed {
 

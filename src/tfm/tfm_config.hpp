@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/domain.hpp"
-#include "core/tvd_limiter.hpp"
-#include "fluid/drag.hpp"
+#include "numerics/tvd_limiter.hpp"
+#include "closures/drag.hpp"
 #include "fluid/gas_config.hpp"
 #include "tfm/solids_stress.hpp"
 

@@ -8,12 +8,12 @@
 #include <utility>
 
 #include "core/error.hpp"
-#include "core/tvd_lines.hpp"
-#include "fluid/drag.hpp"
+#include "numerics/tvd_lines.hpp"
+#include "closures/drag.hpp"
 #include "fluid/gas_boundary.hpp"
-#include "fluid/structured_solver_hypre.hpp"
-#include "tfm/band_pressure_solver.hpp"
-#include "tfm/line_loop.hpp"
+#include "numerics/structured_solver_hypre.hpp"
+#include "numerics/band_pressure_solver.hpp"
+#include "numerics/line_loop.hpp"
 #include "tfm/packing_limiter.hpp"
 
 namespace fluidbed::tfm {

@@ -11,8 +11,8 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
-#include "fluid/pressure_correction.hpp"
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/pressure_correction.hpp"
+#include "numerics/stencil_matrix.hpp"
 #include "tfm/tfm_config.hpp"
 #include "tfm/tvd_convection.hpp"
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/tvd_lines.hpp"
-#include "fluid/stencil_matrix.hpp"
-#include "tfm/line_loop.hpp"
+#include "numerics/tvd_lines.hpp"
+#include "numerics/stencil_matrix.hpp"
+#include "numerics/line_loop.hpp"
 
 namespace fluidbed::tfm {
 

@@ -8,8 +8,8 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
-#include "core/tvd_limiter.hpp"
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/tvd_limiter.hpp"
+#include "numerics/stencil_matrix.hpp"
 
 namespace fluidbed::tfm {
 

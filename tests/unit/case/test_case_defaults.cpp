@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 #include "fluid/gas_solver.hpp"
 #include "config/case_check.hpp"
 #include "config/case_loader.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <type_traits>
 
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 #include "config/case_loader.hpp"
 #include "unit/case/case_errors.hpp"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fluid/gas_solver.hpp"
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/stencil_matrix.hpp"
 
 namespace fluidbed {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "fluid/pressure_correction.hpp"
+#include "numerics/pressure_correction.hpp"
 
 namespace fluidbed {
 namespace {

@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "fluid/structured_solver_hypre.hpp"
+#include "numerics/structured_solver_hypre.hpp"
 
 namespace fluidbed {
 namespace {

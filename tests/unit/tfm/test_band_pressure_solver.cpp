@@ -15,7 +15,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "tfm/band_pressure_solver.hpp"
+#include "numerics/band_pressure_solver.hpp"
 
 namespace fluidbed::tfm {
 namespace {

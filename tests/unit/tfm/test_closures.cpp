@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/tvd_limiter.hpp"
-#include "core/tvd_lines.hpp"
+#include "numerics/tvd_limiter.hpp"
+#include "numerics/tvd_lines.hpp"
 #include "tfm/solids_stress.hpp"
 
 namespace fluidbed::tfm {

@@ -11,7 +11,7 @@
 #include "coupling/voidage.hpp"
 #include "dem/packing.hpp"
 #include "dem/settle.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace fluidbed::coupling_test {
 

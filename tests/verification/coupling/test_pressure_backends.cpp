@@ -10,7 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "fluid/structured_solver_hypre.hpp"
+#include "numerics/structured_solver_hypre.hpp"
 #include "settled_bed.hpp"
 
 namespace fluidbed {

@@ -10,7 +10,7 @@
 #include <omp.h>
 
 #include "coupling/cfd_dem.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace fluidbed {
 namespace {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace fluidbed {
 namespace {

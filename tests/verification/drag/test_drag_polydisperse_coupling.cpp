@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "coupling/cfd_dem.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace fluidbed {
 namespace {

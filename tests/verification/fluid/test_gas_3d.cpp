@@ -9,7 +9,7 @@
 #include <numbers>
 #include <tuple>
 
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 #include "fluid/gas_solver.hpp"
 
 namespace fluidbed {

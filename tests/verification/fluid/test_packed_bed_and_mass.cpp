@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 #include "fluid/gas_solver.hpp"
 
 namespace fluidbed {

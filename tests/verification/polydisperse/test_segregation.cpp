@@ -19,7 +19,7 @@
 #include "coupling/cfd_dem.hpp"
 #include "dem/packing.hpp"
 #include "dem/settle.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 namespace fluidbed {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdio>
 
 #include "core/error.hpp"
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 #include "tfm/tfm_solver.hpp"
 
 namespace fluidbed::tfm {

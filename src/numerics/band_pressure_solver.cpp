@@ -1,4 +1,4 @@
-#include "tfm/band_pressure_solver.hpp"
+#include "numerics/band_pressure_solver.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/stencil_matrix.hpp"
 
 namespace fluidbed::tfm {
 namespace {

@@ -1,4 +1,4 @@
-#include "fluid/structured_solver_hypre.hpp"
+#include "numerics/structured_solver_hypre.hpp"
 
 #include <array>
 #include <cmath>

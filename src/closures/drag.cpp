@@ -1,4 +1,4 @@
-#include "fluid/drag.hpp"
+#include "closures/drag.hpp"
 
 #include <cmath>
 #include <limits>

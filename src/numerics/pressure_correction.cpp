@@ -1,4 +1,4 @@
-#include "fluid/pressure_correction.hpp"
+#include "numerics/pressure_correction.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/stencil_matrix.hpp"
 
 namespace fluidbed {
 

@@ -4,7 +4,7 @@
 #include <omp.h>
 
 #include "core/index_box.hpp"
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/stencil_matrix.hpp"
 
 namespace fluidbed {
 

@@ -4,7 +4,7 @@
 // (2 Dim + 1)-point stencil of the pressure correction as it is. Optional at configure time (FLUIDBED_HAVE_HYPRE).
 #include <memory>
 
-#include "fluid/pressure_correction.hpp"
+#include "numerics/pressure_correction.hpp"
 
 namespace fluidbed {
 

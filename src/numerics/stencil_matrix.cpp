@@ -1,4 +1,4 @@
-#include "fluid/stencil_matrix.hpp"
+#include "numerics/stencil_matrix.hpp"
 
 #include <Eigen/SparseLU>
 #include <algorithm>

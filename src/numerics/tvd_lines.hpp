@@ -4,7 +4,7 @@
 // (with -ffp-contract=off every clone rounds as the scalar code).
 #include <cstddef>
 
-#include "core/tvd_limiter.hpp"
+#include "numerics/tvd_limiter.hpp"
 
 namespace fluidbed::tvd {
 

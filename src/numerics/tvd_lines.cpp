@@ -1,4 +1,4 @@
-#include "core/tvd_lines.hpp"
+#include "numerics/tvd_lines.hpp"
 
 namespace fluidbed::tvd {
 namespace {

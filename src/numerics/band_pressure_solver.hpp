@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "core/grid.hpp"
-#include "fluid/pressure_correction.hpp"
+#include "numerics/pressure_correction.hpp"
 
 namespace fluidbed::tfm {
 
