@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The paper's cases against the frozen outputs of tests/oracle/gera1998 (the regression oracle of issue 12):
+# The paper's cases, a 3D CFD-DEM and a 3D TFM case against the frozen outputs of tests/oracle/gera1998 (the
+# regression oracle of issue 12; the 3D entries of issue 28):
 # bubble.csv and monitor.csv (without wall_s) must be identical, byte for byte. A change meant to move them
 # regenerates the oracle with tests/oracle/regenerate.sh and says in its commit what moved, by how much and why.
 source "$(dirname "$0")/lib.sh"
