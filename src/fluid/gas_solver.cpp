@@ -257,6 +257,15 @@ struct GasSolver<Dim>::Impl {
   void mass_fluxes();
   double continuity(const Field<Dim>& eps_old, const Field<Dim>& eps_new, double dt);  // sum |imbalance|
   double reference_mass_flow() const;
+  /// A step's cell inputs on the faces with their ghosts, and the boundary velocities (walls, the inlet at the
+  /// step's midpoint) and ghosts.
+  void load_step(double t_new, double dt, const Field<Dim>& eps_old, const Field<Dim>& eps_new,
+                 const Field<Dim>& beta, const CellVector<Dim>& us);
+  /// One SIMPLE pressure correction from the last continuity imbalance: p += relax p', u += d grad p'.
+  void correct_pressure(double t_new, double dt, int it);
+  /// The gas mass balance of the corrected velocities into `rep`.
+  void mass_balance(GasStepReport& rep, const Field<Dim>& eps_old, const Field<Dim>& eps_new, double t_new, double dt,
+                    double m_ref);
   /// Largest over the components of sum |b - A u| / (U_ref sum a_P) of the last momentum assembly.
   double momentum_residual(double m_ref) const {
     double width = 1.0;
@@ -739,6 +748,107 @@ template <int Dim>
 GasSolver<Dim>& GasSolver<Dim>::operator=(GasSolver&&) noexcept = default;
 
 template <int Dim>
+void GasSolver<Dim>::Impl::load_step(double t_new, double dt, const Field<Dim>& eps_old, const Field<Dim>& eps_new,
+                                     const Field<Dim>& beta, const CellVector<Dim>& us) {
+  const Grid<Dim>& g = grid;
+  const Comm& cm = *comm;
+  // The cell inputs with their ghosts (zero gradient at the domain's sides), then on the faces.
+  load_cells(g, cm, eps_old, work);
+  for (int a = 0; a < Dim; ++a) cells_to_faces(work, a, eps_f_old[a]);
+  load_cells(g, cm, beta, work);
+  for (int a = 0; a < Dim; ++a) cells_to_faces(work, a, beta_f[a]);
+  for (int a = 0; a < Dim; ++a) {
+    load_cells(g, cm, us[a], work);
+    cells_to_faces(work, a, us_f[a]);
+  }
+  load_cells(g, cm, eps_new, eps_cell);
+  for (int a = 0; a < Dim; ++a) cells_to_faces(eps_cell, a, eps_f[a]);
+  u_old = f.u;
+  // Boundary values: walls, and the inlet's superficial velocity turned into the interstitial face velocity.
+  for (int a = 0; a < Dim; ++a)
+    for (bool high : {false, true})
+      if (g.at_domain_side(a, high) && (a != 1 || (high && !outlet))) fix_wall_normal(f.u[a], a, high);
+  inlet_superficial_profile(cfg.boundary, g, t_new - 0.5 * dt, inlet);
+  if (g.at_domain_side(1, false)) {
+    std::size_t k = 0;
+    for_each(bottom(), [&](const Index<Dim>& c) { f.u[1][c] = inlet[k++] / eps_new[c]; });
+  }
+  fill_velocity_ghosts(g, cfg.boundary, cm, f.u);
+  fill_pressure_ghosts(g, cfg.boundary, cm, f.p);
+}
+
+template <int Dim>
+void GasSolver<Dim>::Impl::correct_pressure(double t_new, double dt, int it) {
+  const Grid<Dim>& g = grid;
+  const IndexBox<Dim>& cells = g.domain;
+  const Comm& cm = *comm;
+  // Pressure correction (SIMPLE): face coefficients rho eps A d, p' = 0 beyond the outlet.
+  for (int a = 0; a < Dim; ++a) {
+    const double area = face_area(g, a);
+    const Field<Dim>& e = eps_f[a];
+    const Field<Dim>& dd = mom[a].d;
+    Field<Dim>& k = coeff[a];
+    for_each(k.box(), [&](const Index<Dim>& c) { k[c] = cfg.rho_g * e[c] * area * dd[c]; });
+  }
+  for_each(cells, [&](const Index<Dim>& c) { imbalance[c] = -imbalance[c]; });
+  p_corr.fill(0.0);
+  // Factorised at the first SIMPLE iteration of each step only (the same in a restarted run).
+  try {
+    pressure->solve(coeff, imbalance, p_corr, it > 1);
+  } catch (const Error& e) {
+    throw_simulation_error(fmt::format(
+        "gas at t = {:.6g} s (dt = {:.3g} s), SIMPLE iteration {}: {}. Likely cause: a voidage, drag or velocity "
+        "that is no longer finite or usable; remedy: reduce the time step, check the inlet and jet velocities",
+        t_new, dt, it, e.what()));
+  }
+  fill_periodic_ghosts(g, p_corr);  // face 0 of a periodic axis is corrected by the last cell's p'
+  const Field<Dim>& pc = p_corr;
+  for_each(cells, [&](const Index<Dim>& c) { f.p[c] += cfg.relax_pressure * pc[c]; });
+  for (int a = 0; a < Dim; ++a) {
+    IndexBox<Dim> inner = cells.faces(a);
+    if (!g.periodic[static_cast<std::size_t>(a)]) inner.lo[a] += 1;
+    inner.hi[a] -= 1;
+    const Field<Dim>& dd = mom[a].d;
+    Field<Dim>& u = f.u[a];
+    for_each(inner, [&](const Index<Dim>& c) { u[c] += dd[c] * (pc[shifted<Dim>(c, a, -1)] - pc[c]); });
+  }
+  if (outlet)
+    for_each(top(), [&](const Index<Dim>& c) { f.u[1][c] += mom[1].d[c] * pc[shifted<Dim>(c, 1, -1)]; });
+  fill_velocity_ghosts(g, cfg.boundary, cm, f.u);
+  fill_pressure_ghosts(g, cfg.boundary, cm, f.p);
+  bool finite = true;
+  for_each(cells, [&](const Index<Dim>& c) { finite = finite && std::isfinite(f.p[c]); });
+  if (!finite) throw_simulation_error(fmt::format("gas: pressure is not finite at t = {:.6g} s", t_new));
+}
+
+template <int Dim>
+void GasSolver<Dim>::Impl::mass_balance(GasStepReport& rep, const Field<Dim>& eps_old, const Field<Dim>& eps_new,
+                                        double t_new, double dt, double m_ref) {
+  const Grid<Dim>& g = grid;
+  const IndexBox<Dim>& cells = g.domain;
+  const Comm& cm = *comm;
+  // Gas mass balance of the corrected velocities.
+  mass_fluxes();
+  const double vol = g.cell_measure();
+  for_each(bottom(), [&](const Index<Dim>& c) { rep.mass_in += mflux[1][c]; });
+  for_each(top(), [&](const Index<Dim>& c) { rep.mass_out += mflux[1][c]; });
+  for (Index<Dim> c : line_starts(cells)) {
+    double row = 0.0;
+    for (c[0] = cells.lo[0]; c[0] < cells.hi[0]; ++c[0]) row += eps_new[c] - eps_old[c];
+    rep.accumulation += cfg.rho_g * row * vol / dt;
+  }
+  rep.mass_in = cm.sum(rep.mass_in);
+  rep.mass_out = cm.sum(rep.mass_out);
+  rep.accumulation = cm.sum(rep.accumulation);
+  rep.mass_balance = rep.mass_out - rep.mass_in + rep.accumulation;
+  rep.mass_balance_relative = std::abs(rep.mass_balance) / m_ref;
+  bool finite = true;
+  for (int a = 0; a < Dim; ++a)
+    for_each(f.u[a].box(), [&](const Index<Dim>& c) { finite = finite && std::isfinite(f.u[a][c]); });
+  if (!finite) throw_simulation_error(fmt::format("gas: velocity is not finite at t = {:.6g} s", t_new));
+}
+
+template <int Dim>
 GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>& eps_old, const Field<Dim>& eps_new,
                                       const Field<Dim>& beta, const CellVector<Dim>& us) {
   Impl& s = *impl_;
@@ -764,30 +874,8 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
           t_new, index_name<Dim>(c), eps_old[c], eps_new[c], beta[c], vel));
     }
   });
+  s.load_step(t_new, dt, eps_old, eps_new, beta, us);
   const GasConfig& cfg = s.cfg;
-  // The cell inputs with their ghosts (zero gradient at the domain's sides), then on the faces.
-  load_cells(g, comm, eps_old, s.work);
-  for (int a = 0; a < Dim; ++a) cells_to_faces(s.work, a, s.eps_f_old[a]);
-  load_cells(g, comm, beta, s.work);
-  for (int a = 0; a < Dim; ++a) cells_to_faces(s.work, a, s.beta_f[a]);
-  for (int a = 0; a < Dim; ++a) {
-    load_cells(g, comm, us[a], s.work);
-    cells_to_faces(s.work, a, s.us_f[a]);
-  }
-  load_cells(g, comm, eps_new, s.eps_cell);
-  for (int a = 0; a < Dim; ++a) cells_to_faces(s.eps_cell, a, s.eps_f[a]);
-  s.u_old = s.f.u;
-  // Boundary values: walls, and the inlet's superficial velocity turned into the interstitial face velocity.
-  for (int a = 0; a < Dim; ++a)
-    for (bool high : {false, true})
-      if (g.at_domain_side(a, high) && (a != 1 || (high && !s.outlet))) fix_wall_normal(s.f.u[a], a, high);
-  inlet_superficial_profile(cfg.boundary, g, t_new - 0.5 * dt, s.inlet);
-  if (g.at_domain_side(1, false)) {
-    std::size_t k = 0;
-    for_each(s.bottom(), [&](const Index<Dim>& c) { s.f.u[1][c] = s.inlet[k++] / eps_new[c]; });
-  }
-  fill_velocity_ghosts(g, cfg.boundary, comm, s.f.u);
-  fill_pressure_ghosts(g, cfg.boundary, comm, s.f.p);
 
   GasStepReport rep;
   s.linear_fallbacks = 0;
@@ -813,43 +901,7 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
     momentum_residual = s.momentum_residual(m_ref);
     rep.simple_iterations = it;
     converged = residual < cfg.mass_tolerance && momentum_residual < cfg.momentum_tolerance;
-    // Pressure correction (SIMPLE): face coefficients rho eps A d, p' = 0 beyond the outlet.
-    for (int a = 0; a < Dim; ++a) {
-      const double area = face_area(g, a);
-      const Field<Dim>& e = s.eps_f[a];
-      const Field<Dim>& dd = s.mom[a].d;
-      Field<Dim>& k = s.coeff[a];
-      for_each(k.box(), [&](const Index<Dim>& c) { k[c] = cfg.rho_g * e[c] * area * dd[c]; });
-    }
-    for_each(cells, [&](const Index<Dim>& c) { s.imbalance[c] = -s.imbalance[c]; });
-    s.p_corr.fill(0.0);
-    // Factorised at the first SIMPLE iteration of each step only (the same in a restarted run).
-    try {
-      s.pressure->solve(s.coeff, s.imbalance, s.p_corr, it > 1);
-    } catch (const Error& e) {
-      throw_simulation_error(fmt::format(
-          "gas at t = {:.6g} s (dt = {:.3g} s), SIMPLE iteration {}: {}. Likely cause: a voidage, drag or velocity "
-          "that is no longer finite or usable; remedy: reduce the time step, check the inlet and jet velocities",
-          t_new, dt, it, e.what()));
-    }
-    fill_periodic_ghosts(g, s.p_corr);  // face 0 of a periodic axis is corrected by the last cell's p'
-    const Field<Dim>& pc = s.p_corr;
-    for_each(cells, [&](const Index<Dim>& c) { s.f.p[c] += cfg.relax_pressure * pc[c]; });
-    for (int a = 0; a < Dim; ++a) {
-      IndexBox<Dim> inner = cells.faces(a);
-      if (!g.periodic[static_cast<std::size_t>(a)]) inner.lo[a] += 1;
-      inner.hi[a] -= 1;
-      const Field<Dim>& dd = s.mom[a].d;
-      Field<Dim>& u = s.f.u[a];
-      for_each(inner, [&](const Index<Dim>& c) { u[c] += dd[c] * (pc[shifted<Dim>(c, a, -1)] - pc[c]); });
-    }
-    if (s.outlet)
-      for_each(s.top(), [&](const Index<Dim>& c) { s.f.u[1][c] += s.mom[1].d[c] * pc[shifted<Dim>(c, 1, -1)]; });
-    fill_velocity_ghosts(g, cfg.boundary, comm, s.f.u);
-    fill_pressure_ghosts(g, cfg.boundary, comm, s.f.p);
-    bool finite = true;
-    for_each(cells, [&](const Index<Dim>& c) { finite = finite && std::isfinite(s.f.p[c]); });
-    if (!finite) throw_simulation_error(fmt::format("gas: pressure is not finite at t = {:.6g} s", t_new));
+    s.correct_pressure(t_new, dt, it);
     if (converged) break;
   }
   rep.mass_residual = residual;
@@ -864,25 +916,7 @@ GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field<Dim>&
         t_new, dt, residual, cfg.mass_tolerance, momentum_residual, cfg.momentum_tolerance,
         cfg.max_simple_iterations));
   }
-  // Gas mass balance of the corrected velocities.
-  s.mass_fluxes();
-  const double vol = g.cell_measure();
-  for_each(s.bottom(), [&](const Index<Dim>& c) { rep.mass_in += s.mflux[1][c]; });
-  for_each(s.top(), [&](const Index<Dim>& c) { rep.mass_out += s.mflux[1][c]; });
-  for (Index<Dim> c : line_starts(cells)) {
-    double row = 0.0;
-    for (c[0] = cells.lo[0]; c[0] < cells.hi[0]; ++c[0]) row += eps_new[c] - eps_old[c];
-    rep.accumulation += cfg.rho_g * row * vol / dt;
-  }
-  rep.mass_in = comm.sum(rep.mass_in);
-  rep.mass_out = comm.sum(rep.mass_out);
-  rep.accumulation = comm.sum(rep.accumulation);
-  rep.mass_balance = rep.mass_out - rep.mass_in + rep.accumulation;
-  rep.mass_balance_relative = std::abs(rep.mass_balance) / m_ref;
-  bool finite = true;
-  for (int a = 0; a < Dim; ++a)
-    for_each(s.f.u[a].box(), [&](const Index<Dim>& c) { finite = finite && std::isfinite(s.f.u[a][c]); });
-  if (!finite) throw_simulation_error(fmt::format("gas: velocity is not finite at t = {:.6g} s", t_new));
+  s.mass_balance(rep, eps_old, eps_new, t_new, dt, m_ref);
   return rep;
 }
 

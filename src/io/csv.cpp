@@ -277,28 +277,35 @@ void check_particle_rows(const std::vector<ParticleCsvRow>& rows, const std::str
   }
 }
 
-std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path, int dimension) {
+namespace {
+
+// The columns a particle CSV file of one dimension has, and how a bad cell is reported (file, row, column).
+struct ParticleCsvLayout {
+  const char* const* names;
+  std::size_t ncol;
+  const char* header_text;
+  std::string file;
+  int dimension;
+
+  [[noreturn]] void fail(std::size_t row, std::size_t column, const std::string& what) const {
+    throw Error(ErrorKind::BadInput, fmt::format("{}: row {}, column {}: {}", file, row, column, what));
+  }
+  const char* name_of(std::size_t c) const { return c < ncol ? names[c] : particle_csv_diameter_column; }
+};
+
+ParticleCsvLayout particle_csv_layout(const std::filesystem::path& path, int dimension) {
   static constexpr const char* names2[] = {"id", "x", "y", "vx", "vy", "omega", "species"};
   static constexpr const char* names3[] = {"id", "x", "y", "z", "vx", "vy", "vz", "omega_x", "omega_y", "omega_z",
                                            "species"};
   const bool three_d = dimension == 3;
-  const char* const* names = three_d ? names3 : names2;
-  std::size_t ncol = three_d ? std::size(names3) : std::size(names2);
-  const char* const header_text = particle_csv_header_of(dimension);
-  const std::string file = path.string();
-  auto fail = [&](std::size_t row, std::size_t column, const std::string& what) -> void {
-    throw Error(ErrorKind::BadInput, fmt::format("{}: row {}, column {}: {}", file, row, column, what));
-  };
+  return {three_d ? names3 : names2, three_d ? std::size(names3) : std::size(names2), particle_csv_header_of(dimension),
+          path.string(), dimension};
+}
 
-  const std::string text = read_whole_file(path);
-  std::string_view body = text;
-  if (body.starts_with("\xEF\xBB\xBF")) body.remove_prefix(3);  // UTF-8 byte order mark from spreadsheets
-  bool complete = true;
-  std::vector<std::string_view> lines = split_lines(body, complete);
-  while (!lines.empty() && trim(lines.back()).empty()) lines.pop_back();
-  if (lines.empty()) fail(1, 1, fmt::format("empty file, expected the header '{}'", header_text));
-
-  const std::vector<std::string_view> header = split_cells(lines.front());
+// The header row, column by column; whether it has the optional last column of each particle's diameter.
+bool check_particle_header(const ParticleCsvLayout& f, std::string_view line) {
+  const std::vector<std::string_view> header = split_cells(line);
+  const bool three_d = f.dimension == 3;
   {
     // A file of the other dimension, said as such rather than as a wrong column.
     std::string joined;
@@ -307,99 +314,117 @@ std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path
       joined.append(trim(header[c]));
     }
     if (joined == particle_csv_header_of(three_d ? 2 : 3)) {
-      fail(1, 1, fmt::format("a {0}D particle file (header '{1}') for a {2}D case; a {2}D case reads '{3}'",
-                             three_d ? 2 : 3, joined, dimension, header_text));
+      f.fail(1, 1, fmt::format("a {0}D particle file (header '{1}') for a {2}D case; a {2}D case reads '{3}'",
+                               three_d ? 2 : 3, joined, f.dimension, f.header_text));
     }
   }
-  // An optional last column: each particle's diameter.
+  const std::size_t ncol = f.ncol;
   const bool sized = header.size() == ncol + 1 && trim(header[ncol]) == particle_csv_diameter_column;
   for (std::size_t c = 0; c < std::max(header.size(), ncol) && !(sized && c == ncol); ++c) {
     if (c >= header.size()) {
-      fail(1, c + 1, fmt::format("missing header column '{}' (expected '{}')", names[c], header_text));
+      f.fail(1, c + 1, fmt::format("missing header column '{}' (expected '{}')", f.names[c], f.header_text));
     }
     if (c >= ncol) {
-      fail(1, c + 1, fmt::format("extra header column '{}' (expected '{}')", header[c], header_text));
+      f.fail(1, c + 1, fmt::format("extra header column '{}' (expected '{}')", header[c], f.header_text));
     }
-    if (header[c] != names[c]) {
-      fail(1, c + 1, fmt::format("header '{}' where '{}' is expected (the header must be '{}')", header[c],
-                                 names[c], header_text));
+    if (header[c] != f.names[c]) {
+      f.fail(1, c + 1, fmt::format("header '{}' where '{}' is expected (the header must be '{}')", header[c],
+                                   f.names[c], f.header_text));
     }
   }
-  if (lines.size() == 1) fail(2, 1, "no particle rows after the header");
-  const std::size_t nvalues = ncol + (sized ? 1 : 0);
-  auto name_of = [&](std::size_t c) { return c < ncol ? names[c] : particle_csv_diameter_column; };
+  return sized;
+}
 
+// One particle row (row number r of the file), every value checked.
+ParticleCsvRow parse_particle_row(const ParticleCsvLayout& f, std::string_view line, std::size_t r, bool sized) {
+  const std::size_t ncol = f.ncol;
+  const std::size_t nvalues = ncol + (sized ? 1 : 0);
+  if (trim(line).empty()) f.fail(r, 1, "empty row");
+  const std::vector<std::string_view> cells = split_cells(line);
+  if (cells.size() < nvalues) {
+    f.fail(r, cells.size() + 1,
+           fmt::format("missing value for '{}' (the row has {} columns, {} expected)", f.name_of(cells.size()),
+                       cells.size(), nvalues));
+  }
+  if (cells.size() > nvalues) {
+    f.fail(r, nvalues + 1, fmt::format("extra value '{}' (the row has {} columns, {} expected)", cells[nvalues],
+                                       cells.size(), nvalues));
+  }
+  for (std::size_t c = 0; c < nvalues; ++c) {
+    if (cells[c].empty()) f.fail(r, c + 1, fmt::format("empty value for '{}'", f.name_of(c)));
+  }
+  auto parse_integer = [&](std::size_t c, std::int64_t lo, std::int64_t hi) {
+    std::int64_t v = 0;
+    const std::string_view s = cells[c];
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || ptr != s.data() + s.size()) {
+      f.fail(r, c + 1, fmt::format("{} '{}' is not an integer", f.names[c], s));
+    }
+    if (v < lo || v > hi) f.fail(r, c + 1, fmt::format("{} {} is outside [{}, {}]", f.names[c], v, lo, hi));
+    return v;
+  };
+  auto parse_real = [&](std::size_t c) {
+    double v = 0.0;
+    std::errc ec{};
+    if (!parse_double(cells[c], v, ec)) {
+      if (ec == std::errc::result_out_of_range) {
+        f.fail(r, c + 1, fmt::format("{} '{}' is out of the range of a double", f.name_of(c), cells[c]));
+      }
+      f.fail(r, c + 1, fmt::format("{} '{}' is not a number", f.name_of(c), cells[c]));
+    }
+    if (!std::isfinite(v)) f.fail(r, c + 1, fmt::format("{} '{}' is not finite", f.name_of(c), cells[c]));
+    return v;
+  };
+  ParticleCsvRow row;
+  row.id = parse_integer(0, 0, std::numeric_limits<std::int64_t>::max());
+  if (f.dimension == 3) {
+    row.x = parse_real(1);
+    row.y = parse_real(2);
+    row.z = parse_real(3);
+    row.vx = parse_real(4);
+    row.vy = parse_real(5);
+    row.vz = parse_real(6);
+    row.omega_x = parse_real(7);
+    row.omega_y = parse_real(8);
+    row.omega = parse_real(9);
+    row.species = static_cast<std::int32_t>(parse_integer(10, 0, std::numeric_limits<std::int32_t>::max()));
+  } else {
+    row.x = parse_real(1);
+    row.y = parse_real(2);
+    row.vx = parse_real(3);
+    row.vy = parse_real(4);
+    row.omega = parse_real(5);
+    row.species = static_cast<std::int32_t>(parse_integer(6, 0, std::numeric_limits<std::int32_t>::max()));
+  }
+  if (sized) {
+    row.diameter = parse_real(ncol);
+    if (!(row.diameter > 0.0)) f.fail(r, ncol + 1, fmt::format("diameter {} is not positive (m)", cells[ncol]));
+  }
+  return row;
+}
+
+}  // namespace
+
+std::vector<ParticleCsvRow> read_particles_csv(const std::filesystem::path& path, int dimension) {
+  const ParticleCsvLayout layout = particle_csv_layout(path, dimension);
+  const std::string text = read_whole_file(path);
+  std::string_view body = text;
+  if (body.starts_with("\xEF\xBB\xBF")) body.remove_prefix(3);  // UTF-8 byte order mark from spreadsheets
+  bool complete = true;
+  std::vector<std::string_view> lines = split_lines(body, complete);
+  while (!lines.empty() && trim(lines.back()).empty()) lines.pop_back();
+  if (lines.empty()) layout.fail(1, 1, fmt::format("empty file, expected the header '{}'", layout.header_text));
+  const bool sized = check_particle_header(layout, lines.front());
+  if (lines.size() == 1) layout.fail(2, 1, "no particle rows after the header");
   std::vector<ParticleCsvRow> rows;
   rows.reserve(lines.size() - 1);
   std::unordered_map<std::int64_t, std::size_t> first_row_of_id;
   first_row_of_id.reserve(lines.size());
   for (std::size_t l = 1; l < lines.size(); ++l) {
     const std::size_t r = l + 1;
-    if (trim(lines[l]).empty()) fail(r, 1, "empty row");
-    const std::vector<std::string_view> cells = split_cells(lines[l]);
-    if (cells.size() < nvalues) {
-      fail(r, cells.size() + 1,
-           fmt::format("missing value for '{}' (the row has {} columns, {} expected)", name_of(cells.size()),
-                       cells.size(), nvalues));
-    }
-    if (cells.size() > nvalues) {
-      fail(r, nvalues + 1, fmt::format("extra value '{}' (the row has {} columns, {} expected)", cells[nvalues],
-                                       cells.size(), nvalues));
-    }
-    for (std::size_t c = 0; c < nvalues; ++c) {
-      if (cells[c].empty()) fail(r, c + 1, fmt::format("empty value for '{}'", name_of(c)));
-    }
-
-    auto parse_integer = [&](std::size_t c, std::int64_t lo, std::int64_t hi) {
-      std::int64_t v = 0;
-      const std::string_view s = cells[c];
-      const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-      if (ec != std::errc() || ptr != s.data() + s.size()) {
-        fail(r, c + 1, fmt::format("{} '{}' is not an integer", names[c], s));
-      }
-      if (v < lo || v > hi) fail(r, c + 1, fmt::format("{} {} is outside [{}, {}]", names[c], v, lo, hi));
-      return v;
-    };
-    auto parse_real = [&](std::size_t c) {
-      double v = 0.0;
-      std::errc ec{};
-      if (!parse_double(cells[c], v, ec)) {
-        if (ec == std::errc::result_out_of_range) {
-          fail(r, c + 1, fmt::format("{} '{}' is out of the range of a double", name_of(c), cells[c]));
-        }
-        fail(r, c + 1, fmt::format("{} '{}' is not a number", name_of(c), cells[c]));
-      }
-      if (!std::isfinite(v)) fail(r, c + 1, fmt::format("{} '{}' is not finite", name_of(c), cells[c]));
-      return v;
-    };
-
-    ParticleCsvRow row;
-    row.id = parse_integer(0, 0, std::numeric_limits<std::int64_t>::max());
-    if (three_d) {
-      row.x = parse_real(1);
-      row.y = parse_real(2);
-      row.z = parse_real(3);
-      row.vx = parse_real(4);
-      row.vy = parse_real(5);
-      row.vz = parse_real(6);
-      row.omega_x = parse_real(7);
-      row.omega_y = parse_real(8);
-      row.omega = parse_real(9);
-      row.species = static_cast<std::int32_t>(parse_integer(10, 0, std::numeric_limits<std::int32_t>::max()));
-    } else {
-      row.x = parse_real(1);
-      row.y = parse_real(2);
-      row.vx = parse_real(3);
-      row.vy = parse_real(4);
-      row.omega = parse_real(5);
-      row.species = static_cast<std::int32_t>(parse_integer(6, 0, std::numeric_limits<std::int32_t>::max()));
-    }
-    if (sized) {
-      row.diameter = parse_real(ncol);
-      if (!(row.diameter > 0.0)) fail(r, ncol + 1, fmt::format("diameter {} is not positive (m)", cells[ncol]));
-    }
+    const ParticleCsvRow row = parse_particle_row(layout, lines[l], r, sized);
     const auto [it, inserted] = first_row_of_id.emplace(row.id, r);
-    if (!inserted) fail(r, 1, fmt::format("duplicate id {} (first in row {})", row.id, it->second));
+    if (!inserted) layout.fail(r, 1, fmt::format("duplicate id {} (first in row {})", row.id, it->second));
     rows.push_back(row);
   }
   return rows;

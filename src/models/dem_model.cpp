@@ -136,156 +136,189 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
     f.set_attribute("dem", "next_id", s.feed.next_id);
 }
 
+// One double per particle of the checkpoint array dem/NAME, checked against the particle count.
+std::vector<double> read_per_particle(const Hdf5File& f, const std::string& name, std::size_t n) {
+  std::vector<double> v = f.read_double("dem/" + name);
+  if (v.size() != n) {
+    throw_input_error(fmt::format("{}: dem/{} has {} values for {} particles", f.path().string(), name, v.size(), n));
+  }
+  return v;
+}
+
+// The particles of a DEM checkpoint: ids, species, layers, own sizes, and every state array of the store.
 template <int Dim>
-typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
-    static constexpr const char* kAxis[3] = {"x", "y", "z"};
-    typename DemSolver<Dim>::State s;
-    const std::int64_t dim = f.has_attribute("dem", "dimension") ? f.attribute_int64("dem", "dimension") : 2;
-    if (dim != Dim) {
-      throw_input_error(fmt::format("{}: a checkpoint of a {}D run cannot restart this {}D case", f.path().string(),
-                                    dim, Dim));
+void load_dem_particles(const Hdf5File& f, const CaseConfig& config_, typename DemSolver<Dim>::State& s) {
+  const std::int64_t dim = f.has_attribute("dem", "dimension") ? f.attribute_int64("dem", "dimension") : 2;
+  if (dim != Dim) {
+    throw_input_error(fmt::format("{}: a checkpoint of a {}D run cannot restart this {}D case", f.path().string(),
+                                  dim, Dim));
+  }
+  const auto id = f.read_int64("dem/id");
+  const auto species = f.read_int32("dem/species");
+  const auto layer = f.read_int32("dem/layer");
+  if (species.size() != id.size() || layer.size() != id.size()) {
+    throw_input_error(fmt::format("{}: inconsistent particle arrays", f.path().string()));
+  }
+  ParticleStore<Dim>& p = s.particles;
+  p.reserve(id.size());
+  for (std::size_t i = 0; i < id.size(); ++i) {
+    if (species[i] < 0 || static_cast<std::size_t>(species[i]) >= config_.dem.n_species()) {
+      throw_input_error(fmt::format("{}: particle {} has species {} which the case does not define",
+                                    f.path().string(), id[i], species[i]));
     }
-    const auto id = f.read_int64("dem/id");
-    const auto species = f.read_int32("dem/species");
-    const auto layer = f.read_int32("dem/layer");
-    if (species.size() != id.size() || layer.size() != id.size()) {
-      throw_input_error(fmt::format("{}: inconsistent particle arrays", f.path().string()));
+    p.add(id[i], species[i], config_.dem.species[static_cast<std::size_t>(species[i])], {}, {}, {}, layer[i]);
+  }
+  if (f.has("dem/diameter")) {
+    std::vector<double> d = f.read_double("dem/diameter");
+    if (d.size() != id.size()) {
+      throw_input_error(fmt::format("{}: dem/diameter has {} values for {} particles", f.path().string(), d.size(), id.size()));
     }
-    ParticleStore<Dim>& p = s.particles;
-    p.reserve(id.size());
-    for (std::size_t i = 0; i < id.size(); ++i) {
-      if (species[i] < 0 || static_cast<std::size_t>(species[i]) >= config_.dem.n_species()) {
-        throw_input_error(fmt::format("{}: particle {} has species {} which the case does not define",
-                                      f.path().string(), id[i], species[i]));
-      }
-      p.add(id[i], species[i], config_.dem.species[static_cast<std::size_t>(species[i])], {}, {}, {}, layer[i]);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      if (!(d[i] > 0.0)) throw_input_error(fmt::format("{}: particle {} has diameter {}", f.path().string(), id[i], d[i]));
+      p.set_size(i, config_.dem.species[static_cast<std::size_t>(species[i])].of_diameter(d[i]));
     }
-    if (f.has("dem/diameter")) {
-      std::vector<double> d = f.read_double("dem/diameter");
-      if (d.size() != id.size()) {
-        throw_input_error(fmt::format("{}: dem/diameter has {} values for {} particles", f.path().string(), d.size(), id.size()));
-      }
-      for (std::size_t i = 0; i < d.size(); ++i) {
-        if (!(d[i] > 0.0)) throw_input_error(fmt::format("{}: particle {} has diameter {}", f.path().string(), id[i], d[i]));
-        p.set_size(i, config_.dem.species[static_cast<std::size_t>(species[i])].of_diameter(d[i]));
-      }
+  }
+  p.for_each_array([&](const std::string& name, auto& a, ArrayRole role) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if constexpr (std::is_same_v<T, double>) {
+      if (role == ArrayRole::State) a = read_per_particle(f, name, id.size());
     }
-    auto read = [&](const std::string& name, std::vector<double>& dst) {
-      std::vector<double> v = f.read_double("dem/" + name);
-      if (v.size() != id.size()) {
-        throw_input_error(fmt::format("{}: dem/{} has {} values for {} particles", f.path().string(), name, v.size(), id.size()));
-      }
-      dst = std::move(v);
-    };
-    // 2D checkpoints written before the wall springs had a name per wall keep them in one array of 8 per particle.
-    const bool flat_walls = Dim == 2 && !f.has("dem/wall_xi_left_x");
-    p.for_each_array([&](const std::string& name, auto& a, ArrayRole role) {
-      using T = typename std::decay_t<decltype(a)>::value_type;
-      if constexpr (std::is_same_v<T, double>) {
-        if (role == ArrayRole::State) read(name, a);
-      }
-    });
-    s.walls.reset(id.size());
-    if (!flat_walls) {
-      for (int w = 0; w < 2 * Dim; ++w) {
-        for (int c = 0; c < Dim; ++c) {
-          std::vector<double> v;
-          read(wall_spring_name<Dim>(w, c).substr(4), v);
-          for (std::size_t i = 0; i < v.size(); ++i) {
-            Vec<Dim> xi = s.walls.get(i, w);
-            xi[c] = v[i];
-            s.walls.set(i, w, xi);
-          }
-        }
-      }
-    }
-    for (std::size_t a = 0; a < s.build.size(); ++a) read(std::string(kAxis[a]) + "_build", s.build[a]);
-    const auto offset = f.read_int64("dem/nbr_offset");
-    const auto partner = f.read_int64("dem/nbr_partner");
-    std::array<std::vector<double>, Dim> hist;
-    for (int a = 0; a < Dim; ++a) hist[static_cast<std::size_t>(a)] = f.read_double(std::string("dem/nbr_xi_") + kAxis[a]);
-    const auto wall = flat_walls ? f.read_double("dem/wall_xi") : std::vector<double>();
-    const std::size_t n = id.size();
-    bool consistent = offset.size() == n + 1 && offset.front() == 0 &&
-                      static_cast<std::size_t>(offset.back()) == partner.size() && (!flat_walls || wall.size() == 8 * n) &&
-                      partner.size() <= std::numeric_limits<std::uint32_t>::max();
-    for (const auto& h : hist) consistent = consistent && h.size() == partner.size();
-    if (!consistent) {
+  });
+}
+
+// The wall springs: one array per wall and component, or (2D checkpoints written before they had a name per wall)
+// one array of 8 per particle.
+template <int Dim>
+void load_dem_wall_springs(const Hdf5File& f, typename DemSolver<Dim>::State& s, std::size_t n) {
+  s.walls.reset(n);
+  if (Dim == 2 && !f.has("dem/wall_xi_left_x")) {
+    const std::vector<double> wall = f.read_double("dem/wall_xi");
+    if (wall.size() != 8 * n) {
       throw_input_error(fmt::format("{}: the neighbour list or contact history is inconsistent", f.path().string()));
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (offset[i + 1] < offset[i]) throw_input_error(fmt::format("{}: bad neighbour offsets", f.path().string()));
-    }
-    s.neighbors.offset.assign(offset.begin(), offset.end());
-    s.neighbors.partner.resize(partner.size());
-    s.neighbors.history.resize(partner.size());
-    for (std::size_t k = 0; k < partner.size(); ++k) {
-      if (partner[k] < 0 || static_cast<std::size_t>(partner[k]) >= n) {
-        throw_input_error(fmt::format("{}: neighbour index out of range", f.path().string()));
-      }
-      s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
-      for (int a = 0; a < Dim; ++a) s.neighbors.history[k][a] = hist[static_cast<std::size_t>(a)][k];
-    }
-    if (f.has("dem/wall_roll_0")) {
-      s.wall_roll.resize(2 * Dim * n);
-      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        const std::vector<double> h = f.read_double(fmt::format("dem/wall_roll_{}", c));
-        if (h.size() != s.wall_roll.size()) {
-          throw_input_error(fmt::format("{}: the rolling wall springs are inconsistent", f.path().string()));
-        }
-        for (std::size_t k = 0; k < h.size(); ++k) {
-          if constexpr (Dim == 2) {
-            s.wall_roll[k] = h[k];
-          } else {
-            s.wall_roll[k][c] = h[k];
-          }
-        }
-      }
-    }
-    if (f.has("dem/nbr_roll_0")) {
-      s.neighbors.rolling.resize(partner.size());
-      for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        const std::vector<double> h = f.read_double(fmt::format("dem/nbr_roll_{}", c));
-        if (h.size() != partner.size()) {
-          throw_input_error(fmt::format("{}: the rolling contact history is inconsistent", f.path().string()));
-        }
-        for (std::size_t k = 0; k < h.size(); ++k) {
-          if constexpr (Dim == 2) {
-            s.neighbors.rolling[k] = h[k];
-          } else {
-            s.neighbors.rolling[k][c] = h[k];
-          }
-        }
-      }
-    }
     if constexpr (Dim == 2) {
-      if (flat_walls) {
-        for (std::size_t i = 0; i < n; ++i) {
-          for (int w = 0; w < 4; ++w) s.walls.set(i, w, {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]});
+      for (std::size_t i = 0; i < n; ++i) {
+        for (int w = 0; w < 4; ++w) s.walls.set(i, w, {wall[8 * i + 2 * w], wall[8 * i + 2 * w + 1]});
+      }
+    }
+    return;
+  }
+  for (int w = 0; w < 2 * Dim; ++w) {
+    for (int c = 0; c < Dim; ++c) {
+      const std::vector<double> v = read_per_particle(f, wall_spring_name<Dim>(w, c).substr(4), n);
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        Vec<Dim> xi = s.walls.get(i, w);
+        xi[c] = v[i];
+        s.walls.set(i, w, xi);
+      }
+    }
+  }
+}
+
+// The neighbour list with its tangential springs and the positions at its last build.
+template <int Dim>
+void load_dem_neighbors(const Hdf5File& f, typename DemSolver<Dim>::State& s, std::size_t n) {
+  static constexpr const char* kAxis[3] = {"x", "y", "z"};
+  for (std::size_t a = 0; a < s.build.size(); ++a) s.build[a] = read_per_particle(f, std::string(kAxis[a]) + "_build", n);
+  const auto offset = f.read_int64("dem/nbr_offset");
+  const auto partner = f.read_int64("dem/nbr_partner");
+  std::array<std::vector<double>, Dim> hist;
+  for (int a = 0; a < Dim; ++a) hist[static_cast<std::size_t>(a)] = f.read_double(std::string("dem/nbr_xi_") + kAxis[a]);
+  bool consistent = offset.size() == n + 1 && offset.front() == 0 &&
+                    static_cast<std::size_t>(offset.back()) == partner.size() &&
+                    partner.size() <= std::numeric_limits<std::uint32_t>::max();
+  for (const auto& h : hist) consistent = consistent && h.size() == partner.size();
+  if (!consistent) {
+    throw_input_error(fmt::format("{}: the neighbour list or contact history is inconsistent", f.path().string()));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (offset[i + 1] < offset[i]) throw_input_error(fmt::format("{}: bad neighbour offsets", f.path().string()));
+  }
+  s.neighbors.offset.assign(offset.begin(), offset.end());
+  s.neighbors.partner.resize(partner.size());
+  s.neighbors.history.resize(partner.size());
+  for (std::size_t k = 0; k < partner.size(); ++k) {
+    if (partner[k] < 0 || static_cast<std::size_t>(partner[k]) >= n) {
+      throw_input_error(fmt::format("{}: neighbour index out of range", f.path().string()));
+    }
+    s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
+    for (int a = 0; a < Dim; ++a) s.neighbors.history[k][a] = hist[static_cast<std::size_t>(a)][k];
+  }
+}
+
+// The rolling springs (rolling laws only), of the walls and of the pairs, one array per spin component.
+template <int Dim>
+void load_dem_rolling(const Hdf5File& f, typename DemSolver<Dim>::State& s, std::size_t n) {
+  const std::size_t pairs = s.neighbors.partner.size();
+  if (f.has("dem/wall_roll_0")) {
+    s.wall_roll.resize(2 * Dim * n);
+    for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+      const std::vector<double> h = f.read_double(fmt::format("dem/wall_roll_{}", c));
+      if (h.size() != s.wall_roll.size()) {
+        throw_input_error(fmt::format("{}: the rolling wall springs are inconsistent", f.path().string()));
+      }
+      for (std::size_t k = 0; k < h.size(); ++k) {
+        if constexpr (Dim == 2) {
+          s.wall_roll[k] = h[k];
+        } else {
+          s.wall_roll[k][c] = h[k];
         }
       }
     }
-    s.time = f.attribute_double("dem", "time");
-    s.steps = static_cast<std::uint64_t>(f.attribute_int64("dem", "steps"));
-    s.rebuilds = static_cast<std::uint64_t>(f.attribute_int64("dem", "rebuilds"));
-    s.need_rebuild = f.attribute_int64("dem", "need_rebuild") != 0;
-    // Checkpoints written before the clock kept an origin and before the outflow top: the clock starts at the
-    // checkpoint's time and nothing has left.
-    const bool has_origin = f.has_attribute("dem", "time_origin");
-    s.time_origin = has_origin ? f.attribute_double("dem", "time_origin") : s.time;
-    s.steps_origin = has_origin ? static_cast<std::uint64_t>(f.attribute_int64("dem", "steps_origin")) : s.steps;
-    if (f.has_attribute("dem", "removed_count")) {
-      s.removed_count = static_cast<std::uint64_t>(f.attribute_int64("dem", "removed_count"));
-      s.removed_mass = f.attribute_double("dem", "removed_mass");
+  }
+  if (f.has("dem/nbr_roll_0")) {
+    s.neighbors.rolling.resize(pairs);
+    for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+      const std::vector<double> h = f.read_double(fmt::format("dem/nbr_roll_{}", c));
+      if (h.size() != pairs) {
+        throw_input_error(fmt::format("{}: the rolling contact history is inconsistent", f.path().string()));
+      }
+      for (std::size_t k = 0; k < h.size(); ++k) {
+        if constexpr (Dim == 2) {
+          s.neighbors.rolling[k] = h[k];
+        } else {
+          s.neighbors.rolling[k][c] = h[k];
+        }
+      }
     }
-    // Checkpoints from before the feed: nothing inserted, the next id follows the largest (DemSolver::restore).
-    if (f.has_attribute("dem", "inserted_count")) {
-      s.feed.inserted = static_cast<std::uint64_t>(f.attribute_int64("dem", "inserted_count"));
-      s.feed.mass = f.attribute_double("dem", "inserted_mass");
-      s.feed.draws = static_cast<std::uint64_t>(f.attribute_int64("dem", "feed_draws"));
-      s.feed.next_id = f.attribute_int64("dem", "next_id");
-    }
-    return s;
+  }
+}
+
+// The clock, the counters of the outflow and of the feed.
+template <int Dim>
+void load_dem_clock(const Hdf5File& f, typename DemSolver<Dim>::State& s) {
+  s.time = f.attribute_double("dem", "time");
+  s.steps = static_cast<std::uint64_t>(f.attribute_int64("dem", "steps"));
+  s.rebuilds = static_cast<std::uint64_t>(f.attribute_int64("dem", "rebuilds"));
+  s.need_rebuild = f.attribute_int64("dem", "need_rebuild") != 0;
+  // Checkpoints written before the clock kept an origin and before the outflow top: the clock starts at the
+  // checkpoint's time and nothing has left.
+  const bool has_origin = f.has_attribute("dem", "time_origin");
+  s.time_origin = has_origin ? f.attribute_double("dem", "time_origin") : s.time;
+  s.steps_origin = has_origin ? static_cast<std::uint64_t>(f.attribute_int64("dem", "steps_origin")) : s.steps;
+  if (f.has_attribute("dem", "removed_count")) {
+    s.removed_count = static_cast<std::uint64_t>(f.attribute_int64("dem", "removed_count"));
+    s.removed_mass = f.attribute_double("dem", "removed_mass");
+  }
+  // Checkpoints from before the feed: nothing inserted, the next id follows the largest (DemSolver::restore).
+  if (f.has_attribute("dem", "inserted_count")) {
+    s.feed.inserted = static_cast<std::uint64_t>(f.attribute_int64("dem", "inserted_count"));
+    s.feed.mass = f.attribute_double("dem", "inserted_mass");
+    s.feed.draws = static_cast<std::uint64_t>(f.attribute_int64("dem", "feed_draws"));
+    s.feed.next_id = f.attribute_int64("dem", "next_id");
+  }
+}
+
+template <int Dim>
+typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& config_) {
+  typename DemSolver<Dim>::State s;
+  load_dem_particles<Dim>(f, config_, s);
+  const std::size_t n = s.particles.size();
+  load_dem_wall_springs<Dim>(f, s, n);
+  load_dem_neighbors<Dim>(f, s, n);
+  load_dem_rolling<Dim>(f, s, n);
+  load_dem_clock<Dim>(f, s);
+  return s;
 }
 
 /// The gas grid of the case: the [grid] cells, periodic along the domain's periodic axes.

@@ -9,7 +9,8 @@ ORACLE_CASES=(dem tfm tfm-constant-viscosity tfm-inviscid dem3d tfm3d-slab)
 # tests/oracle/dem3d.toml and cases/tfm3d/slab.toml (a fresh settle for the DEM cases, so that the settling is part
 # of what is frozen).
 oracle_run() {
-  local fluidbed=$1 root=$2 name=$3 out=$4 end=$ORACLE_TFM_END file="$root/cases/gera1998/$name.toml"
+  local fluidbed=$1 root=$2 name=$3 out=$4 end=$ORACLE_TFM_END
+  local file="$root/cases/gera1998/$name.toml"
   local extra=()
   case $name in
     dem) end=$ORACLE_DEM_END ;;
