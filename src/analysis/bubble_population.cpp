@@ -110,24 +110,17 @@ BubblePopulation<Dim>::BubblePopulation(const PopulationConfig& config) : config
   if (config_.velocity_samples < 2) throw_input_error("bubble population: velocity_samples must be at least 2");
 }
 
+namespace {
+
+// The regions' cell counts, centroid sums, exclusions (above the bed surface row j_surf, below y_dist) and the
+// extents of their eps = threshold contour along each axis: linear between the centres of a boundary cell and its
+// neighbour outside (exact for a linear eps profile), the grid's own face where the region touches it.
 template <int Dim>
-const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, const CellView<Dim>& eps) {
+std::vector<Region<Dim>> measure_regions(const CellView<Dim>& eps, const std::vector<int>& label, int n_regions,
+                                         double thr, int j_surf, double y_dist) {
   const CellGeometry<Dim>& g = eps.geometry;
-  const std::size_t n_cells = g.cells();
-  if (!owner_.empty() && owner_.size() != n_cells)
-    throw_input_error(fmt::format("bubble population: {} cells, the previous sample had {}", n_cells, owner_.size()));
-  const double thr = config_.eps_threshold;
-  sample_events_begin_ = events_.size();
-
-  const int j_surf = bed_surface_row(eps, config_.surface_eps);
-  std::vector<std::uint8_t> mask(n_cells);
-  for (std::size_t k = 0; k < n_cells; ++k) mask[k] = eps.at(k) > thr ? 1 : 0;
-  std::vector<int> label;
-  const int n_regions = label_regions<Dim>(g.n, mask, label);
-
-  const double y_dist = g.origin[1] + config_.distributor_height;
   std::vector<Region<Dim>> region(static_cast<std::size_t>(n_regions));
-  for (std::size_t k = 0; k < n_cells; ++k) {
+  for (std::size_t k = 0; k < g.cells(); ++k) {
     const int l = label[k];
     if (l < 0) continue;
     Region<Dim>& r = region[static_cast<std::size_t>(l)];
@@ -136,8 +129,6 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
     for (int a = 0; a < Dim; ++a) r.sum[a] += g.centre(a, c[a]);
     if (j_surf < 0 || c[1] > j_surf) r.excluded_free = true;
     if (g.centre(1, c[1]) < y_dist) r.excluded_distributor = true;
-    // The eps = threshold contour along each axis, linear between the centres of a boundary cell and its neighbour
-    // outside (exact for a linear eps profile); the grid's own face where the region touches it.
     for (int a = 0; a < Dim; ++a) {
       for (const int step : {-1, 1}) {
         Index<Dim> d = c;
@@ -156,6 +147,118 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
       }
     }
   }
+  return region;
+}
+
+// Association by shared cells: overlap[(previous id, region)], the previous bubbles' overlap with the freeboard,
+// and from the overlaps each previous id's bubble regions and each region's previous ids.
+struct Links {
+  std::map<std::pair<int, int>, std::size_t> overlap;
+  std::map<int, std::size_t> free_overlap;
+  std::map<int, std::vector<int>> children;  // previous id -> bubble regions
+  std::map<int, std::vector<int>> parents;   // region -> previous ids
+};
+template <int Dim, class IsBubble>
+Links link_regions(const std::vector<int>& owner, const std::vector<int>& label, const std::vector<Region<Dim>>& region,
+                   IsBubble is_bubble) {
+  Links k;
+  for (std::size_t c = 0; c < owner.size(); ++c) {
+    const int id = owner[c], l = label[c];
+    if (id < 0 || l < 0) continue;
+    if (is_bubble(l)) {
+      ++k.overlap[{id, l}];
+    } else if (region[static_cast<std::size_t>(l)].excluded_free) {
+      ++k.free_overlap[id];
+    }
+  }
+  for (const auto& [key, n] : k.overlap) {
+    k.children[key.first].push_back(key.second);
+    k.parents[key.second].push_back(key.first);
+  }
+  return k;
+}
+
+// The shape of a bubble region: size, equivalent diameter, centroid, nose, tail, width and aspect ratio.
+template <int Dim>
+BubbleRecord<Dim> record_of(double t, const Region<Dim>& r, bool slug, double cell_measure) {
+  BubbleRecord<Dim> b;
+  b.time = t;
+  b.cells = r.cells;
+  b.slug = slug;
+  b.size = static_cast<double>(r.cells) * cell_measure;
+  // Circle of the same area (2D), sphere of the same volume V = pi d^3 / 6 (3D).
+  b.equivalent_diameter =
+      Dim == 2 ? std::sqrt(4.0 * b.size / std::numbers::pi) : std::cbrt(6.0 * b.size / std::numbers::pi);
+  for (int a = 0; a < Dim; ++a) b.centroid[a] = r.sum[a] / static_cast<double>(r.cells);
+  b.nose = r.hi[1];
+  b.tail = r.lo[1];
+  b.width = Dim == 2 ? r.hi[0] - r.lo[0] : 0.5 * ((r.hi[0] - r.lo[0]) + (r.hi[Dim - 1] - r.lo[Dim - 1]));
+  b.aspect_ratio = b.width > 0.0 ? (b.nose - b.tail) / b.width : 0.0;
+  return b;
+}
+
+}  // namespace
+
+template <int Dim>
+void BubblePopulation<Dim>::close_previous(double t, const std::map<int, std::vector<int>>& children,
+                                           const std::map<int, std::size_t>& free_overlap,
+                                           const std::vector<int>& id_of_region) {
+  for (const BubbleRecord<Dim>& p : current_) {
+    const auto cit = children.find(p.id);
+    if (cit == children.end()) {
+      const bool erupted = free_overlap.count(p.id) > 0;
+      events_.push_back({t, erupted ? BubbleEvent::Eruption : BubbleEvent::Disappearance, p.id, {}, p.centroid[1]});
+      history_.erase(p.id);
+    } else if (cit->second.size() > 1) {
+      std::vector<int> kids;
+      for (const int l : cit->second) kids.push_back(id_of_region[static_cast<std::size_t>(l)]);
+      std::sort(kids.begin(), kids.end());
+      events_.push_back({t, BubbleEvent::Split, p.id, kids, p.centroid[1]});
+      history_.erase(p.id);
+    } else if (id_of_region[static_cast<std::size_t>(cit->second.front())] != p.id) {
+      history_.erase(p.id);  // merged into another id: the Coalescence event names it
+    }
+  }
+}
+
+template <int Dim>
+void BubblePopulation<Dim>::update_velocities(double t, std::vector<BubbleRecord<Dim>>& now) {
+  // A merger moves the centroid by a jump that is no rise: the samples start again at every event.
+  const std::size_t keep = static_cast<std::size_t>(config_.velocity_samples);
+  for (BubbleRecord<Dim>& b : now) {
+    History& h = history_[b.id];
+    if (b.event != BubbleEvent::None) h = History{};
+    h.t.push_back(t);
+    h.centroid.push_back(b.centroid[1]);
+    h.nose.push_back(b.nose);
+    if (h.t.size() > keep) {
+      h.t.erase(h.t.begin());
+      h.centroid.erase(h.centroid.begin());
+      h.nose.erase(h.nose.begin());
+    }
+    if (h.t.size() >= 2) {
+      b.u_centroid = rise_slope(h.t, h.centroid);
+      b.u_nose = rise_slope(h.t, h.nose);
+    }
+  }
+}
+
+template <int Dim>
+const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, const CellView<Dim>& eps) {
+  const CellGeometry<Dim>& g = eps.geometry;
+  const std::size_t n_cells = g.cells();
+  if (!owner_.empty() && owner_.size() != n_cells)
+    throw_input_error(fmt::format("bubble population: {} cells, the previous sample had {}", n_cells, owner_.size()));
+  const double thr = config_.eps_threshold;
+  sample_events_begin_ = events_.size();
+
+  const int j_surf = bed_surface_row(eps, config_.surface_eps);
+  std::vector<std::uint8_t> mask(n_cells);
+  for (std::size_t k = 0; k < n_cells; ++k) mask[k] = eps.at(k) > thr ? 1 : 0;
+  std::vector<int> label;
+  const int n_regions = label_regions<Dim>(g.n, mask, label);
+  const double y_dist = g.origin[1] + config_.distributor_height;
+  const std::vector<Region<Dim>> region = measure_regions<Dim>(eps, label, n_regions, thr, j_surf, y_dist);
   const std::vector<std::uint8_t> spans = spanning_regions<Dim>(g, label, n_regions);
   const double cell_measure = g.cell_measure();
   const auto is_bubble = [&](int l) {
@@ -163,55 +266,18 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
     return !r.excluded_free && !r.excluded_distributor &&
            static_cast<double>(r.cells) * cell_measure >= config_.min_size;
   };
-
-  // Association by shared cells: overlap[(previous id, region)] and the previous bubbles' overlap with the freeboard.
-  std::map<std::pair<int, int>, std::size_t> overlap;
-  std::map<int, std::size_t> free_overlap;
-  if (!owner_.empty()) {
-    for (std::size_t k = 0; k < n_cells; ++k) {
-      const int id = owner_[k], l = label[k];
-      if (id < 0 || l < 0) continue;
-      if (is_bubble(l)) {
-        ++overlap[{id, l}];
-      } else if (region[static_cast<std::size_t>(l)].excluded_free) {
-        ++free_overlap[id];
-      }
-    }
-  }
-  std::map<int, std::vector<int>> children;  // previous id -> bubble regions
-  std::map<int, std::vector<int>> parents;   // region -> previous ids
-  for (const auto& [key, n] : overlap) {
-    children[key.first].push_back(key.second);
-    parents[key.second].push_back(key.first);
-  }
+  Links links = link_regions<Dim>(owner_, label, region, is_bubble);
   std::map<int, std::size_t> previous_cells;
-  std::map<int, double> previous_height;
-  for (const BubbleRecord<Dim>& b : current_) {
-    previous_cells[b.id] = b.cells;
-    previous_height[b.id] = b.centroid[1];
-  }
+  for (const BubbleRecord<Dim>& b : current_) previous_cells[b.id] = b.cells;
 
   std::vector<BubbleRecord<Dim>> now;
   std::vector<int> id_of_region(static_cast<std::size_t>(n_regions), -1);
   for (int l = 0; l < n_regions; ++l) {
     if (!is_bubble(l)) continue;
-    const Region<Dim>& r = region[static_cast<std::size_t>(l)];
-    BubbleRecord<Dim> b;
-    b.time = t;
-    b.cells = r.cells;
-    b.slug = spans[static_cast<std::size_t>(l)] != 0;
-    b.size = static_cast<double>(r.cells) * cell_measure;
-    // Circle of the same area (2D), sphere of the same volume V = pi d^3 / 6 (3D).
-    b.equivalent_diameter =
-        Dim == 2 ? std::sqrt(4.0 * b.size / std::numbers::pi) : std::cbrt(6.0 * b.size / std::numbers::pi);
-    for (int a = 0; a < Dim; ++a) b.centroid[a] = r.sum[a] / static_cast<double>(r.cells);
-    b.nose = r.hi[1];
-    b.tail = r.lo[1];
-    b.width = Dim == 2 ? r.hi[0] - r.lo[0] : 0.5 * ((r.hi[0] - r.lo[0]) + (r.hi[Dim - 1] - r.lo[Dim - 1]));
-    b.aspect_ratio = b.width > 0.0 ? (b.nose - b.tail) / b.width : 0.0;
-
-    const auto pit = parents.find(l);
-    if (pit == parents.end()) {
+    BubbleRecord<Dim> b = record_of<Dim>(t, region[static_cast<std::size_t>(l)], spans[static_cast<std::size_t>(l)] != 0,
+                                         cell_measure);
+    const auto pit = links.parents.find(l);
+    if (pit == links.parents.end()) {
       b.id = next_id_++;
       b.event = BubbleEvent::Birth;
       events_.push_back({t, BubbleEvent::Birth, b.id, {}, b.centroid[1]});
@@ -221,7 +287,7 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
       // A parent whose only child this region is passes its id on; among several, the largest one's id survives.
       int heir = -1;
       for (const int p : ps) {
-        if (children[p].size() != 1) continue;
+        if (links.children[p].size() != 1) continue;
         if (heir < 0 || previous_cells[p] > previous_cells[heir]) heir = p;
       }
       b.parents = ps;
@@ -244,43 +310,8 @@ const std::vector<BubbleRecord<Dim>>& BubblePopulation<Dim>::observe(double t, c
     id_of_region[static_cast<std::size_t>(l)] = b.id;
     now.push_back(std::move(b));
   }
-  // The previous bubbles that split, erupted or disappeared.
-  for (const BubbleRecord<Dim>& p : current_) {
-    const auto cit = children.find(p.id);
-    if (cit == children.end()) {
-      const bool erupted = free_overlap.count(p.id) > 0;
-      events_.push_back({t, erupted ? BubbleEvent::Eruption : BubbleEvent::Disappearance, p.id, {}, p.centroid[1]});
-      history_.erase(p.id);
-    } else if (cit->second.size() > 1) {
-      std::vector<int> kids;
-      for (const int l : cit->second) kids.push_back(id_of_region[static_cast<std::size_t>(l)]);
-      std::sort(kids.begin(), kids.end());
-      events_.push_back({t, BubbleEvent::Split, p.id, kids, p.centroid[1]});
-      history_.erase(p.id);
-    } else if (id_of_region[static_cast<std::size_t>(cit->second.front())] != p.id) {
-      history_.erase(p.id);  // merged into another id: the Coalescence event names it
-    }
-  }
-
-  // Rise velocities over the samples of the same id since its birth, split or last coalescence (a merger moves the
-  // centroid by a jump that is no rise).
-  const std::size_t keep = static_cast<std::size_t>(config_.velocity_samples);
-  for (BubbleRecord<Dim>& b : now) {
-    History& h = history_[b.id];
-    if (b.event != BubbleEvent::None) h = History{};
-    h.t.push_back(t);
-    h.centroid.push_back(b.centroid[1]);
-    h.nose.push_back(b.nose);
-    if (h.t.size() > keep) {
-      h.t.erase(h.t.begin());
-      h.centroid.erase(h.centroid.begin());
-      h.nose.erase(h.nose.begin());
-    }
-    if (h.t.size() >= 2) {
-      b.u_centroid = rise_slope(h.t, h.centroid);
-      b.u_nose = rise_slope(h.t, h.nose);
-    }
-  }
+  close_previous(t, links.children, links.free_overlap, id_of_region);
+  update_velocities(t, now);
 
   owner_.assign(n_cells, -1);
   for (std::size_t k = 0; k < n_cells; ++k)

@@ -114,6 +114,11 @@ class BubblePopulation {
   struct History {
     std::vector<double> t, centroid, nose;
   };
+  /// The events of the previous sample's bubbles that left no single heir (split, eruption, disappearance).
+  void close_previous(double t, const std::map<int, std::vector<int>>& children,
+                      const std::map<int, std::size_t>& free_overlap, const std::vector<int>& id_of_region);
+  /// Rise velocities over the samples of the same id since its birth, split or last coalescence.
+  void update_velocities(double t, std::vector<BubbleRecord<Dim>>& now);
   std::size_t sample_events_begin_ = 0;
   PopulationConfig config_;
   std::vector<int> owner_;  // id of the bubble of each cell at the previous sample, -1 none
