@@ -134,83 +134,72 @@ constexpr std::array<int, Dim - 1> horizontal_axes() {
 
 }  // namespace
 
+namespace {
+
+// The nose line and the jet centre: (jet_x) in 2D, (jet_x, jet_z) in 3D.
 template <int Dim>
-BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const CellView<Dim>& vg) {
-  static_assert(Dim == 2 || Dim == 3);
-  const CellGeometry<Dim>& g = eps.geometry;
-  if (vg.geometry.n != g.n) throw_input_error("bubble tracker: the gas velocity and voidage grids differ");
-  if (config_.grid.nx > 0 && (config_.grid.nx != g.n[0] || config_.grid.ny != g.n[1]))
-    throw_input_error(fmt::format("bubble tracker: configured for a {}x{} grid, given {}x{}", config_.grid.nx,
-                                  config_.grid.ny, g.n[0], g.n[1]));
-  if constexpr (Dim == 3) {
-    if (config_.nz > 0 && config_.nz != g.n[2])
-      throw_input_error(fmt::format("bubble tracker: configured for {} cells in depth, given {}", config_.nz, g.n[2]));
-  }
-  constexpr std::array<int, Dim - 1> horizontal = horizontal_axes<Dim>();
-  const int nx = g.n[0];
-  const int ny = g.n[1];
-  const int nz = Dim == 3 ? g.n[Dim - 1] : 1;
-  const double thr = config_.eps_threshold;
-  // The nose line and the jet centre: (jet_x) in 2D, (jet_x, jet_z) in 3D.
+std::array<double, Dim> jet_line(const BubbleConfig& config, const CellGeometry<Dim>& g) {
   std::array<double, Dim> line{};
-  line[0] = config_.jet_x;
-  if constexpr (Dim == 3) line[2] = config_.jet_z.value_or(g.origin[2] + 0.5 * g.length(2));
-  const auto horizontal_distance = [&](const Index<Dim>& c) {
-    if constexpr (Dim == 2) {
-      return std::abs(g.centre(0, c[0]) - line[0]);
-    } else {
-      return std::hypot(g.centre(0, c[0]) - line[0], g.centre(2, c[2]) - line[2]);
-    }
-  };
+  line[0] = config.jet_x;
+  if constexpr (Dim == 3) line[2] = config.jet_z.value_or(g.origin[2] + 0.5 * g.length(2));
+  return line;
+}
 
-  BubbleSample s;
-  s.time = t;
-  s.dimension = Dim;
+template <int Dim>
+double horizontal_distance(const CellGeometry<Dim>& g, const std::array<double, Dim>& line, const Index<Dim>& c) {
+  if constexpr (Dim == 2) {
+    return std::abs(g.centre(0, c[0]) - line[0]);
+  } else {
+    return std::hypot(g.centre(0, c[0]) - line[0], g.centre(2, c[2]) - line[2]);
+  }
+}
 
-  // Bed surface: highest layer whose mean voidage is still that of a bed; layers above it are freeboard.
-  const int j_surf = bed_surface_row(eps, config_.surface_eps);
-  if (j_surf >= 0) s.bed_height = g.origin[1] + (j_surf + 1) * g.h[1];
-
-  const std::size_t n_cells = g.cells();
-  std::vector<std::uint8_t> mask(n_cells);
-  for (std::size_t k = 0; k < n_cells; ++k) mask[k] = eps.at(k) > thr ? 1 : 0;
-  std::vector<int> label;
-  const int n_regions = label_regions<Dim>(g.n, mask, label);
-
-  // Bottom cells "above the jet": every cell of the bottom layer whose face overlaps the jet's footprint, at
-  // least the one holding the jet centre. Stored per (i, k), i fastest.
-  const double jet_lo = config_.jet_x - 0.5 * config_.jet_width;
-  const double jet_hi = config_.jet_x + 0.5 * config_.jet_width;
+// Bottom cells "above the jet": every cell of the bottom layer whose face overlaps the jet's footprint, at least
+// the one holding the jet centre. Stored per (i, k), i fastest.
+template <int Dim>
+std::vector<std::uint8_t> jet_cells(const BubbleConfig& config, const CellGeometry<Dim>& g,
+                                    const std::array<double, Dim>& line) {
+  const int nx = g.n[0];
+  const int nz = Dim == 3 ? g.n[Dim - 1] : 1;
+  const double jet_lo = config.jet_x - 0.5 * config.jet_width;
+  const double jet_hi = config.jet_x + 0.5 * config.jet_width;
   std::vector<std::uint8_t> jet_cell(static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz), 0);
   for (int k = 0; k < nz; ++k) {
     for (int i = 0; i < nx; ++i) {
       const double a = g.origin[0] + i * g.h[0];
       const double b = a + g.h[0];
       bool over = false;
-      if (Dim == 2 || config_.jet_shape == InletShape::Slot) {
+      if (Dim == 2 || config.jet_shape == InletShape::Slot) {
         over = overlaps(a, b, jet_lo, jet_hi, g.h[0]);
-      } else if (config_.jet_shape == InletShape::Rectangle) {
+      } else if (config.jet_shape == InletShape::Rectangle) {
         const double c = g.face(Dim - 1, k), d = c + g.h[Dim - 1];
         over = overlaps(a, b, jet_lo, jet_hi, g.h[0]) &&
-               overlaps(c, d, line[Dim - 1] - 0.5 * config_.jet_depth, line[Dim - 1] + 0.5 * config_.jet_depth,
+               overlaps(c, d, line[Dim - 1] - 0.5 * config.jet_depth, line[Dim - 1] + 0.5 * config.jet_depth,
                         g.h[Dim - 1]);
       } else {
         // Disc: the face's point nearest the centre lies inside the disc (by more than a sliver).
         const double c = g.face(Dim - 1, k), d = c + g.h[Dim - 1];
         const double px = std::clamp(line[0], a, b), pz = std::clamp(line[Dim - 1], c, d);
-        over = std::hypot(px - line[0], pz - line[Dim - 1]) < 0.5 * config_.jet_width - 1e-9 * g.h[0];
+        over = std::hypot(px - line[0], pz - line[Dim - 1]) < 0.5 * config.jet_width - 1e-9 * g.h[0];
       }
       if (over) jet_cell[static_cast<std::size_t>(k) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)] = 1;
     }
   }
-  {
-    const int ic = g.cell(0, line[0]);
-    const int kc = Dim == 3 ? g.cell(Dim - 1, line[Dim - 1]) : 0;
-    jet_cell[static_cast<std::size_t>(kc) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ic)] = 1;
-  }
+  const int ic = g.cell(0, line[0]);
+  const int kc = Dim == 3 ? g.cell(Dim - 1, line[Dim - 1]) : 0;
+  jet_cell[static_cast<std::size_t>(kc) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ic)] = 1;
+  return jet_cell;
+}
 
+// Each void region's cell count, centroid sum, whether it reaches the freeboard (above row j_surf) or sits on the
+// jet, and its highest cell (the one nearest the nose line among equals).
+template <int Dim>
+std::vector<RegionStats<Dim>> region_stats(const CellGeometry<Dim>& g, const std::vector<int>& label, int n_regions,
+                                           int j_surf, const std::vector<std::uint8_t>& jet_cell,
+                                           const std::array<double, Dim>& line) {
+  const int nx = g.n[0];
   std::vector<RegionStats<Dim>> region(static_cast<std::size_t>(n_regions));
-  for (std::size_t cell = 0; cell < n_cells; ++cell) {
+  for (std::size_t cell = 0; cell < g.cells(); ++cell) {
     const int l = label[cell];
     if (l < 0) continue;
     const Index<Dim> c = g.cell_of(cell);
@@ -222,98 +211,70 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
     if (j_surf < 0 || j > j_surf) r.freeboard = true;
     if (j == 0 && jet_cell[static_cast<std::size_t>(kz) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(c[0])])
       r.attached = true;
-    const bool closer = r.top[1] == j && horizontal_distance(c) < horizontal_distance(r.top);
+    const bool closer = r.top[1] == j && horizontal_distance<Dim>(g, line, c) < horizontal_distance<Dim>(g, line, r.top);
     if (j > r.top[1] || closer) r.top = c;
   }
-  const double cell_measure = g.cell_measure();
-  const double min_measure = Dim == 2 ? config_.min_area : config_.min_volume;
-  const auto is_candidate = [&](int l) {
-    const RegionStats<Dim>& r = region[static_cast<std::size_t>(l)];
-    return !r.freeboard && static_cast<double>(r.cells) * cell_measure >= min_measure;
-  };
+  return region;
+}
 
+// The tracked bubble's successor: the candidate region sharing most cells with it, and the cells it shares with the
+// freeboard (an eruption when they are more).
+struct Successor {
   int chosen = -1;
-  if (tracking_) {
-    // The tracked bubble is the region sharing most cells with it at the previous sample.
-    std::vector<std::size_t> overlap(static_cast<std::size_t>(n_regions), 0);
-    if (tracked_.size() == label.size()) {
-      for (std::size_t k = 0; k < label.size(); ++k)
-        if (tracked_[k] && label[k] >= 0) ++overlap[static_cast<std::size_t>(label[k])];
-    }
-    std::size_t best = 0, free_overlap = 0;
-    for (int l = 0; l < n_regions; ++l) {
-      const std::size_t o = overlap[static_cast<std::size_t>(l)];
-      if (region[static_cast<std::size_t>(l)].freeboard) {
-        free_overlap += o;
-      } else if (is_candidate(l) && o > best) {
-        best = o;
-        chosen = l;
-      }
-    }
-    if (chosen >= 0 && free_overlap > best) chosen = -1;
-    if (chosen < 0) {
-      tracking_ = false;
-      if (free_overlap > 0) {
-        s.erupted = true;
-        if (!eruption_time_) eruption_time_ = t;
-      }
+  std::size_t best = 0, free_overlap = 0;
+};
+template <int Dim, class IsCandidate>
+Successor successor(const std::vector<std::uint8_t>& tracked, const std::vector<int>& label,
+                    const std::vector<RegionStats<Dim>>& region, IsCandidate is_candidate) {
+  std::vector<std::size_t> overlap(region.size(), 0);
+  if (tracked.size() == label.size()) {
+    for (std::size_t k = 0; k < label.size(); ++k)
+      if (tracked[k] && label[k] >= 0) ++overlap[static_cast<std::size_t>(label[k])];
+  }
+  Successor out;
+  for (int l = 0; l < static_cast<int>(region.size()); ++l) {
+    const std::size_t o = overlap[static_cast<std::size_t>(l)];
+    if (region[static_cast<std::size_t>(l)].freeboard) {
+      out.free_overlap += o;
+    } else if (is_candidate(l) && o > out.best) {
+      out.best = o;
+      out.chosen = l;
     }
   }
-  if (!tracking_ && !s.erupted) {
-    // A new bubble: the one on the jet if there is one, else the largest void in the bed.
-    std::size_t best = 0;
-    bool best_attached = false;
-    for (int l = 0; l < n_regions; ++l) {
-      if (!is_candidate(l)) continue;
-      const RegionStats<Dim>& r = region[static_cast<std::size_t>(l)];
-      if ((r.attached && !best_attached) || (r.attached == best_attached && r.cells > best)) {
-        best = r.cells;
-        best_attached = r.attached;
-        chosen = l;
-      }
-    }
-    if (chosen >= 0) {
-      tracking_ = true;
-      was_attached_ = false;
-      nose_t_.clear();
-      nose_h_.clear();
-      centroid_h_.clear();
-      ++bubble_count_;
-    }
-  }
-  if (chosen < 0) {
-    tracked_.clear();
-    return s;
-  }
+  if (out.chosen >= 0 && out.free_overlap > out.best) out.chosen = -1;
+  return out;
+}
 
-  const RegionStats<Dim>& r = region[static_cast<std::size_t>(chosen)];
-  s.bubble_id = bubble_count_ - 1;
-  const double measure = static_cast<double>(r.cells) * cell_measure;
-  if constexpr (Dim == 2) {
-    s.area = measure;
-    s.equivalent_diameter = std::sqrt(4.0 * measure / std::numbers::pi);
-  } else {
-    // Sphere of the same volume: V = pi d^3 / 6.
-    s.volume = measure;
-    s.equivalent_diameter = std::cbrt(6.0 * measure / std::numbers::pi);
+// A new bubble: the one on the jet if there is one, else the largest void in the bed; -1 when there is none.
+template <int Dim, class IsCandidate>
+int new_bubble(const std::vector<RegionStats<Dim>>& region, IsCandidate is_candidate) {
+  std::size_t best = 0;
+  bool best_attached = false;
+  int chosen = -1;
+  for (int l = 0; l < static_cast<int>(region.size()); ++l) {
+    if (!is_candidate(l)) continue;
+    const RegionStats<Dim>& r = region[static_cast<std::size_t>(l)];
+    if ((r.attached && !best_attached) || (r.attached == best_attached && r.cells > best)) {
+      best = r.cells;
+      best_attached = r.attached;
+      chosen = l;
+    }
   }
-  s.theory_rise_velocity = rise_constant<Dim>() * std::sqrt(config_.gravity * *s.equivalent_diameter);
-  s.centroid_x = r.sum[0] / static_cast<double>(r.cells);
-  s.centroid_y = r.sum[1] / static_cast<double>(r.cells);
-  if constexpr (Dim == 3) s.centroid_z = r.sum[2] / static_cast<double>(r.cells);
-  s.attached = r.attached;
-  if (was_attached_ && !r.attached) {
-    s.detached = true;
-    if (!detachment_time_) detachment_time_ = t;
-  }
-  was_attached_ = r.attached;
+  return chosen;
+}
 
-  // Nose: top of the bubble on the vertical line through the jet centre, eps interpolated (linearly in 2D,
-  // bilinearly over x and z in 3D) between the nearest columns of cell centres; if the bubble has drifted off that
-  // line, on the column of its highest cell.
+// Nose: top of the bubble (region `chosen`) on the vertical line through the jet centre, eps interpolated (linearly
+// in 2D, bilinearly over x and z in 3D) between the nearest columns of cell centres; if the bubble has drifted off
+// that line, on the column of its highest cell `top`. Returns the height and the column's horizontal position.
+template <int Dim>
+std::pair<double, std::array<double, Dim>> nose_of(const CellView<Dim>& eps, const std::vector<int>& label, int chosen,
+                                                   const std::array<double, Dim>& line, const Index<Dim>& top,
+                                                   double thr) {
+  const CellGeometry<Dim>& g = eps.geometry;
+  const int ny = g.n[1];
   std::array<int, Dim> c0{}, c1{};
   std::array<double, Dim> wl{};
-  for (const int a : horizontal) {
+  for (const int a : horizontal_axes<Dim>()) {
     const double sa = (line[a] - g.origin[a]) / g.h[a] - 0.5;
     c0[a] = static_cast<int>(std::floor(sa));
     wl[a] = sa - c0[a];
@@ -356,26 +317,28 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
   for (int j = ny - 1; j >= 0 && j_top < 0; --j) {
     if (line_in_bubble(j) && line_eps(j) > thr) j_top = j;
   }
-  double nose = 0.0;
+  std::array<double, Dim> where = line;
   if (j_top >= 0) {
-    s.nose_x = line[0];
-    if constexpr (Dim == 3) s.nose_z = line[2];
-    nose = (j_top + 1 < ny && line_eps(j_top + 1) <= thr)
-               ? threshold_crossing(g.centre(1, j_top), line_eps(j_top), g.centre(1, j_top + 1), line_eps(j_top + 1), thr)
-               : g.origin[1] + (j_top + 1) * g.h[1];
-  } else {
-    Index<Dim> top = r.top;
-    s.nose_x = g.centre(0, top[0]);
-    if constexpr (Dim == 3) s.nose_z = g.centre(2, top[2]);
-    const int jt = top[1];
-    Index<Dim> above = top;
-    above[1] = jt + 1;
-    nose = (jt + 1 < ny) ? threshold_crossing(g.centre(1, jt), eps[top], g.centre(1, jt + 1), eps[above], thr)
-                         : g.origin[1] + (jt + 1) * g.h[1];
+    const double nose = (j_top + 1 < ny && line_eps(j_top + 1) <= thr)
+                            ? threshold_crossing(g.centre(1, j_top), line_eps(j_top), g.centre(1, j_top + 1),
+                                                 line_eps(j_top + 1), thr)
+                            : g.origin[1] + (j_top + 1) * g.h[1];
+    return {nose, where};
   }
-  s.nose_height = nose;
+  where[0] = g.centre(0, top[0]);
+  if constexpr (Dim == 3) where[2] = g.centre(2, top[2]);
+  const int jt = top[1];
+  Index<Dim> above = top;
+  above[1] = jt + 1;
+  const double nose = (jt + 1 < ny) ? threshold_crossing(g.centre(1, jt), eps[top], g.centre(1, jt + 1), eps[above], thr)
+                                    : g.origin[1] + (jt + 1) * g.h[1];
+  return {nose, where};
+}
 
-  // Rise velocity: least-squares slope of the nose height over the last rise_velocity_samples samples.
+}  // namespace
+
+void BubbleTracker::update_rise(double t, double nose, BubbleSample& s) {
+  // Least-squares slope of the nose height over the last rise_velocity_samples samples.
   nose_t_.push_back(t);
   nose_h_.push_back(nose);
   const std::size_t keep = static_cast<std::size_t>(config_.rise_velocity_samples);
@@ -392,6 +355,100 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
     const std::vector<double> tc(nose_t_.end() - static_cast<std::ptrdiff_t>(centroid_h_.size()), nose_t_.end());
     s.centroid_rise_velocity = rise_slope(tc, centroid_h_);
   }
+}
+
+template <int Dim>
+BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const CellView<Dim>& vg) {
+  static_assert(Dim == 2 || Dim == 3);
+  const CellGeometry<Dim>& g = eps.geometry;
+  if (vg.geometry.n != g.n) throw_input_error("bubble tracker: the gas velocity and voidage grids differ");
+  if (config_.grid.nx > 0 && (config_.grid.nx != g.n[0] || config_.grid.ny != g.n[1]))
+    throw_input_error(fmt::format("bubble tracker: configured for a {}x{} grid, given {}x{}", config_.grid.nx,
+                                  config_.grid.ny, g.n[0], g.n[1]));
+  if constexpr (Dim == 3) {
+    if (config_.nz > 0 && config_.nz != g.n[2])
+      throw_input_error(fmt::format("bubble tracker: configured for {} cells in depth, given {}", config_.nz, g.n[2]));
+  }
+  const double thr = config_.eps_threshold;
+  const std::array<double, Dim> line = jet_line<Dim>(config_, g);
+  BubbleSample s;
+  s.time = t;
+  s.dimension = Dim;
+
+  // Bed surface: highest layer whose mean voidage is still that of a bed; layers above it are freeboard.
+  const int j_surf = bed_surface_row(eps, config_.surface_eps);
+  if (j_surf >= 0) s.bed_height = g.origin[1] + (j_surf + 1) * g.h[1];
+
+  const std::size_t n_cells = g.cells();
+  std::vector<std::uint8_t> mask(n_cells);
+  for (std::size_t k = 0; k < n_cells; ++k) mask[k] = eps.at(k) > thr ? 1 : 0;
+  std::vector<int> label;
+  const int n_regions = label_regions<Dim>(g.n, mask, label);
+  const std::vector<RegionStats<Dim>> region =
+      region_stats<Dim>(g, label, n_regions, j_surf, jet_cells<Dim>(config_, g, line), line);
+  const double cell_measure = g.cell_measure();
+  const double min_measure = Dim == 2 ? config_.min_area : config_.min_volume;
+  const auto is_candidate = [&](int l) {
+    const RegionStats<Dim>& r = region[static_cast<std::size_t>(l)];
+    return !r.freeboard && static_cast<double>(r.cells) * cell_measure >= min_measure;
+  };
+
+  int chosen = -1;
+  if (tracking_) {
+    // The tracked bubble is the region sharing most cells with it at the previous sample.
+    const Successor next = successor<Dim>(tracked_, label, region, is_candidate);
+    chosen = next.chosen;
+    if (chosen < 0) {
+      tracking_ = false;
+      if (next.free_overlap > 0) {
+        s.erupted = true;
+        if (!eruption_time_) eruption_time_ = t;
+      }
+    }
+  }
+  if (!tracking_ && !s.erupted) {
+    chosen = new_bubble<Dim>(region, is_candidate);
+    if (chosen >= 0) {
+      tracking_ = true;
+      was_attached_ = false;
+      nose_t_.clear();
+      nose_h_.clear();
+      centroid_h_.clear();
+      ++bubble_count_;
+    }
+  }
+  if (chosen < 0) {
+    tracked_.clear();
+    return s;
+  }
+
+  const RegionStats<Dim>& r = region[static_cast<std::size_t>(chosen)];
+  s.bubble_id = bubble_count_ - 1;
+  const double measure = static_cast<double>(r.cells) * cell_measure;
+  if constexpr (Dim == 2) {
+    s.area = measure;
+    s.equivalent_diameter = std::sqrt(4.0 * measure / std::numbers::pi);
+  } else {
+    // Sphere of the same volume: V = pi d^3 / 6.
+    s.volume = measure;
+    s.equivalent_diameter = std::cbrt(6.0 * measure / std::numbers::pi);
+  }
+  s.theory_rise_velocity = rise_constant<Dim>() * std::sqrt(config_.gravity * *s.equivalent_diameter);
+  s.centroid_x = r.sum[0] / static_cast<double>(r.cells);
+  s.centroid_y = r.sum[1] / static_cast<double>(r.cells);
+  if constexpr (Dim == 3) s.centroid_z = r.sum[2] / static_cast<double>(r.cells);
+  s.attached = r.attached;
+  if (was_attached_ && !r.attached) {
+    s.detached = true;
+    if (!detachment_time_) detachment_time_ = t;
+  }
+  was_attached_ = r.attached;
+
+  const auto [nose, where] = nose_of<Dim>(eps, label, chosen, line, r.top, thr);
+  s.nose_x = where[0];
+  if constexpr (Dim == 3) s.nose_z = where[2];
+  s.nose_height = nose;
+  update_rise(t, nose, s);
 
   // Axial interstitial gas velocity in the emulsion just above the roof: half a cell above the nose.
   std::array<double, Dim> probe{};

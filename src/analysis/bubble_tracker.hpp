@@ -109,6 +109,8 @@ class BubbleTracker {
   }
 
  private:
+  /// The rise velocities of the tracked bubble (nose and centroid) with this sample's nose height.
+  void update_rise(double t, double nose, BubbleSample& s);
   BubbleConfig config_;
   std::vector<std::uint8_t> tracked_;  // cells of the tracked bubble at the previous sample
   bool tracking_ = false;
