@@ -168,47 +168,51 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   return advance_scalar_implicit(g, limiter, phi_old, vel, dt, corrections, flux);
 }
 
+namespace {
+
+// Rows of the implicit transport matrix: cells in storage order, the neighbour across the face on side `high` of
+// axis a (wrapped when periodic), -1 beyond a boundary.
 template <int Dim>
-Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi_old,
-                                   const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
-                                   int linear_max_iterations, int* fallbacks, ImplicitTransportWork<Dim>* work) {
-  const IndexBox<Dim>& box = g.domain;
-  const int n = static_cast<int>(box.count());
-  std::unique_ptr<ImplicitTransportWork<Dim>> local;  // a caller without its own buffers gets fresh ones
-  if (!work) {
-    local = std::make_unique<ImplicitTransportWork<Dim>>();
-    work = local.get();
+struct TransportRows {
+  IndexBox<Dim> box;
+  std::array<bool, Dim> periodic{};
+  std::array<int, Dim> stride{};
+  TransportRows(const IndexBox<Dim>& b, const std::array<bool, Dim>& per) : box(b), periodic(per) {
+    for (int a = 0, st = 1; a < Dim; ++a) {
+      stride[a] = st;
+      st *= box.extent(a);
+    }
   }
-  ImplicitTransportWork<Dim>& w = *work;
-  // Row of the neighbour across the face on side `high` of axis a (wrapped when periodic), -1 beyond a boundary.
-  std::array<int, Dim> row_stride{};
-  for (int a = 0, st = 1; a < Dim; ++a) {
-    row_stride[a] = st;
-    st *= box.extent(a);
-  }
-  auto neighbour = [&](const Index<Dim>& c, int p, int a, bool high) {
+  int neighbour(const Index<Dim>& c, int p, int a, bool high) const {
     const int m = box.extent(a);
     const int k = c[a] - box.lo[a] + (high ? 1 : -1);
-    if (k >= 0 && k < m) return p + (high ? row_stride[a] : -row_stride[a]);
-    if (!vel.periodic[a]) return -1;
-    return p + (high ? -(m - 1) : (m - 1)) * row_stride[a];
-  };
-  // A periodic axis of one or two cells meets the same neighbour through both faces (or the cell itself): the
-  // entries then add up, which the fixed pattern (one slot per face) does not do.
+    if (k >= 0 && k < m) return p + (high ? stride[a] : -stride[a]);
+    if (!periodic[a]) return -1;
+    return p + (high ? -(m - 1) : (m - 1)) * stride[a];
+  }
+};
+
+// Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume. A boundary face takes the cell's
+// own value (zero-gradient ghost), so it always lands on the diagonal; flux_out is the velocity / length leaving the
+// cell through the face. The fixed pattern (one slot per face, kept in `w`) unless a periodic axis of one or two cells
+// meets the same neighbour through both faces (or the cell itself): the entries then add up, in `tmat`.
+template <int Dim>
+const StencilMatrix::Matrix& upwind_matrix(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, double dt,
+                                           ImplicitTransportWork<Dim>& w,
+                                           Eigen::SparseMatrix<double, Eigen::RowMajor>& tmat) {
+  const IndexBox<Dim>& box = g.domain;
+  const int n = static_cast<int>(box.count());
+  const TransportRows<Dim> rows(box, vel.periodic);
   bool fixed_pattern = true;
   for (int a = 0; a < Dim; ++a) fixed_pattern = fixed_pattern && !(vel.periodic[a] && box.extent(a) <= 2);
-  // Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume. A boundary face takes the
-  // cell's own value (zero-gradient ghost), so it always lands on the diagonal; flux_out is the velocity / length
-  // leaving the cell through the face.
-  Eigen::SparseMatrix<double, Eigen::RowMajor> tmat;
   if (fixed_pattern) {
     if (!w.built || !(w.box == box) || w.periodic != vel.periodic) {
       std::vector<std::array<int, 2 * Dim>> nb(static_cast<std::size_t>(n));
       int p = 0;
       for_each(box, [&](const Index<Dim>& c) {
         for (int a = 0; a < Dim; ++a) {
-          nb[static_cast<std::size_t>(p)][2 * a] = neighbour(c, p, a, false);
-          nb[static_cast<std::size_t>(p)][2 * a + 1] = neighbour(c, p, a, true);
+          nb[static_cast<std::size_t>(p)][2 * a] = rows.neighbour(c, p, a, false);
+          nb[static_cast<std::size_t>(p)][2 * a + 1] = rows.neighbour(c, p, a, true);
         }
         ++p;
       });
@@ -224,7 +228,7 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
       for (int a = 0; a < Dim; ++a) {
         for (bool high : {true, false}) {
           const double flux_out = high ? vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a] : -vel.at(a, c) / g.h[a];
-          if (flux_out > 0.0 || neighbour(c, p, a, high) < 0) {
+          if (flux_out > 0.0 || rows.neighbour(c, p, a, high) < 0) {
             diag += flux_out;
           } else {
             off[2 * a + (high ? 1 : 0)] = flux_out;
@@ -233,104 +237,86 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
       }
       w.matrix.set_row(p++, diag, off);
     });
-  } else {
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(static_cast<std::size_t>(n) * (2 * Dim + 1));
-    Eigen::VectorXd diag = Eigen::VectorXd::Constant(n, 1.0 / dt);
-    auto add_face = [&](int p, int nb, double flux_out) {
-      if (flux_out > 0.0 || nb < 0) {
-        diag[p] += flux_out;
-      } else {
-        trip.emplace_back(p, nb, flux_out);
-      }
-    };
-    int row = 0;
-    for_each(box, [&](const Index<Dim>& c) {
-      const int p = row++;  // for_each runs in row order
-      for (int a = 0; a < Dim; ++a) {
-        add_face(p, neighbour(c, p, a, true), vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a]);
-        add_face(p, neighbour(c, p, a, false), -vel.at(a, c) / g.h[a]);
-      }
-    });
-    for (int p = 0; p < n; ++p) trip.emplace_back(p, p, diag[p]);
-    tmat.resize(n, n);
-    tmat.setFromTriplets(trip.begin(), trip.end());
+    return w.matrix.matrix();
   }
-  const StencilMatrix::Matrix& mat = fixed_pattern ? w.matrix.matrix() : tmat;
-
-  CheckedSparseSolver& solver = w.solver;
-  solver.set_tolerance(1e-12);
-  solver.set_max_iterations(linear_max_iterations);
-
-  if (w.rhs.size() != n) {
-    w.rhs.resize(n);
-    w.x.resize(n);
-  }
-  Field<Dim> phi(box, kGhost);
-  for_each(box, [&](const Index<Dim>& c) { phi[c] = phi_old[c]; });
-  fill_cell_ghosts(phi, vel.periodic);
-  Field<Dim> corr_div(box, kGhost);
-  FaceFields<Dim>& phi_f = w.phi_f;  // its ghost faces are never written: they stay zero
-  Eigen::VectorXd& rhs = w.rhs;
-  Eigen::VectorXd& x = w.x;
-  for (int pass = 0; pass <= corrections; ++pass) {
-    // Deferred correction: the limited part of the face flux, lagged, moves to the right-hand side.
-    corr_div.fill(0.0);
-    if (limiter != Limiter::Upwind && pass > 0) {
-      // Limited face values less their upwind part: only the limiter's correction remains on each face.
-      tvd_face_values(g, limiter, phi, vel, phi_f);
-      for (int a = 0; a < Dim; ++a) {
-        const IndexBox<Dim> faces = box.faces(a);
-        const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
-        const auto wrap = static_cast<std::ptrdiff_t>(vel.u[a].stride(a)) * box.extent(a);
-        const bool per = vel.periodic[a];
-        IndexBox<Dim> lines = faces;
-        lines.hi[0] = lines.lo[0] + 1;
-        for_each(lines, [&](Index<Dim> f) {
-          const double* p = phi.data().data() + phi.index(f);
-          const double* v = vel.u[a].data().data() + vel.u[a].index(f);
-          double* out = phi_f[a].data().data() + phi_f[a].index(f);
-          for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++p, ++v, ++out) {
-            f[0] = i;
-            if (!per && (f[a] == box.lo[a] || f[a] == box.hi[a])) {
-              *out = 0.0;  // boundary faces carry the adjacent cell value in both schemes
-              continue;
-            }
-            const double vf = (per && f[a] == box.hi[a]) ? v[-wrap] : v[0];
-            *out -= vf >= 0.0 ? p[-sp] : p[0];
-          }
-        });
-      }
-      divergence_from_faces(g, vel, phi_f, corr_div);
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(n) * (2 * Dim + 1));
+  Eigen::VectorXd diag = Eigen::VectorXd::Constant(n, 1.0 / dt);
+  auto add_face = [&](int p, int nb, double flux_out) {
+    if (flux_out > 0.0 || nb < 0) {
+      diag[p] += flux_out;
+    } else {
+      trip.emplace_back(p, nb, flux_out);
     }
-    int r = 0;
-    for_each(box, [&](const Index<Dim>& c) {
-      rhs[r] = phi_old[c] / dt - corr_div[c];
-      x[r++] = phi[c];
-    });
-    const LinearSolveOutcome res = solver.solve(mat, rhs, x);
-    if (res.fell_back && fallbacks) ++*fallbacks;
-    if (!res.ok) {
-      std::string cell;
-      if (res.bad_row >= 0) {
-        int r = res.bad_row;
-        cell = " (cell (";
-        for (int a = 0; a < Dim; ++a) {
-          cell += (a > 0 ? ", " : "") + std::to_string(box.lo[a] + r % box.extent(a));
-          r /= box.extent(a);
+  };
+  int row = 0;
+  for_each(box, [&](const Index<Dim>& c) {
+    const int p = row++;  // for_each runs in row order
+    for (int a = 0; a < Dim; ++a) {
+      add_face(p, rows.neighbour(c, p, a, true), vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a]);
+      add_face(p, rows.neighbour(c, p, a, false), -vel.at(a, c) / g.h[a]);
+    }
+  });
+  for (int p = 0; p < n; ++p) trip.emplace_back(p, p, diag[p]);
+  tmat.resize(n, n);
+  tmat.setFromTriplets(trip.begin(), trip.end());
+  return tmat;
+}
+
+// Deferred correction: the divergence of the limited face values less their upwind part (only the limiter's
+// correction remains on each face), lagged on the right-hand side.
+template <int Dim>
+void limiter_correction(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
+                        FaceFields<Dim>& phi_f, Field<Dim>& corr_div) {
+  const IndexBox<Dim>& box = g.domain;
+  tvd_face_values(g, limiter, phi, vel, phi_f);
+  for (int a = 0; a < Dim; ++a) {
+    const IndexBox<Dim> faces = box.faces(a);
+    const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
+    const auto wrap = static_cast<std::ptrdiff_t>(vel.u[a].stride(a)) * box.extent(a);
+    const bool per = vel.periodic[a];
+    IndexBox<Dim> lines = faces;
+    lines.hi[0] = lines.lo[0] + 1;
+    for_each(lines, [&](Index<Dim> f) {
+      const double* p = phi.data().data() + phi.index(f);
+      const double* v = vel.u[a].data().data() + vel.u[a].index(f);
+      double* out = phi_f[a].data().data() + phi_f[a].index(f);
+      for (int i = faces.lo[0]; i < faces.hi[0]; ++i, ++p, ++v, ++out) {
+        f[0] = i;
+        if (!per && (f[a] == box.lo[a] || f[a] == box.hi[a])) {
+          *out = 0.0;  // boundary faces carry the adjacent cell value in both schemes
+          continue;
         }
-        cell += "))";
+        const double vf = (per && f[a] == box.hi[a]) ? v[-wrap] : v[0];
+        *out -= vf >= 0.0 ? p[-sp] : p[0];
       }
-      throw_simulation_error("implicit transport of the solids fraction (Eq. 16), pass " + std::to_string(pass) +
-                             ": " + res.why + cell +
-                             "; the face velocities or dt that build the matrix are not finite or not usable");
-    }
-    r = 0;
-    for_each(box, [&](const Index<Dim>& c) { phi[c] = x[r++]; });
-    fill_cell_ghosts(phi, vel.periodic);
-    if (limiter == Limiter::Upwind && pass == 0) break;
+    });
   }
-  // Final face fluxes from the limited face values of the converged phi; a periodic face n repeats face 0.
+  divergence_from_faces(g, vel, phi_f, corr_div);
+}
+
+// A failed solve of a pass, with the cell of its bad row.
+template <int Dim>
+[[noreturn]] void transport_failed(const IndexBox<Dim>& box, const LinearSolveOutcome& res, int pass) {
+  std::string cell;
+  if (res.bad_row >= 0) {
+    int r = res.bad_row;
+    cell = " (cell (";
+    for (int a = 0; a < Dim; ++a) {
+      cell += (a > 0 ? ", " : "") + std::to_string(box.lo[a] + r % box.extent(a));
+      r /= box.extent(a);
+    }
+    cell += "))";
+  }
+  throw_simulation_error("implicit transport of the solids fraction (Eq. 16), pass " + std::to_string(pass) + ": " +
+                         res.why + cell + "; the face velocities or dt that build the matrix are not finite or not usable");
+}
+
+// Final face fluxes from the limited face values of the converged phi; a periodic face n repeats face 0.
+template <int Dim>
+void final_fluxes(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
+                  FaceFields<Dim>& phi_f, FaceFluxes<Dim>& flux) {
+  const IndexBox<Dim>& box = g.domain;
   tvd_face_values(g, limiter, phi, vel, phi_f);
   ensure_faces(box, flux);
   for (int a = 0; a < Dim; ++a) {
@@ -348,6 +334,57 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
       for_each(box.faces(a), [&](const Index<Dim>& f) { flux[a][f] = vel.u[a][f] * phi_f[a][f]; });
     }
   }
+}
+
+}  // namespace
+
+template <int Dim>
+Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi_old,
+                                   const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
+                                   int linear_max_iterations, int* fallbacks, ImplicitTransportWork<Dim>* work) {
+  const IndexBox<Dim>& box = g.domain;
+  const int n = static_cast<int>(box.count());
+  std::unique_ptr<ImplicitTransportWork<Dim>> local;  // a caller without its own buffers gets fresh ones
+  if (!work) {
+    local = std::make_unique<ImplicitTransportWork<Dim>>();
+    work = local.get();
+  }
+  ImplicitTransportWork<Dim>& w = *work;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> tmat;
+  const StencilMatrix::Matrix& mat = upwind_matrix<Dim>(g, vel, dt, w, tmat);
+
+  CheckedSparseSolver& solver = w.solver;
+  solver.set_tolerance(1e-12);
+  solver.set_max_iterations(linear_max_iterations);
+
+  if (w.rhs.size() != n) {
+    w.rhs.resize(n);
+    w.x.resize(n);
+  }
+  Field<Dim> phi(box, kGhost);
+  for_each(box, [&](const Index<Dim>& c) { phi[c] = phi_old[c]; });
+  fill_cell_ghosts(phi, vel.periodic);
+  Field<Dim> corr_div(box, kGhost);
+  FaceFields<Dim>& phi_f = w.phi_f;  // its ghost faces are never written: they stay zero
+  Eigen::VectorXd& rhs = w.rhs;
+  Eigen::VectorXd& x = w.x;
+  for (int pass = 0; pass <= corrections; ++pass) {
+    corr_div.fill(0.0);
+    if (limiter != Limiter::Upwind && pass > 0) limiter_correction<Dim>(g, limiter, phi, vel, phi_f, corr_div);
+    int r = 0;
+    for_each(box, [&](const Index<Dim>& c) {
+      rhs[r] = phi_old[c] / dt - corr_div[c];
+      x[r++] = phi[c];
+    });
+    const LinearSolveOutcome res = solver.solve(mat, rhs, x);
+    if (res.fell_back && fallbacks) ++*fallbacks;
+    if (!res.ok) transport_failed<Dim>(box, res, pass);
+    r = 0;
+    for_each(box, [&](const Index<Dim>& c) { phi[c] = x[r++]; });
+    fill_cell_ghosts(phi, vel.periodic);
+    if (limiter == Limiter::Upwind && pass == 0) break;
+  }
+  final_fluxes<Dim>(g, limiter, phi, vel, phi_f, flux);
   return conservative_update(g, phi_old, flux, dt);
 }
 
