@@ -452,6 +452,258 @@ void GasSolver<Dim>::Impl::solve_momenta(double dt) {
   }
 }
 
+namespace {
+
+// Everything one row of component d's momentum assembly reads (Eq. 12): the face and cell data with their
+// strides, the walls across the component, the constants of the step.
+template <int Dim>
+struct MomentumRowContext {
+  // The walls (and the distributor, and the lid or outlet) across the component: axis e, tangential kind, speed.
+  struct Across {
+    int e;
+    bool periodic;         // no side along e: the neighbours across the periodic plane are unknowns
+    double h;
+    double area;
+    bool low_noslip;       // the low side is a no-slip wall (the distributor: bottom_wall)
+    bool high_noslip_wall; // the high side is a no-slip wall (not the outlet)
+    double high_speed;     // tangential speed of that wall (the lid moves along x)
+  };
+  using Off = std::ptrdiff_t;
+  const Grid<Dim>& grid;
+  const IndexBox<Dim>& cells;
+  const Field<Dim>& phi;       // the component's faces (layout of every face field of d)
+  const Field<Dim>& eps_cell;  // the cells (layout of every cell field)
+  const FaceFields<Dim>& mflux;
+  const FaceFields<Dim>& u;  // every component (the transpose stress)
+  std::array<Across, Dim - 1> across;
+  std::array<Off, Dim> sf, sc;
+  std::array<std::array<Off, Dim>, Dim> se;
+  double h_al, area_d, vol_full, g_c, rho, mu, alpha, dt, top_pressure;
+  bool full_stress, upwind, outlet_top, periodic_d, simplec;
+  double* P;
+  const double *P_old, *EF, *EF_old, *BF, *UF, *MA, *E, *PR;
+  double* D;
+  const int* ID;
+};
+
+// One row of component d's momentum equation (Eq. 12, backward Euler in the non-conservative form, implicit drag,
+// gravity, pressure; TVD deferred correction with limiter Law): its coefficients into row r of m.
+// The sums one row of the momentum assembly builds: its source, its neighbours' coefficients (all of them and the
+// unknown ones) and the off-diagonal slots.
+template <int Dim>
+struct MomentumRowSums {
+  double b_src = 0.0;
+  double sum_nb = 0.0;
+  double sum_unknown_nb = 0.0;
+  std::array<double, 2 * Dim> off{};
+  // The neighbour (face offset kn) in `slot`: its coefficient, and its value when it is fixed (no unknown).
+  void add(const int* id, const double* phi, int slot, std::ptrdiff_t kn, double coeff) {
+    sum_nb += coeff;
+    if (id[kn] < 0) {
+      b_src += coeff * phi[kn];
+    } else {
+      off[static_cast<std::size_t>(slot)] = -coeff;
+      sum_unknown_nb += coeff;
+    }
+  }
+};
+
+// The faces across the component, per axis e: at the corners b -/+ 1/2, walls and the distributor where there is
+// no neighbour (the along faces are assemble_momentum_row's).
+template <int Dim, int d, class Law>
+void add_across_terms(const MomentumRowContext<Dim>& ctx, const Index<Dim>& c, std::ptrdiff_t kf, std::ptrdiff_t kc,
+                      double ef, MomentumRowSums<Dim>& sum) {
+  using Off = std::ptrdiff_t;
+  using Across = typename MomentumRowContext<Dim>::Across;
+  const Grid<Dim>& grid = ctx.grid;
+  const IndexBox<Dim>& cells = ctx.cells;
+  const FaceFields<Dim>& mflux = ctx.mflux;
+  const auto& across = ctx.across;
+  const auto& sf = ctx.sf;
+  const auto& sc = ctx.sc;
+  const auto& se = ctx.se;
+  const Off scd = sc[d];
+  const double mu = ctx.mu;
+  const double* const P = ctx.P;
+  const double* const E = ctx.E;
+  for (int k = 0; k < Dim - 1; ++k) {
+    const Across& x = across[static_cast<std::size_t>(k)];
+    const int e = x.e;
+    const int b = c[e];
+    const Off sfe = sf[static_cast<std::size_t>(e)];
+    const Off sce = sc[static_cast<std::size_t>(e)];
+    const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
+    const double* const ME = mflux[e].data().data();
+    const Off ke = static_cast<Off>(mflux[e].index(c));
+    const Off smd = sm[d];
+    const Off sme = sm[static_cast<std::size_t>(e)];
+    const double fs = 0.5 * (ME[ke - smd] + ME[ke]);
+    if (x.periodic || b > cells.lo[e]) {
+      const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd - sce] + E[kc - sce]);
+      sum.add(ctx.ID, P, 2 + 2 * k, kf - sfe, mu * e_corner * x.area / x.h + std::max(fs, 0.0));
+      if (!ctx.upwind) {
+        const bool fwd = fs > 0.0;
+        const int far = x.periodic ? grid.wrap(e, fwd ? b - 2 : b + 1) : fwd ? b - 2 : b + 1;
+        if (far >= cells.lo[e] && far < cells.hi[e]) {
+          const double phi_far = P[kf + (far - b) * sfe];
+          const double cc =
+              tvd::correction<Law>(phi_far, fwd ? P[kf - sfe] : P[kf], fwd ? P[kf] : P[kf - sfe]);
+          sum.b_src += fs * cc;
+        }
+      }
+    } else {
+      // Low across boundary: inflow (bottom inlet) brings no tangential momentum; wall friction if no-slip.
+      const double coeff = std::max(fs, 0.0) + (x.low_noslip ? mu * ef * x.area / (0.5 * x.h) : 0.0);
+      sum.sum_nb += coeff;
+    }
+    const double fn = 0.5 * (ME[ke - smd + sme] + ME[ke + sme]);
+    if (x.periodic || b < cells.hi[e] - 1) {
+      const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd + sce] + E[kc + sce]);
+      sum.add(ctx.ID, P, 3 + 2 * k, kf + sfe, mu * e_corner * x.area / x.h + std::max(-fn, 0.0));
+      if (!ctx.upwind) {
+        const bool fwd = fn > 0.0;
+        const int far = x.periodic ? grid.wrap(e, fwd ? b - 1 : b + 2) : fwd ? b - 1 : b + 2;
+        if (far >= cells.lo[e] && far < cells.hi[e]) {
+          const double phi_far = P[kf + (far - b) * sfe];
+          const double cc =
+              tvd::correction<Law>(phi_far, fwd ? P[kf] : P[kf + sfe], fwd ? P[kf + sfe] : P[kf]);
+          sum.b_src -= fn * cc;
+        }
+      }
+    } else if (x.high_noslip_wall) {
+      const double coeff = mu * ef * x.area / (0.5 * x.h);
+      sum.sum_nb += coeff;
+      sum.b_src += coeff * x.high_speed;
+    }
+  }
+}
+
+// Transpose part of the stress, div(eps mu (grad u)^T), lagged (deferred) from the current iterate: along faces
+// eps mu d(phi)/d(along), across faces eps mu d(other)/d(along). Zero at slip walls and outlets.
+template <int Dim, int d>
+void add_transpose_stress(const MomentumRowContext<Dim>& ctx, const Index<Dim>& c, std::ptrdiff_t kf, std::ptrdiff_t kc,
+                          double ef, MomentumRowSums<Dim>& sum) {
+  using Off = std::ptrdiff_t;
+  using Across = typename MomentumRowContext<Dim>::Across;
+  const IndexBox<Dim>& cells = ctx.cells;
+  const auto& across = ctx.across;
+  const auto& sf = ctx.sf;
+  const auto& sc = ctx.sc;
+  const auto& se = ctx.se;
+  const Off scd = sc[d];
+  const double mu = ctx.mu;
+  const double* const P = ctx.P;
+  const double* const E = ctx.E;
+  const Off sfd = sf[d];
+  const double area_d = ctx.area_d, h_al = ctx.h_al;
+    sum.b_src += mu * area_d / h_al * (E[kc] * (P[kf + sfd] - P[kf]) - E[kc - scd] * (P[kf] - P[kf - sfd]));
+    for (int k = 0; k < Dim - 1; ++k) {
+      const Across& x = across[static_cast<std::size_t>(k)];
+      const int e = x.e;
+      const int b = c[e];
+      const Off sce = sc[static_cast<std::size_t>(e)];
+      const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
+      const double* const O = ctx.u[e].data().data();  // the other component, in the layout of mflux[e]
+      const Off ke = static_cast<Off>(ctx.u[e].index(c));
+      const Off smd = sm[d];
+      const Off sme = sm[static_cast<std::size_t>(e)];
+      const auto corner_eps = [&](int j) {
+        if (x.periodic || (j > cells.lo[e] && j < cells.hi[e])) {
+          const Off lo = kc + (j - 1 - b) * sce;  // cell (a, j - 1) along (d, e)
+          return 0.25 * (E[lo - scd] + E[lo] + E[lo - scd + sce] + E[lo + sce]);
+        }
+        return ef;
+      };
+      // The across face's area over the along spacing (1 in 2D, where the face is as long as the cell).
+      const double lever = x.area / h_al;
+      const bool low_open = x.periodic || b > cells.lo[e] || x.low_noslip;
+      const bool high_open = x.periodic || b < cells.hi[e] - 1 || x.high_noslip_wall;
+      if (high_open) sum.b_src += mu * corner_eps(b + 1) * (O[ke + sme] - O[ke - smd + sme]) * lever;
+      if (low_open) sum.b_src -= mu * corner_eps(b) * (O[ke] - O[ke - smd]) * lever;
+    }
+}
+
+template <int Dim, int d, class Law>
+void assemble_momentum_row(const MomentumRowContext<Dim>& ctx, Momentum<Dim>& m, int r) {
+  using Off = std::ptrdiff_t;
+  const Grid<Dim>& grid = ctx.grid;
+  const IndexBox<Dim>& cells = ctx.cells;
+  const Field<Dim>& phi = ctx.phi;
+  const Field<Dim>& eps_cell = ctx.eps_cell;
+  const auto& sf = ctx.sf;
+  const auto& sc = ctx.sc;
+  const Off sfd = sf[d], scd = sc[d];
+  const double h_al = ctx.h_al, area_d = ctx.area_d, vol_full = ctx.vol_full, g_c = ctx.g_c, rho = ctx.rho, mu = ctx.mu;
+  const double alpha = ctx.alpha, dt = ctx.dt;
+  const bool full_stress = ctx.full_stress, outlet_top = ctx.outlet_top, periodic_d = ctx.periodic_d;
+  double* const P = ctx.P;
+  const double* const P_old = ctx.P_old;
+  const double* const EF = ctx.EF;
+  const double* const EF_old = ctx.EF_old;
+  const double* const BF = ctx.BF;
+  const double* const UF = ctx.UF;
+  const double* const MA = ctx.MA;
+  const double* const E = ctx.E;
+  const double* const PR = ctx.PR;
+  double* const D = ctx.D;
+  const int* const ID = ctx.ID;
+
+  const Index<Dim> c = m.where[static_cast<std::size_t>(r)];
+  const Off kf = static_cast<Off>(phi.index(c));       // the face, in the face layout
+  const Off kc = static_cast<Off>(eps_cell.index(c));  // the cell above it along d, in the cell layout
+  const int a = c[d];
+  const bool half = outlet_top && a == cells.hi[d];  // outlet face: half control volume inside the domain
+  // Offset of the face k steps along d (two steps reach past the single ghost layer: wrapped on a periodic d).
+  const auto along = [&](int k) { return static_cast<Off>(periodic_d ? grid.wrap(d, a + k) - a : k) * sfd; };
+  const double vol = vol_full * (half ? 0.5 : 1.0);
+  const double ef = EF[kf];
+  MomentumRowSums<Dim> sum;
+  // Along the component: faces at the cell centres a-1 (minus) and a (plus).
+  {
+    const double fm = 0.5 * (MA[kf - sfd] + MA[kf]);
+    const double dm = mu * E[kc - scd] * area_d / h_al;
+    sum.add(ID, P, 0, kf - sfd, dm + std::max(fm, 0.0));
+    // Beyond the boundary face the ghost repeats it (zero gradient), so there the limiter sees no slope.
+    if (!ctx.upwind && !half) {
+      const bool fwd = fm > 0.0;
+      const double phi_far = P[kf + along(fwd ? -2 : 1)];
+      const double cc = tvd::correction<Law>(phi_far, fwd ? P[kf - sfd] : P[kf], fwd ? P[kf] : P[kf - sfd]);
+      sum.b_src += fm * cc;
+    }
+  }
+  if (!half) {
+    const double fp = 0.5 * (MA[kf] + MA[kf + sfd]);
+    const double dp = mu * E[kc] * area_d / h_al;
+    sum.add(ID, P, 1, kf + sfd, dp + std::max(-fp, 0.0));
+    if (!ctx.upwind) {
+      const bool fwd = fp > 0.0;
+      const double phi_far = P[kf + along(fwd ? -1 : 2)];
+      const double cc = tvd::correction<Law>(phi_far, fwd ? P[kf] : P[kf + sfd], fwd ? P[kf + sfd] : P[kf]);
+      sum.b_src -= fp * cc;
+    }
+    add_across_terms<Dim, d, Law>(ctx, c, kf, kc, ef, sum);
+    if (full_stress) add_transpose_stress<Dim, d>(ctx, c, kf, kc, ef, sum);
+  }
+  // Eq. 12: backward Euler in the non-conservative form (continuity subtracted), implicit drag, gravity, pressure.
+  const double ap0 = rho * EF_old[kf] * vol / dt;
+  const double drag = BF[kf] * vol;
+  const double ap = ap0 + sum.sum_nb + drag;
+  const double ap_relaxed = ap / alpha;
+  const double area = ef * area_d;  // pressure force per unit pressure difference
+  const double p_low = PR[kc - scd];
+  const double p_high = half ? ctx.top_pressure : PR[kc];
+  sum.b_src += ap0 * P_old[kf] + drag * UF[kf] + rho * ef * g_c * vol + area * (p_low - p_high) +
+           (ap_relaxed - ap) * P[kf];
+  m.a.set_row(r, ap_relaxed, sum.off);
+  m.rhs[r] = sum.b_src;
+  m.x[r] = P[kf];
+  m.ap[static_cast<std::size_t>(r)] = ap;
+  const double denom = ctx.simplec ? ap_relaxed - sum.sum_unknown_nb : ap_relaxed;
+  D[kf] = area / denom;
+}
+
+}  // namespace
+
 template <int Dim>
 template <int d, class Law>
 void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
@@ -475,19 +727,9 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
   const Field<Dim>& us_face = us_f[d];
   const Field<Dim>& m_al = mflux[d];
   const bool full_stress = cfg.viscous == ViscousStress::Full;
-  // TVD face value minus the upwind one (core/tvd_limiter.hpp, limiter Law), added by deferred correction.
-  const ConvectionScheme scheme = cfg.convection;
   const bool outlet_top = d == 1 && outlet;
   // The walls (and the distributor, and the lid or outlet) across the component: axis e, tangential kind, speed.
-  struct Across {
-    int e;
-    bool periodic;         // no side along e: the neighbours across the periodic plane are unknowns
-    double h;
-    double area;
-    bool low_noslip;       // the low side is a no-slip wall (the distributor: bottom_wall)
-    bool high_noslip_wall; // the high side is a no-slip wall (not the outlet)
-    double high_speed;     // tangential speed of that wall (the lid moves along x)
-  };
+  using Across = typename MomentumRowContext<Dim>::Across;
   std::array<Across, Dim - 1> across{};
   for (int e = 0, k = 0; e < Dim; ++e) {
     if (e == d) continue;
@@ -515,8 +757,6 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
     for (int e = 0; e < Dim; ++e)
       se[static_cast<std::size_t>(e)][static_cast<std::size_t>(b)] = static_cast<Off>(mflux[e].stride(b));
   }
-  const Off sfd = sf[d];
-  const Off scd = sc[d];
   const bool periodic_d = grid.periodic[static_cast<std::size_t>(d)];
   double* const P = phi.data().data();
   const double* const P_old = phi_old.data().data();
@@ -530,152 +770,13 @@ void GasSolver<Dim>::Impl::solve_momentum_with(double dt) {
   double* const D = m.d.data().data();
   const int* const ID = m.id.data();
 
+  const MomentumRowContext<Dim> rows{grid, cells, phi, eps_cell, mflux, f.u, across, sf, sc, se,
+                                     h_al, area_d, vol_full, g_c, rho, mu, alpha, dt, bc.top_pressure,
+                                     full_stress, cfg.convection == ConvectionScheme::Upwind, outlet_top, periodic_d,
+                                     cfg.coupling == PressureCoupling::Simplec,
+                                     P, P_old, EF, EF_old, BF, UF, MA, E, PR, D, ID};
 #pragma omp parallel for schedule(static) if (static_cast<int>(cells.count()) >= kParallelCells)
-  for (int r = 0; r < n; ++r) {
-    const Index<Dim> c = m.where[static_cast<std::size_t>(r)];
-    const Off kf = static_cast<Off>(phi.index(c));       // the face, in the face layout
-    const Off kc = static_cast<Off>(eps_cell.index(c));  // the cell above it along d, in the cell layout
-    const int a = c[d];
-    const bool half = outlet_top && a == cells.hi[d];  // outlet face: half control volume inside the domain
-    // Offset of the face k steps along d (two steps reach past the single ghost layer: wrapped on a periodic d).
-    const auto along = [&](int k) { return static_cast<Off>(periodic_d ? grid.wrap(d, a + k) - a : k) * sfd; };
-    const double vol = vol_full * (half ? 0.5 : 1.0);
-    const double ef = EF[kf];
-    double b_src = 0.0;
-    double sum_nb = 0.0;
-    double sum_unknown_nb = 0.0;
-    std::array<double, 2 * Dim> off{};
-    // neighbour (face offset kn) in slot: coefficient, and its value when it is fixed
-    const auto add = [&](int slot, Off kn, double coeff) {
-      sum_nb += coeff;
-      if (ID[kn] < 0) {
-        b_src += coeff * P[kn];
-      } else {
-        off[static_cast<std::size_t>(slot)] = -coeff;
-        sum_unknown_nb += coeff;
-      }
-    };
-    // Along the component: faces at the cell centres a-1 (minus) and a (plus).
-    {
-      const double fm = 0.5 * (MA[kf - sfd] + MA[kf]);
-      const double dm = mu * E[kc - scd] * area_d / h_al;
-      add(0, kf - sfd, dm + std::max(fm, 0.0));
-      // Beyond the boundary face the ghost repeats it (zero gradient), so there the limiter sees no slope.
-      if (scheme != ConvectionScheme::Upwind && !half) {
-        const bool fwd = fm > 0.0;
-        const double phi_far = P[kf + along(fwd ? -2 : 1)];
-        const double cc = tvd::correction<Law>(phi_far, fwd ? P[kf - sfd] : P[kf], fwd ? P[kf] : P[kf - sfd]);
-        b_src += fm * cc;
-      }
-    }
-    if (!half) {
-      const double fp = 0.5 * (MA[kf] + MA[kf + sfd]);
-      const double dp = mu * E[kc] * area_d / h_al;
-      add(1, kf + sfd, dp + std::max(-fp, 0.0));
-      if (scheme != ConvectionScheme::Upwind) {
-        const bool fwd = fp > 0.0;
-        const double phi_far = P[kf + along(fwd ? -1 : 2)];
-        const double cc = tvd::correction<Law>(phi_far, fwd ? P[kf] : P[kf + sfd], fwd ? P[kf + sfd] : P[kf]);
-        b_src -= fp * cc;
-      }
-      // Across the component, per axis e: faces at the corners b -/+ 1/2.
-      for (int k = 0; k < Dim - 1; ++k) {
-        const Across& x = across[static_cast<std::size_t>(k)];
-        const int e = x.e;
-        const int b = c[e];
-        const Off sfe = sf[static_cast<std::size_t>(e)];
-        const Off sce = sc[static_cast<std::size_t>(e)];
-        const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
-        const double* const ME = mflux[e].data().data();
-        const Off ke = static_cast<Off>(mflux[e].index(c));
-        const Off smd = sm[d];
-        const Off sme = sm[static_cast<std::size_t>(e)];
-        const double fs = 0.5 * (ME[ke - smd] + ME[ke]);
-        if (x.periodic || b > cells.lo[e]) {
-          const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd - sce] + E[kc - sce]);
-          add(2 + 2 * k, kf - sfe, mu * e_corner * x.area / x.h + std::max(fs, 0.0));
-          if (scheme != ConvectionScheme::Upwind) {
-            const bool fwd = fs > 0.0;
-            const int far = x.periodic ? grid.wrap(e, fwd ? b - 2 : b + 1) : fwd ? b - 2 : b + 1;
-            if (far >= cells.lo[e] && far < cells.hi[e]) {
-              const double phi_far = P[kf + (far - b) * sfe];
-              const double cc =
-                  tvd::correction<Law>(phi_far, fwd ? P[kf - sfe] : P[kf], fwd ? P[kf] : P[kf - sfe]);
-              b_src += fs * cc;
-            }
-          }
-        } else {
-          // Low across boundary: inflow (bottom inlet) brings no tangential momentum; wall friction if no-slip.
-          const double coeff = std::max(fs, 0.0) + (x.low_noslip ? mu * ef * x.area / (0.5 * x.h) : 0.0);
-          sum_nb += coeff;
-        }
-        const double fn = 0.5 * (ME[ke - smd + sme] + ME[ke + sme]);
-        if (x.periodic || b < cells.hi[e] - 1) {
-          const double e_corner = 0.25 * (E[kc - scd] + E[kc] + E[kc - scd + sce] + E[kc + sce]);
-          add(3 + 2 * k, kf + sfe, mu * e_corner * x.area / x.h + std::max(-fn, 0.0));
-          if (scheme != ConvectionScheme::Upwind) {
-            const bool fwd = fn > 0.0;
-            const int far = x.periodic ? grid.wrap(e, fwd ? b - 1 : b + 2) : fwd ? b - 1 : b + 2;
-            if (far >= cells.lo[e] && far < cells.hi[e]) {
-              const double phi_far = P[kf + (far - b) * sfe];
-              const double cc =
-                  tvd::correction<Law>(phi_far, fwd ? P[kf] : P[kf + sfe], fwd ? P[kf + sfe] : P[kf]);
-              b_src -= fn * cc;
-            }
-          }
-        } else if (x.high_noslip_wall) {
-          const double coeff = mu * ef * x.area / (0.5 * x.h);
-          sum_nb += coeff;
-          b_src += coeff * x.high_speed;
-        }
-      }
-      if (full_stress) {
-        // Transpose part of the stress, div(eps mu (grad u)^T), lagged (deferred) from the current iterate:
-        // along faces eps mu d(phi)/d(along), across faces eps mu d(other)/d(along). Zero at slip walls and outlets.
-        b_src += mu * area_d / h_al * (E[kc] * (P[kf + sfd] - P[kf]) - E[kc - scd] * (P[kf] - P[kf - sfd]));
-        for (int k = 0; k < Dim - 1; ++k) {
-          const Across& x = across[static_cast<std::size_t>(k)];
-          const int e = x.e;
-          const int b = c[e];
-          const Off sce = sc[static_cast<std::size_t>(e)];
-          const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
-          const double* const O = f.u[e].data().data();  // the other component, in the layout of mflux[e]
-          const Off ke = static_cast<Off>(f.u[e].index(c));
-          const Off smd = sm[d];
-          const Off sme = sm[static_cast<std::size_t>(e)];
-          const auto corner_eps = [&](int j) {
-            if (x.periodic || (j > cells.lo[e] && j < cells.hi[e])) {
-              const Off lo = kc + (j - 1 - b) * sce;  // cell (a, j - 1) along (d, e)
-              return 0.25 * (E[lo - scd] + E[lo] + E[lo - scd + sce] + E[lo + sce]);
-            }
-            return ef;
-          };
-          // The across face's area over the along spacing (1 in 2D, where the face is as long as the cell).
-          const double lever = x.area / h_al;
-          const bool low_open = x.periodic || b > cells.lo[e] || x.low_noslip;
-          const bool high_open = x.periodic || b < cells.hi[e] - 1 || x.high_noslip_wall;
-          if (high_open) b_src += mu * corner_eps(b + 1) * (O[ke + sme] - O[ke - smd + sme]) * lever;
-          if (low_open) b_src -= mu * corner_eps(b) * (O[ke] - O[ke - smd]) * lever;
-        }
-      }
-    }
-    // Eq. 12: backward Euler in the non-conservative form (continuity subtracted), implicit drag, gravity, pressure.
-    const double ap0 = rho * EF_old[kf] * vol / dt;
-    const double drag = BF[kf] * vol;
-    const double ap = ap0 + sum_nb + drag;
-    const double ap_relaxed = ap / alpha;
-    const double area = ef * area_d;  // pressure force per unit pressure difference
-    const double p_low = PR[kc - scd];
-    const double p_high = half ? bc.top_pressure : PR[kc];
-    b_src += ap0 * P_old[kf] + drag * UF[kf] + rho * ef * g_c * vol + area * (p_low - p_high) +
-             (ap_relaxed - ap) * P[kf];
-    m.a.set_row(r, ap_relaxed, off);
-    m.rhs[r] = b_src;
-    m.x[r] = P[kf];
-    m.ap[static_cast<std::size_t>(r)] = ap;
-    const double denom = cfg.coupling == PressureCoupling::Simplec ? ap_relaxed - sum_unknown_nb : ap_relaxed;
-    D[kf] = area / denom;
-  }
+  for (int r = 0; r < n; ++r) assemble_momentum_row<Dim, d, Law>(rows, m, r);
   // Solved for the increment from the current iterate, whose residual (b - A x, the relaxation terms cancel
   // there) is also SIMPLE's momentum criterion; sums in row order, independent of the thread count.
   m.rhs.noalias() -= m.a.matrix() * m.x;
