@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/cell_view.hpp"
 #include "core/field2.hpp"
 #include "core/grid2.hpp"
 #include "io/particle_arrays.hpp"
@@ -39,6 +40,17 @@ struct FieldView {
   /// Whether the gas (or solids) velocity has all its components.
   bool has_gas_velocity() const { return ug[0] && ug[1] && (dimension == 2 || ug[2]); }
   bool has_solids_velocity() const { return us[0] && us[1] && (dimension == 2 || us[2]); }
+  /// The cells of a view of dimension Dim, as the analysis reads them.
+  template <int Dim>
+  CellGeometry<Dim> geometry() const {
+    CellGeometry<Dim> g;
+    for (int a = 0; a < Dim; ++a) {
+      g.n[a] = n[static_cast<std::size_t>(a)];
+      g.h[a] = h[static_cast<std::size_t>(a)];
+      g.origin[a] = origin[static_cast<std::size_t>(a)];
+    }
+    return g;
+  }
   /// The x-y grid of a 2D view (for the 2D analysis).
   Grid2 grid2() const { return Grid2{n[0], n[1], h[0], h[1], origin[0], origin[1]}; }
   /// A copy of a 2D view's field as a Field2 (for the 2D analysis); `values` one of the pointers above.

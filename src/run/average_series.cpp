@@ -15,20 +15,9 @@ namespace fluidbed {
 namespace {
 
 template <int Dim>
-CellGeometry<Dim> geometry_of(const FieldView& fv) {
-  CellGeometry<Dim> g;
-  for (int a = 0; a < Dim; ++a) {
-    g.n[a] = fv.n[static_cast<std::size_t>(a)];
-    g.h[a] = fv.h[static_cast<std::size_t>(a)];
-    g.origin[a] = fv.origin[static_cast<std::size_t>(a)];
-  }
-  return g;
-}
-
-template <int Dim>
 AverageFields<Dim> fields_of(const FieldView& fv) {
   AverageFields<Dim> f;
-  f.geometry = geometry_of<Dim>(fv);
+  f.geometry = fv.geometry<Dim>();
   f.eps = fv.eps;
   for (int a = 0; a < Dim; ++a) {
     f.ug[a] = fv.ug[static_cast<std::size_t>(a)];
@@ -46,9 +35,9 @@ AverageSeries::AverageSeries(std::filesystem::path out, const AveragesConfig& co
                              const Hdf5File* checkpoint, double t_now)
     : out_(std::move(out)), config_(config), dim_(fv.dimension) {
   if (dim_ == 3) {
-    avg3_.emplace(geometry_of<3>(fv));
+    avg3_.emplace(fv.geometry<3>());
   } else {
-    avg2_.emplace(geometry_of<2>(fv));
+    avg2_.emplace(fv.geometry<2>());
   }
   if (checkpoint && config_.interval > 0.0 && t_now >= config_.t_start) {
     // On the window's schedule, after the instant the checkpoint holds: 1e-9 of an interval absorbs the rounding

@@ -59,13 +59,7 @@ typename BubblePopulation<Dim>::State load_state(const Hdf5File& f) {
 
 template <int Dim>
 CellView<Dim> eps_view(const FieldView& fv) {
-  CellGeometry<Dim> g;
-  for (int a = 0; a < Dim; ++a) {
-    g.n[a] = fv.n[a];
-    g.h[a] = fv.h[a];
-    g.origin[a] = fv.origin[a];
-  }
-  return CellView<Dim>{g, fv.eps};
+  return CellView<Dim>{fv.geometry<Dim>(), fv.eps};
 }
 
 template <int Dim>

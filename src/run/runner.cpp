@@ -155,22 +155,10 @@ BubbleTracker::State load_bubble_state(const Hdf5File& f) {
 // The layer tracer balls (the paper's Fig. 4b/c) of a 2D or a 3D run.
 using TracerBalls = std::variant<BallTracers<2>, BallTracers<3>>;
 
-template <int Dim>
-CellGeometry<Dim> view_geometry(const FieldView& fv) {
-  CellGeometry<Dim> g;
-  for (int a = 0; a < Dim; ++a) {
-    const auto k = static_cast<std::size_t>(a);
-    g.n[a] = fv.n[k];
-    g.h[a] = fv.h[k];
-    g.origin[a] = fv.origin[k];
-  }
-  return g;
-}
-
 // Balls over the bed of the initial voidage, one per cell below its surface; none without a bed.
 template <int Dim>
 std::optional<TracerBalls> fresh_tracers(const FieldView& fv, int layers) {
-  const CellGeometry<Dim> geo = view_geometry<Dim>(fv);
+  const CellGeometry<Dim> geo = fv.geometry<Dim>();
   const double h = fv.eps ? bed_surface_height<Dim>(CellView<Dim>{geo, fv.eps}).value_or(0.0) : 0.0;
   if (!(h > 0.0)) return std::nullopt;
   return TracerBalls(std::in_place_type<BallTracers<Dim>>, geo, h, layers);
@@ -194,7 +182,7 @@ TracerBalls load_tracers(const Hdf5File& f, const FieldView& fv) {
     pos[0] = f.read_double("tracers/x");
     pos[1] = f.read_double("tracers/y");
     if constexpr (Dim == 3) pos[2] = f.read_double("tracers/z");
-    return TracerBalls(std::in_place_type<BallTracers<Dim>>, view_geometry<Dim>(fv), f.read_int64("tracers/id"),
+    return TracerBalls(std::in_place_type<BallTracers<Dim>>, fv.geometry<Dim>(), f.read_int64("tracers/id"),
                        std::move(pos), f.read_int32("tracers/layer"));
   } catch (const Error& e) {
     throw_input_error(fmt::format("{}: {}", f.path().string(), e.what()));
@@ -204,8 +192,9 @@ TracerBalls load_tracers(const Hdf5File& f, const FieldView& fv) {
 // One step of the balls with the model's solids velocity (cell centres, every component).
 void advance_tracers(TracerBalls& balls, const FieldView& fv, double dt) {
   std::visit([&]<int Dim>(BallTracers<Dim>& t) {
+    const CellGeometry<Dim> geo = fv.geometry<Dim>();
     std::array<CellView<Dim>, Dim> u;
-    for (int a = 0; a < Dim; ++a) u[static_cast<std::size_t>(a)] = CellView<Dim>{view_geometry<Dim>(fv), fv.us[static_cast<std::size_t>(a)]};
+    for (int a = 0; a < Dim; ++a) u[static_cast<std::size_t>(a)] = CellView<Dim>{geo, fv.us[static_cast<std::size_t>(a)]};
     t.advance(u, dt);
   }, balls);
 }
@@ -649,8 +638,7 @@ class Run {
         const FieldView fv = model_->fields();
         BubbleSample b;
         if (fv.dimension == 3) {
-          const CellGeometry<3> geo{{fv.n[0], fv.n[1], fv.n[2]}, {fv.h[0], fv.h[1], fv.h[2]},
-                                    {fv.origin[0], fv.origin[1], fv.origin[2]}};
+          const CellGeometry<3> geo = fv.geometry<3>();
           b = bubbles_->observe<3>(stamp, CellView<3>{geo, fv.eps}, CellView<3>{geo, fv.ug[1]});
         } else {
           b = bubbles_->observe(stamp, fv.grid2(), fv.field2(fv.eps), fv.field2(fv.ug[0]), fv.field2(fv.ug[1]));
