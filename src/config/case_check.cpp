@@ -60,16 +60,35 @@ std::string cell_text(const CaseGrid& g) {
   return g.dimension == 3 ? fmt::format("{} x {} x {}", g.dx, g.dy, g.dz) : fmt::format("{} x {}", g.dx, g.dy);
 }
 
+// Species a against species b (b < 0: a wall) as a contact sees them: reduced mass, radius and modulus, the smaller
+// diameter (overlaps are measured against it) and both materials; each species by its smallest particle (the
+// lightest, whose contacts are the shortest) or by its nominal diameter.
+struct ContactPair {
+  double m_eff, r_eff, e_star, d_small;
+  const ElasticMaterial* ma;
+  const ElasticMaterial* mb;
+};
+ContactPair contact_pair(const DemConfig& dem, int a, int b, bool smallest) {
+  const auto of = [&](int s) {
+    const Species& sp = dem.species[static_cast<std::size_t>(s)];
+    return smallest ? sp.of_diameter(sp.d_min()) : sp;
+  };
+  const bool wall = b < 0;
+  const Species sa = of(a);
+  const Species sb = wall ? sa : of(b);
+  const ElasticMaterial* ma = &dem.material_of(static_cast<std::size_t>(a));
+  const ElasticMaterial* mb = wall ? &dem.contact.wall_material : &dem.material_of(static_cast<std::size_t>(b));
+  return {wall ? sa.mass() : reduced_mass(sa.mass(), sb.mass()),
+          wall ? sa.radius() : sa.radius() * sb.radius() / (sa.radius() + sb.radius()),
+          effective_youngs_modulus(*ma, *mb), wall ? sa.diameter : std::min(sa.diameter, sb.diameter), ma, mb};
+}
+
 }  // namespace
 
 EquivalentContact equivalent_contact(const DemConfig& dem, int a, int b) {
-  // Each species by its smallest particle: the lightest, whose contacts are the shortest.
-  const Species& spa = dem.species[static_cast<std::size_t>(a)];
-  const Species sa = spa.of_diameter(spa.d_min());
+  const ContactPair p = contact_pair(dem, a, b, true);
+  const double m_eff = p.m_eff;
   const bool wall = b < 0;
-  const Species sb = wall ? sa : dem.species[static_cast<std::size_t>(b)].of_diameter(
-                                     dem.species[static_cast<std::size_t>(b)].d_min());
-  const double m_eff = wall ? sa.mass() : reduced_mass(sa.mass(), sb.mass());
   const double e = wall ? dem.wall[static_cast<std::size_t>(a)].restitution : dem.pair_params(a, b).restitution;
   const ContactModelConfig& m = dem.contact;
   if (m.normal == NormalModel::Linear) {
@@ -79,21 +98,15 @@ EquivalentContact equivalent_contact(const DemConfig& dem, int a, int b) {
     EquivalentContact c{m_eff, k, k_t, eta, pair_contact_duration(m_eff, k, e)};
     if (m.tangential == TangentialModel::Mindlin) {
       // Mindlin's k_t at the linear spring's largest overlap of the impact
-      const double r_eff = wall ? sa.radius() : sa.radius() * sb.radius() / (sa.radius() + sb.radius());
-      const ElasticMaterial& mb = wall ? m.wall_material : dem.material_of(static_cast<std::size_t>(b));
-      const double g = effective_shear_modulus(dem.material_of(static_cast<std::size_t>(a)), mb);
-      c.k_t = 8.0 * g * std::sqrt(r_eff * m.impact_speed * std::sqrt(m_eff / k));
+      const double g = effective_shear_modulus(*p.ma, *p.mb);
+      c.k_t = 8.0 * g * std::sqrt(p.r_eff * m.impact_speed * std::sqrt(m_eff / k));
     }
     return c;
   }
-  const double r_eff = wall ? sa.radius() : sa.radius() * sb.radius() / (sa.radius() + sb.radius());
-  const ElasticMaterial& ma = dem.material_of(static_cast<std::size_t>(a));
-  const ElasticMaterial& mb = wall ? m.wall_material : dem.material_of(static_cast<std::size_t>(b));
-  const double e_star = effective_youngs_modulus(ma, mb);
-  const HertzImpact h = hertz_impact(m_eff, e_star, r_eff, m.impact_speed);
-  const double a_max = std::sqrt(r_eff * h.max_overlap);
-  const double k_n = 2.0 * e_star * a_max;
-  const double k_t = m.tangential == TangentialModel::Mindlin ? 8.0 * effective_shear_modulus(ma, mb) * a_max
+  const HertzImpact h = hertz_impact(m_eff, p.e_star, p.r_eff, m.impact_speed);
+  const double a_max = std::sqrt(p.r_eff * h.max_overlap);
+  const double k_n = 2.0 * p.e_star * a_max;
+  const double k_t = m.tangential == TangentialModel::Mindlin ? 8.0 * effective_shear_modulus(*p.ma, *p.mb) * a_max
                                                               : k_n * dem.tangential_stiffness_ratio;
   return {m_eff, k_n, k_t, tsuji_alpha_for_hertz(e) * std::sqrt(m_eff * k_n), h.duration};
 }
@@ -102,16 +115,8 @@ namespace {
 // equivalent_contact's t_c alone: the Hertz duration needs no dashpot (whose Tsuji alpha is an integration).
 double contact_duration_of(const DemConfig& dem, int a, int b) {
   if (dem.contact.normal == NormalModel::Linear) return equivalent_contact(dem, a, b).t_c;
-  const Species& spa = dem.species[static_cast<std::size_t>(a)];
-  const Species sa = spa.of_diameter(spa.d_min());
-  const bool wall = b < 0;
-  const Species sb = wall ? sa : dem.species[static_cast<std::size_t>(b)].of_diameter(
-                                     dem.species[static_cast<std::size_t>(b)].d_min());
-  const double m_eff = wall ? sa.mass() : reduced_mass(sa.mass(), sb.mass());
-  const double r_eff = wall ? sa.radius() : sa.radius() * sb.radius() / (sa.radius() + sb.radius());
-  const ElasticMaterial& mb = wall ? dem.contact.wall_material : dem.material_of(static_cast<std::size_t>(b));
-  const double e_star = effective_youngs_modulus(dem.material_of(static_cast<std::size_t>(a)), mb);
-  return hertz_impact(m_eff, e_star, r_eff, dem.contact.impact_speed).duration;
+  const ContactPair p = contact_pair(dem, a, b, true);
+  return hertz_impact(p.m_eff, p.e_star, p.r_eff, dem.contact.impact_speed).duration;
 }
 }  // namespace
 
@@ -347,21 +352,6 @@ struct BedTotals {
   double d_largest = 0.0; ///< m
 };
 
-// A Hertz pair seen by the lines of `check`: reduced mass, radius and modulus of species a with b (b < 0: a
-// wall), at each species' nominal diameter, and the smaller diameter that overlaps are measured against.
-struct HertzPair {
-  double m_eff, r_eff, e_star, d_small;
-};
-HertzPair hertz_pair(const DemConfig& dem, int a, int b) {
-  const Species& sa = dem.species[static_cast<std::size_t>(a)];
-  const ElasticMaterial& ma = dem.material_of(static_cast<std::size_t>(a));
-  if (b < 0) return {sa.mass(), sa.radius(), effective_youngs_modulus(ma, dem.contact.wall_material), sa.diameter};
-  const Species& sb = dem.species[static_cast<std::size_t>(b)];
-  return {reduced_mass(sa.mass(), sb.mass()), sa.radius() * sb.radius() / (sa.radius() + sb.radius()),
-          effective_youngs_modulus(ma, dem.material_of(static_cast<std::size_t>(b))),
-          std::min(sa.diameter, sb.diameter)};
-}
-
 // Every kind of contact once: (a, b) with a <= b, then (a, wall) as b = -1.
 template <class F>
 void for_each_contact_kind(const DemConfig& dem, F&& f) {
@@ -439,8 +429,7 @@ BedTotals describe_dem_species(Report& r, const CaseConfig& c) {
   for (std::size_t a = 0; a < dem.n_species(); ++a) {
     const Species& sp = dem.species[a];
     const double f = a < frac.size() ? frac[a] : 0.0;
-    const SizeMoments m = sp.sized() ? size_moments(sp.size) : SizeMoments{sp.diameter, sp.diameter * sp.diameter,
-                                                                        sp.diameter * sp.diameter * sp.diameter};
+    const SizeMoments m = size_moments(sp.distribution());
     bed.mass += n * f * sp.density * std::numbers::pi * m.m3 / 6.0;
     bed.measure += n * f * (three_d ? std::numbers::pi * m.m3 / 6.0 : std::numbers::pi * m.m2 / 4.0);
     bed.d_largest = std::max(bed.d_largest, sp.d_max());
@@ -470,13 +459,9 @@ void describe_dem_contacts(Report& r, const DemConfig& dem) {
     for_each_contact_kind(dem, [&](int a, int b) {
       // Johnson (1985): duration and largest overlap of an impact; the smallest particles (equivalent_contact).
       const EquivalentContact ec = equivalent_contact(dem, a, b);
-      const double e_star = hertz_pair(dem, a, b).e_star;
-      const Species& sa = dem.species[static_cast<std::size_t>(a)];
-      const double ra = 0.5 * sa.d_min();
-      const double rb = b < 0 ? 0.0 : 0.5 * dem.species[static_cast<std::size_t>(b)].d_min();
-      const double r_eff = b < 0 ? ra : ra * rb / (ra + rb);
-      const double d_small = b < 0 ? 2.0 * ra : 2.0 * std::min(ra, rb);
-      const double overlap = hertz_impact(ec.m_eff, e_star, r_eff, law.impact_speed).max_overlap;
+      const ContactPair p = contact_pair(dem, a, b, true);
+      const double overlap = hertz_impact(p.m_eff, p.e_star, p.r_eff, law.impact_speed).max_overlap;
+      const double d_small = p.d_small;
       r.line(fmt::format("Hertz contact {}", kind_name(a, b)),
              fmt::format("at {:g} m/s: t_c = {:.4g} s = {:.1f} time steps, largest overlap {:.3g}% of d, tangent "
                          "stiffness {:.4g} N/m", law.impact_speed, ec.t_c, ec.t_c / dem.dt, 100.0 * overlap / d_small,
@@ -532,7 +517,7 @@ double describe_dem_overlaps(Report& r, const CaseConfig& c, const BedTotals& be
     const double d = bed_mixture(dem, c.particles.packing.species_fraction).d32;
     const double force = three_d ? bed.mass * g * d * d / (c.domain.width * c.domain.depth) : bed.mass * g * d / c.domain.width;
     double e_star = 1e300;
-    for_each_contact_kind(dem, [&](int a, int b) { if (b >= 0) e_star = std::min(e_star, hertz_pair(dem, a, b).e_star); });
+    for_each_contact_kind(dem, [&](int a, int b) { if (b >= 0) e_star = std::min(e_star, contact_pair(dem, a, b, false).e_star); });
     const double r_eff = 0.25 * d;
     const double delta = hertz ? std::pow(3.0 * force / (4.0 * e_star * std::sqrt(r_eff)), 2.0 / 3.0) : force / dem.stiffness;
     // Hertz: delta ~ E*^(-2/3), so the moduli for delta = target d scale by (delta / (target d))^(3/2).
@@ -545,7 +530,7 @@ double describe_dem_overlaps(Report& r, const CaseConfig& c, const BedTotals& be
   if (!(v > 0.0)) return 0.0;
   double worst = 0.0;
   for_each_contact_kind(dem, [&](int a, int b) {
-    const HertzPair p = hertz_pair(dem, a, b);
+    const ContactPair p = contact_pair(dem, a, b, false);
     // Linear: the undamped spring's amplitude v sqrt(m*/k); Hertz: (15 m* v^2 / (16 E* sqrt(R*)))^(2/5).
     const double delta = hertz ? hertz_impact(p.m_eff, p.e_star, p.r_eff, v).max_overlap : v * std::sqrt(p.m_eff / dem.stiffness);
     worst = std::max(worst, delta / p.d_small);
