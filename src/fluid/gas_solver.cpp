@@ -486,8 +486,6 @@ struct MomentumRowContext {
   const int* ID;
 };
 
-// One row of component d's momentum equation (Eq. 12, backward Euler in the non-conservative form, implicit drag,
-// gravity, pressure; TVD deferred correction with limiter Law): its coefficients into row r of m.
 // The sums one row of the momentum assembly builds: its source, its neighbours' coefficients (all of them and the
 // unknown ones) and the off-diagonal slots.
 template <int Dim>
@@ -596,33 +594,35 @@ void add_transpose_stress(const MomentumRowContext<Dim>& ctx, const Index<Dim>& 
   const double* const E = ctx.E;
   const Off sfd = sf[d];
   const double area_d = ctx.area_d, h_al = ctx.h_al;
-    sum.b_src += mu * area_d / h_al * (E[kc] * (P[kf + sfd] - P[kf]) - E[kc - scd] * (P[kf] - P[kf - sfd]));
-    for (int k = 0; k < Dim - 1; ++k) {
-      const Across& x = across[static_cast<std::size_t>(k)];
-      const int e = x.e;
-      const int b = c[e];
-      const Off sce = sc[static_cast<std::size_t>(e)];
-      const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
-      const double* const O = ctx.u[e].data().data();  // the other component, in the layout of mflux[e]
-      const Off ke = static_cast<Off>(ctx.u[e].index(c));
-      const Off smd = sm[d];
-      const Off sme = sm[static_cast<std::size_t>(e)];
-      const auto corner_eps = [&](int j) {
-        if (x.periodic || (j > cells.lo[e] && j < cells.hi[e])) {
-          const Off lo = kc + (j - 1 - b) * sce;  // cell (a, j - 1) along (d, e)
-          return 0.25 * (E[lo - scd] + E[lo] + E[lo - scd + sce] + E[lo + sce]);
-        }
-        return ef;
-      };
-      // The across face's area over the along spacing (1 in 2D, where the face is as long as the cell).
-      const double lever = x.area / h_al;
-      const bool low_open = x.periodic || b > cells.lo[e] || x.low_noslip;
-      const bool high_open = x.periodic || b < cells.hi[e] - 1 || x.high_noslip_wall;
-      if (high_open) sum.b_src += mu * corner_eps(b + 1) * (O[ke + sme] - O[ke - smd + sme]) * lever;
-      if (low_open) sum.b_src -= mu * corner_eps(b) * (O[ke] - O[ke - smd]) * lever;
-    }
+  sum.b_src += mu * area_d / h_al * (E[kc] * (P[kf + sfd] - P[kf]) - E[kc - scd] * (P[kf] - P[kf - sfd]));
+  for (int k = 0; k < Dim - 1; ++k) {
+    const Across& x = across[static_cast<std::size_t>(k)];
+    const int e = x.e;
+    const int b = c[e];
+    const Off sce = sc[static_cast<std::size_t>(e)];
+    const std::array<Off, Dim>& sm = se[static_cast<std::size_t>(e)];
+    const double* const O = ctx.u[e].data().data();  // the other component, in the layout of mflux[e]
+    const Off ke = static_cast<Off>(ctx.u[e].index(c));
+    const Off smd = sm[d];
+    const Off sme = sm[static_cast<std::size_t>(e)];
+    const auto corner_eps = [&](int j) {
+      if (x.periodic || (j > cells.lo[e] && j < cells.hi[e])) {
+        const Off lo = kc + (j - 1 - b) * sce;  // cell (a, j - 1) along (d, e)
+        return 0.25 * (E[lo - scd] + E[lo] + E[lo - scd + sce] + E[lo + sce]);
+      }
+      return ef;
+    };
+    // The across face's area over the along spacing (1 in 2D, where the face is as long as the cell).
+    const double lever = x.area / h_al;
+    const bool low_open = x.periodic || b > cells.lo[e] || x.low_noslip;
+    const bool high_open = x.periodic || b < cells.hi[e] - 1 || x.high_noslip_wall;
+    if (high_open) sum.b_src += mu * corner_eps(b + 1) * (O[ke + sme] - O[ke - smd + sme]) * lever;
+    if (low_open) sum.b_src -= mu * corner_eps(b) * (O[ke] - O[ke - smd]) * lever;
+  }
 }
 
+// One row of component d's momentum equation (Eq. 12, backward Euler in the non-conservative form, implicit drag,
+// gravity, pressure; TVD deferred correction with limiter Law): its coefficients into row r of m.
 template <int Dim, int d, class Law>
 void assemble_momentum_row(const MomentumRowContext<Dim>& ctx, Momentum<Dim>& m, int r) {
   using Off = std::ptrdiff_t;
