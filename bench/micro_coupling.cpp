@@ -29,20 +29,21 @@ ParticleStore<2> paper_particles(const DemConfig& dem) {
   return place_random<2>(dem, pc);
 }
 
-Grid2 paper_grid() { return Grid2::uniform(0.6, 1.0, 30, 50); }
+Grid<2> paper_grid() { return Grid<2>::uniform({0.6, 1.0}, {30, 50}); }
 
 // Particle -> grid: counted voidage and the mean solids velocity (both scatters of the coupling).
 void BM_VoidageAndSolidsVelocity(benchmark::State& state) {
   const DemConfig dem = paper_dem();
   const ParticleStore<2> p = paper_particles(dem);
-  const Grid2 grid = paper_grid();
+  const Grid<2> grid = paper_grid();
   const auto method = static_cast<VoidageMethod>(state.range(0));
-  Field2 eps, us, vs;
+  Field<2> eps;
+  std::array<Field<2>, 2> us;
   for (auto _ : state) {
     compute_voidage(p, grid, method, dem.species[0].diameter, eps);
-    cell_solids_velocity(p, grid, method, us, vs);
-    benchmark::DoNotOptimize(eps.v.data());
-    benchmark::DoNotOptimize(us.v.data());
+    cell_solids_velocity<2>(p, grid, method, us);
+    benchmark::DoNotOptimize(eps.data().data());
+    benchmark::DoNotOptimize(us[0].data().data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(p.size()));
   state.SetLabel(method == VoidageMethod::Bilinear ? "bilinear" : "centre");
@@ -57,15 +58,15 @@ BENCHMARK(BM_VoidageAndSolidsVelocity)
 void BM_DragMapping(benchmark::State& state) {
   const DemConfig dem = paper_dem();
   ParticleStore<2> p = paper_particles(dem);
-  const Grid2 grid = paper_grid();
+  const Grid<2> grid = paper_grid();
   GasConfig gc;
   GasSolver<2> gas(grid, gc);
-  Field2 eps;
+  Field<2> eps;
   compute_voidage(p, grid, VoidageMethod::Bilinear, dem.species[0].diameter, eps);
-  for (double& e : eps.v) e = std::clamp(e, 0.3, 1.0);
+  for (double& e : eps.data()) e = std::clamp(e, 0.3, 1.0);
   for (auto _ : state) {
     for (std::size_t i = 0; i < p.size(); ++i) {
-      const CellWeights cw = cell_weights(grid, VoidageMethod::Bilinear, p.x[i], p.y[i]);
+      const CellWeights cw = cell_weights(grid, eps, VoidageMethod::Bilinear, p.pos(i));
       const double e = std::min(gather(eps, cw), 1.0 - 1e-9);
       const Vec2 ug = gas.velocity_at(p.pos(i));
       const Vec2 gp = gas.pressure_gradient_at(p.pos(i));

@@ -33,17 +33,6 @@ std::optional<double> bed_surface_height(const CellView<Dim>& eps, double surfac
   return eps.geometry.face(1, j + 1);
 }
 
-int bed_surface_row(const Grid2& grid, const Field2& eps, double surface_eps) {
-  if (eps.nx != grid.nx || eps.ny != grid.ny) throw_input_error("bed surface: voidage field does not match the grid");
-  return bed_surface_row(cell_view(grid, eps, "eps"), surface_eps);
-}
-
-std::optional<double> bed_surface_height(const Grid2& grid, const Field2& eps, double surface_eps) {
-  const int j = bed_surface_row(grid, eps, surface_eps);
-  if (j < 0) return std::nullopt;
-  return grid.y0 + (j + 1) * grid.dy;
-}
-
 template int bed_surface_row(const CellView<2>&, double);
 template int bed_surface_row(const CellView<3>&, double);
 template std::optional<double> bed_surface_height(const CellView<2>&, double);

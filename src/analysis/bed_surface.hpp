@@ -5,8 +5,6 @@
 #include <optional>
 
 #include "analysis/cell_view.hpp"
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
 
 namespace fluidbed {
 
@@ -16,9 +14,5 @@ int bed_surface_row(const CellView<Dim>& eps, double surface_eps = 0.7);
 /// Top face of bed_surface_row(), m; empty when there is no bed.
 template <int Dim>
 std::optional<double> bed_surface_height(const CellView<Dim>& eps, double surface_eps = 0.7);
-
-/// The same on a Field2 over its Grid2.
-int bed_surface_row(const Grid2& grid, const Field2& eps, double surface_eps = 0.7);
-std::optional<double> bed_surface_height(const Grid2& grid, const Field2& eps, double surface_eps = 0.7);
 
 }  // namespace fluidbed

@@ -377,57 +377,7 @@ void BubblePopulation<Dim>::restore(const State& s) {
   }
 }
 
-namespace {
-
-std::string join_ids(const std::vector<int>& ids) {
-  std::string s;
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    if (k) s += ';';
-    s += fmt::format("{}", ids[k]);
-  }
-  return s;
-}
-
-std::string opt(const std::optional<double>& v) { return v ? fmt::format("{}", *v) : std::string(); }
-
-}  // namespace
-
-std::string bubbles_csv_header(int dimension) {
-  if (dimension == 3)
-    return "time_s,id,event,parents,volume_m3,equivalent_diameter_m,centroid_x_m,centroid_y_m,centroid_z_m,nose_m,"
-           "tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s,slug";
-  return "time_s,id,event,parents,area_m2,equivalent_diameter_m,centroid_x_m,centroid_y_m,nose_m,tail_m,"
-         "aspect_ratio,u_centroid_m_s,u_nose_m_s,slug";
-}
-
-template <int Dim>
-std::string bubbles_csv_row(const BubbleRecord<Dim>& b) {
-  std::string row = fmt::format("{},{},{},{},{},{}", b.time, b.id, bubble_event_name(b.event), join_ids(b.parents),
-                                b.size, b.equivalent_diameter);
-  for (int a = 0; a < Dim; ++a) row += fmt::format(",{}", b.centroid[a]);
-  row += fmt::format(",{},{},{},{},{},{}", b.nose, b.tail, b.aspect_ratio, opt(b.u_centroid), opt(b.u_nose),
-                     b.slug ? 1 : 0);
-  return row;
-}
-
-std::string bubble_events_csv_header() { return "time_s,event,id,others,height_m"; }
-
-std::string bubble_events_csv_row(const BubbleEventRecord& e) {
-  return fmt::format("{},{},{},{},{}", e.time, bubble_event_name(e.event), e.id, join_ids(e.others), e.height);
-}
-
-std::string bubble_frames_csv_header() {
-  return "time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction,slugs";
-}
-
-std::string bubble_frames_csv_row(const BubbleFrame& f) {
-  return fmt::format("{},{},{},{},{},{},{}", f.time, opt(f.bed_height), f.bed_measure, f.bubble_measure, f.bubbles,
-                     f.bubble_fraction(), f.slugs);
-}
-
 template class BubblePopulation<2>;
 template class BubblePopulation<3>;
-template std::string bubbles_csv_row(const BubbleRecord<2>&);
-template std::string bubbles_csv_row(const BubbleRecord<3>&);
 
 }  // namespace fluidbed

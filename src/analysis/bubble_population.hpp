@@ -129,17 +129,4 @@ class BubblePopulation {
   int next_id_ = 0;
 };
 
-/// bubbles.csv header: time_s,id,event,parents,area_m2 (3D: volume_m3),equivalent_diameter_m,centroid_x_m,
-/// centroid_y_m,(centroid_z_m,)nose_m,tail_m,aspect_ratio,u_centroid_m_s,u_nose_m_s,slug.
-std::string bubbles_csv_header(int dimension);
-/// One bubbles.csv line (no newline); parents separated by ';'.
-template <int Dim>
-std::string bubbles_csv_row(const BubbleRecord<Dim>& b);
-/// bubble_events.csv header: time_s,event,id,others,height_m.
-std::string bubble_events_csv_header();
-std::string bubble_events_csv_row(const BubbleEventRecord& e);
-/// bubble_frames.csv header: time_s,bed_height_m,bed_measure,bubble_measure,bubbles,bubble_fraction,slugs.
-std::string bubble_frames_csv_header();
-std::string bubble_frames_csv_row(const BubbleFrame& f);
-
 }  // namespace fluidbed

@@ -51,10 +51,6 @@ double interpolate_cell_centred(const CellView<Dim>& f, const std::array<double,
   }
 }
 
-double interpolate_cell_centred(const Grid2& grid, const Field2& f, double x, double y) {
-  return interpolate_cell_centred<2>(cell_view(grid, f, "interpolated"), {x, y});
-}
-
 template <int Dim>
 int label_regions(const Index<Dim>& n, const std::vector<std::uint8_t>& mask, std::vector<int>& label) {
   const CellGeometry<Dim> g{n, {}, {}};
@@ -88,10 +84,6 @@ int label_regions(const Index<Dim>& n, const std::vector<std::uint8_t>& mask, st
     ++count;
   }
   return count;
-}
-
-int label_regions(int nx, int ny, const std::vector<std::uint8_t>& mask, std::vector<int>& label) {
-  return label_regions<2>({nx, ny}, mask, label);
 }
 
 BubbleTracker::BubbleTracker(const BubbleConfig& config) : config_(config) {
@@ -362,12 +354,13 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
   static_assert(Dim == 2 || Dim == 3);
   const CellGeometry<Dim>& g = eps.geometry;
   if (vg.geometry.n != g.n) throw_input_error("bubble tracker: the gas velocity and voidage grids differ");
-  if (config_.grid.nx > 0 && (config_.grid.nx != g.n[0] || config_.grid.ny != g.n[1]))
-    throw_input_error(fmt::format("bubble tracker: configured for a {}x{} grid, given {}x{}", config_.grid.nx,
-                                  config_.grid.ny, g.n[0], g.n[1]));
+  const Index<3>& want = config_.cells;
+  if ((want[0] > 0 && want[0] != g.n[0]) || (want[1] > 0 && want[1] != g.n[1]))
+    throw_input_error(fmt::format("bubble tracker: configured for a {}x{} grid, given {}x{}", want[0], want[1], g.n[0],
+                                  g.n[1]));
   if constexpr (Dim == 3) {
-    if (config_.nz > 0 && config_.nz != g.n[2])
-      throw_input_error(fmt::format("bubble tracker: configured for {} cells in depth, given {}", config_.nz, g.n[2]));
+    if (want[2] > 0 && want[2] != g.n[2])
+      throw_input_error(fmt::format("bubble tracker: configured for {} cells in depth, given {}", want[2], g.n[2]));
   }
   const double thr = config_.eps_threshold;
   const std::array<double, Dim> line = jet_line<Dim>(config_, g);
@@ -464,79 +457,11 @@ BubbleSample BubbleTracker::observe(double t, const CellView<Dim>& eps, const Ce
   return s;
 }
 
-BubbleSample BubbleTracker::observe(double t, const Grid2& grid, const Field2& eps, const Field2& ug_cc,
-                                    const Field2& vg_cc) {
-  const auto checked = [&](const Field2& f, const char* name) {
-    if (f.nx != grid.nx || f.ny != grid.ny || f.size() != grid.cells())
-      throw_input_error(fmt::format("bubble tracker: field {} is {}x{}, the grid {}x{}", name, f.nx, f.ny, grid.nx,
-                                    grid.ny));
-    return cell_view(grid, f, name);
-  };
-  const CellView<2> e = checked(eps, "eps");
-  checked(ug_cc, "ug");
-  return observe<2>(t, e, checked(vg_cc, "vg"));
-}
-
 template BubbleSample BubbleTracker::observe<2>(double, const CellView<2>&, const CellView<2>&);
 template BubbleSample BubbleTracker::observe<3>(double, const CellView<3>&, const CellView<3>&);
 template double interpolate_cell_centred<2>(const CellView<2>&, const std::array<double, 2>&);
 template double interpolate_cell_centred<3>(const CellView<3>&, const std::array<double, 3>&);
 template int label_regions<2>(const Index<2>&, const std::vector<std::uint8_t>&, std::vector<int>&);
 template int label_regions<3>(const Index<3>&, const std::vector<std::uint8_t>&, std::vector<int>&);
-
-namespace {
-
-std::string opt(const std::optional<double>& v) { return v ? fmt::format("{}", *v) : std::string(); }
-
-}  // namespace
-
-std::string bubble_csv_header(int dimension, bool centroid) {
-  const std::string tail = centroid ? ",centroid_y_m,centroid_rise_velocity_m_s" : "";
-  if (dimension == 3)
-    return "time_s,nose_height_m,rise_velocity_m_s,nose_gas_velocity_m_s,throughflow_ratio,bubble_volume_m3,attached,"
-           "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m,nose_z_m,theory_rise_velocity_m_s" +
-           tail;
-  return "time_s,nose_height_m,rise_velocity_m_s,nose_gas_velocity_m_s,throughflow_ratio,bubble_area_m2,attached,"
-         "equivalent_diameter_m,bed_height_m,erupted,bubble_id,nose_x_m" +
-         tail;
-}
-
-namespace {
-
-std::vector<std::optional<double>> bubble_csv_values_base(const BubbleSample& s) {
-  std::optional<double> attached;
-  if (s.attached) attached = *s.attached ? 1.0 : 0.0;
-  std::optional<double> id;
-  if (s.bubble_id >= 0) id = static_cast<double>(s.bubble_id);
-  if (s.dimension == 3)
-    return {s.time, s.nose_height, s.rise_velocity, s.nose_gas_velocity, s.throughflow_ratio, s.volume, attached,
-            s.equivalent_diameter, s.bed_height, s.erupted ? 1.0 : 0.0, id, s.nose_x, s.nose_z,
-            s.theory_rise_velocity};
-  return {s.time, s.nose_height, s.rise_velocity, s.nose_gas_velocity, s.throughflow_ratio, s.area, attached,
-          s.equivalent_diameter, s.bed_height, s.erupted ? 1.0 : 0.0, id, s.nose_x};
-}
-
-}  // namespace
-
-std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s, bool centroid) {
-  std::vector<std::optional<double>> v = bubble_csv_values_base(s);
-  if (centroid) {
-    v.push_back(s.centroid_y);
-    v.push_back(s.centroid_rise_velocity);
-  }
-  return v;
-}
-
-std::string bubble_csv_row(const BubbleSample& s, bool centroid) {
-  const std::string attached = s.attached ? (*s.attached ? "1" : "0") : "";
-  const std::string id = s.bubble_id >= 0 ? fmt::format("{}", s.bubble_id) : std::string();
-  std::string row = fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", s.time, opt(s.nose_height), opt(s.rise_velocity),
-                                opt(s.nose_gas_velocity), opt(s.throughflow_ratio),
-                                opt(s.dimension == 3 ? s.volume : s.area), attached, opt(s.equivalent_diameter),
-                                opt(s.bed_height), s.erupted ? 1 : 0, id, opt(s.nose_x));
-  if (s.dimension == 3) row += fmt::format(",{},{}", opt(s.nose_z), opt(s.theory_rise_velocity));
-  if (centroid) row += fmt::format(",{},{}", opt(s.centroid_y), opt(s.centroid_rise_velocity));
-  return row;
-}
 
 }  // namespace fluidbed

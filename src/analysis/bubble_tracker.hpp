@@ -10,15 +10,15 @@
 #include <vector>
 
 #include "analysis/cell_view.hpp"
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
+#include "core/index_box.hpp"
 #include "fluid/gas_config.hpp"
 
 namespace fluidbed {
 
 /// Settings of the bubble tracker; defaults are the paper's bed (Table 1) and bubble boundary (Section 3).
 struct BubbleConfig {
-  Grid2 grid;                    ///< grid of the fields passed to observe(): cells along x, y checked when nx > 0
+  /// Cells per axis of the fields passed to observe(), each checked where > 0 (axis 2 only in 3D); 0: any.
+  Index<3> cells{};
   double eps_threshold = 0.8;    ///< a cell belongs to a bubble when eps > this (paper, Section 3)
   double jet_x = 0.3;            ///< m, horizontal centre of the jet
   double jet_width = 0.02;       ///< m
@@ -28,7 +28,6 @@ struct BubbleConfig {
   int rise_velocity_samples = 3; ///< least-squares slope of the nose over this many samples (2: backward difference)
   double gravity = 9.81;         ///< m/s^2, magnitude, for the single-bubble rise velocity of the theory
   // 3D only (the 2D tracker ignores them):
-  int nz = 0;                    ///< cells along z of the fields passed to observe() (checked when > 0)
   double min_volume = 1.6e-5;    ///< m^3, smaller voids are not counted as bubbles (two 2 cm cubes)
   /// The jet's footprint on the bottom face: Slot spans the whole depth, Rectangle is jet_width x jet_depth, Disc
   /// has the diameter jet_width; all centred on (jet_x, jet_z).
@@ -73,8 +72,6 @@ class BubbleTracker {
   /// the configured cell counts.
   template <int Dim>
   BubbleSample observe(double t, const CellView<Dim>& eps, const CellView<Dim>& vg);
-  /// The 2D fields of a Field2 model (ug_cc is not used: the nose gas velocity is the vertical one).
-  BubbleSample observe(double t, const Grid2& grid, const Field2& eps, const Field2& ug_cc, const Field2& vg_cc);
 
   /// Time of the first sample at which a bubble that had been attached was no longer attached.
   std::optional<double> detachment_time() const { return detachment_time_; }
@@ -129,26 +126,11 @@ double threshold_crossing(double y_lo, double eps_lo, double y_hi, double eps_hi
 /// centres.
 template <int Dim>
 double interpolate_cell_centred(const CellView<Dim>& f, const std::array<double, Dim>& x);
-/// Bilinear interpolation of a cell-centred Field2 at (x, y), clamped to the outermost cell centres.
-double interpolate_cell_centred(const Grid2& grid, const Field2& f, double x, double y);
 
 /// Connected regions of the cells where mask != 0, neighbours sharing a face (4 in 2D, 6 in 3D); mask and label
 /// are axis 0 fastest over n cells per axis; label -1 outside the mask, labels 0..n-1 in order of the first cell met
 /// in storage order. Returns the number of regions.
 template <int Dim>
 int label_regions(const Index<Dim>& n, const std::vector<std::uint8_t>& mask, std::vector<int>& label);
-/// The 2D form over nx x ny cells, i fastest.
-int label_regions(int nx, int ny, const std::vector<std::uint8_t>& mask, std::vector<int>& label);
-
-/// bubble.csv header: the columns of docs/interface.md, then equivalent_diameter_m, bed_height_m, erupted,
-/// bubble_id, nose_x_m. For dimension 3, bubble_area_m2 is bubble_volume_m3 and nose_z_m and
-/// theory_rise_velocity_m_s follow. With centroid, centroid_y_m and centroid_rise_velocity_m_s are appended last
-/// (every earlier column unchanged).
-std::string bubble_csv_header(int dimension = 2, bool centroid = false);
-/// One bubble.csv line (no newline); empty values where the sample has none; columns for s.dimension.
-std::string bubble_csv_row(const BubbleSample& s, bool centroid = false);
-/// The same row as numbers (empty optionals where there is no value), in bubble_csv_header(s.dimension, centroid)
-/// order.
-std::vector<std::optional<double>> bubble_csv_values(const BubbleSample& s, bool centroid = false);
 
 }  // namespace fluidbed

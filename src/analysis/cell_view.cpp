@@ -6,10 +6,12 @@
 
 namespace fluidbed {
 
-CellView<2> cell_view(const Grid2& grid, const Field2& f, const char* name) {
-  if (f.nx != grid.nx || f.ny != grid.ny || f.size() != grid.cells())
-    throw_input_error(fmt::format("field {} is {}x{}, the grid {}x{}", name, f.nx, f.ny, grid.nx, grid.ny));
-  return {cell_geometry(grid), f.v.data()};
+template <int Dim>
+CellView<Dim> cell_view(const Grid<Dim>& grid, const Field<Dim>& f, const char* name) {
+  if (f.box() != grid.owned || f.ghost() != 0) {
+    throw_input_error(fmt::format("field {} is not a ghost-free cell field on the grid's {} cells", name, grid.owned.count()));
+  }
+  return {cell_geometry(grid), f.data().data()};
 }
 
 template <int Dim>
@@ -21,5 +23,7 @@ CellView<Dim> cell_view(const CellGeometry<Dim>& geometry, const std::vector<dou
 
 template CellView<2> cell_view(const CellGeometry<2>&, const std::vector<double>&, const char*);
 template CellView<3> cell_view(const CellGeometry<3>&, const std::vector<double>&, const char*);
+template CellView<2> cell_view(const Grid<2>&, const Field<2>&, const char*);
+template CellView<3> cell_view(const Grid<3>&, const Field<3>&, const char*);
 
 }  // namespace fluidbed

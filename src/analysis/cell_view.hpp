@@ -1,6 +1,6 @@
 #pragma once
 // What the analysis reads of a model's grid and fields: cell counts, sizes and origin per axis, and cell-centred
-// values as one contiguous array, axis 0 fastest (the layout of Field2::v and of Field<Dim>::interior()). With
+// values as one contiguous array, axis 0 fastest (the layout of Field<Dim>::interior()). With
 // nothing else from the models, the same analysis serves 2D and 3D, CFD-DEM and TFM.
 #include <algorithm>
 #include <array>
@@ -8,9 +8,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/field2.hpp"
+#include "core/field.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
 #include "core/index_box.hpp"
 
 namespace fluidbed {
@@ -68,9 +67,6 @@ struct CellView {
   double at(std::size_t k) const { return values[k]; }
 };
 
-/// The geometry of a Grid2 (no ghosts; origin x0, y0).
-inline CellGeometry<2> cell_geometry(const Grid2& g) { return {{g.nx, g.ny}, {g.dx, g.dy}, {g.x0, g.y0}}; }
-
 /// The owned block of a Grid<Dim>: the cells whose values Field<Dim>::interior() returns.
 template <int Dim>
 CellGeometry<Dim> cell_geometry(const Grid<Dim>& g) {
@@ -83,8 +79,10 @@ CellGeometry<Dim> cell_geometry(const Grid<Dim>& g) {
   return c;
 }
 
-/// A view of a Field2 on its grid; throws Error(BadInput) when the sizes differ.
-CellView<2> cell_view(const Grid2& grid, const Field2& f, const char* name);
+/// A view of a ghost-free cell field on the grid's owned block (its stored values are the interior's, in order);
+/// throws Error(BadInput) when the field is on another box or has ghost layers.
+template <int Dim>
+CellView<Dim> cell_view(const Grid<Dim>& grid, const Field<Dim>& f, const char* name);
 
 /// A view of contiguous values (for example Field<Dim>::interior()); throws Error(BadInput) when the count differs.
 template <int Dim>

@@ -24,7 +24,8 @@ void assign_layers(std::span<const double> y, std::span<std::int32_t> layer, int
   for (std::size_t k = 0; k < y.size(); ++k) layer[k] = layer_of(y[k], 0.0, bed_height, n_layers);
 }
 
-void assign_layers(ParticleStore<2>& particles, int n_layers, double bed_height) {
+template <int Dim>
+void assign_layers(ParticleStore<Dim>& particles, int n_layers, double bed_height) {
   if (n_layers < 1) throw_input_error(fmt::format("number of tracer layers must be at least 1, got {}", n_layers));
   if (!(bed_height > 0.0)) throw_input_error(fmt::format("layer bed height must be positive, got {}", bed_height));
   particles.layer.resize(particles.size());
@@ -107,38 +108,9 @@ void BallTracers<Dim>::advance(const std::array<CellView<Dim>, Dim>& velocity, d
   }
 }
 
-CellTracers::CellTracers(const Grid2& grid, double bed_height, int n_layers)
-    : BallTracers<2>(cell_geometry(grid), bed_height, n_layers), grid_(grid) {}
-
-CellTracers::CellTracers(const Grid2& grid, std::vector<std::int64_t> ids, std::vector<double> xs,
-                         std::vector<double> ys, std::vector<std::int32_t> layers)
-    : BallTracers<2>(cell_geometry(grid), std::move(ids), {std::move(xs), std::move(ys)}, std::move(layers)),
-      grid_(grid) {}
-
-void CellTracers::advance(const Field2& us, const Field2& vs, double dt) {
-  if (us.nx != grid_.nx || us.ny != grid_.ny || vs.nx != grid_.nx || vs.ny != grid_.ny)
-    throw_input_error("cell tracers: solids velocity field does not match the tracer grid");
-  BallTracers<2>::advance({cell_view(grid_, us, "us"), cell_view(grid_, vs, "vs")}, dt);
-}
-
-template <int Dim>
-std::string tracer_csv(const BallTracers<Dim>& tracers) {
-  std::string out = Dim == 2 ? "ball_id,x,y,layer\n" : "ball_id,x,y,z,layer\n";
-  for (std::size_t k = 0; k < tracers.size(); ++k) {
-    if constexpr (Dim == 2) {
-      out += fmt::format("{},{},{},{}\n", tracers.id[k], tracers.x[k], tracers.y[k], tracers.layer[k]);
-    } else {
-      out += fmt::format("{},{},{},{},{}\n", tracers.id[k], tracers.x[k], tracers.y[k], tracers.z[k], tracers.layer[k]);
-    }
-  }
-  return out;
-}
-
-std::string tracer_csv(const CellTracers& tracers) { return tracer_csv<2>(tracers); }
-
+template void assign_layers(ParticleStore<2>&, int, double);
+template void assign_layers(ParticleStore<3>&, int, double);
 template class BallTracers<2>;
 template class BallTracers<3>;
-template std::string tracer_csv(const BallTracers<2>&);
-template std::string tracer_csv(const BallTracers<3>&);
 
 }  // namespace fluidbed

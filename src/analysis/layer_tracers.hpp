@@ -9,8 +9,6 @@
 #include <vector>
 
 #include "analysis/cell_view.hpp"
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
 
 namespace fluidbed {
@@ -23,8 +21,9 @@ int layer_of(double y, double y_bottom, double bed_height, int n_layers);
 /// since only the height counts. Throws Error(BadInput) for n_layers < 1, bed_height <= 0 or spans of different
 /// lengths.
 void assign_layers(std::span<const double> y, std::span<std::int32_t> layer, int n_layers, double bed_height);
-/// Sets ParticleStore::layer from the current heights (the 2D store).
-void assign_layers(ParticleStore<2>& particles, int n_layers, double bed_height);
+/// Sets ParticleStore::layer from the current heights.
+template <int Dim>
+void assign_layers(ParticleStore<Dim>& particles, int n_layers, double bed_height);
 
 /// Balls of the paper's Fig. 4b/c: one per grid cell whose centre lies below the initial bed height, in 2D or 3D.
 template <int Dim>
@@ -62,29 +61,5 @@ class BallTracers {
   CellGeometry<Dim> geometry_;
   std::array<bool, Dim> periodic_{};
 };
-
-/// The 2D balls on a Grid2 moved by Field2 velocities, as the 2D models hand them over.
-class CellTracers : public BallTracers<2> {
- public:
-  CellTracers(const Grid2& grid, double bed_height, int n_layers);
-  CellTracers(const Grid2& grid, std::vector<std::int64_t> ids, std::vector<double> xs, std::vector<double> ys,
-              std::vector<std::int32_t> layers);
-
-  /// x += us dt, y += vs dt with the velocity of the cell holding the ball; the centre is then clamped to the
-  /// domain [x0, x0 + width] x [y0, y0 + height].
-  void advance(const Field2& us, const Field2& vs, double dt);
-  using BallTracers<2>::advance;
-
-  const Grid2& grid() const { return grid_; }
-
- private:
-  Grid2 grid_;
-};
-
-/// tracers/NNNNNN.csv content: header ball_id,x,y,layer (ball_id,x,y,z,layer in 3D) and one line per ball
-/// (shortest round-trip numbers).
-template <int Dim>
-std::string tracer_csv(const BallTracers<Dim>& tracers);
-std::string tracer_csv(const CellTracers& tracers);
 
 }  // namespace fluidbed

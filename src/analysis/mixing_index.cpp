@@ -87,29 +87,14 @@ LaceyResult lacey_index(const BallTracers<Dim>& tracers, int split_layer, const 
   return lacey_index<Dim>(pos, lower, domain, config);
 }
 
-LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, std::span<const std::uint8_t> in_group,
-                        const Grid2& domain, const MixingConfig& config) {
-  if (x.size() != y.size() || x.size() != in_group.size())
-    throw_input_error("lacey index: positions and colours differ in length");
-  return lacey_index<2>({x, y}, in_group, cell_geometry(domain), config);
-}
-
-std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::span<const double> y,
-                                               std::span<const std::int32_t> group, int n_groups, const Grid2& domain,
-                                               const MixingConfig& config) {
-  if (group.size() != x.size()) throw_input_error("lacey index: positions and colours differ in length");
-  return lacey_index_per_group<2>({x, y}, group, n_groups, cell_geometry(domain), config);
-}
-
-LaceyResult lacey_index(const ParticleStore<2>& particles, int split_layer, const Grid2& domain,
+template <int Dim>
+LaceyResult lacey_index(const ParticleStore<Dim>& particles, int split_layer, const CellGeometry<Dim>& domain,
                         const MixingConfig& config) {
   std::vector<std::uint8_t> lower(particles.size());
   for (std::size_t k = 0; k < particles.size(); ++k) lower[k] = particles.layer[k] < split_layer ? 1 : 0;
-  return lacey_index(particles.x, particles.y, lower, domain, config);
-}
-
-LaceyResult lacey_index(const CellTracers& tracers, int split_layer, const Grid2& domain, const MixingConfig& config) {
-  return lacey_index<2>(tracers, split_layer, cell_geometry(domain), config);
+  std::array<std::span<const double>, Dim> pos;
+  for (int a = 0; a < Dim; ++a) pos[static_cast<std::size_t>(a)] = particles.coord(a);
+  return lacey_index<Dim>(pos, lower, domain, config);
 }
 
 template LaceyResult lacey_index<2>(const std::array<std::span<const double>, 2>&, std::span<const std::uint8_t>,
@@ -124,5 +109,8 @@ template std::vector<LaceyResult> lacey_index_per_group<3>(const std::array<std:
                                                            const MixingConfig&);
 template LaceyResult lacey_index<2>(const BallTracers<2>&, int, const CellGeometry<2>&, const MixingConfig&);
 template LaceyResult lacey_index<3>(const BallTracers<3>&, int, const CellGeometry<3>&, const MixingConfig&);
+
+template LaceyResult lacey_index<2>(const ParticleStore<2>&, int, const CellGeometry<2>&, const MixingConfig&);
+template LaceyResult lacey_index<3>(const ParticleStore<3>&, int, const CellGeometry<3>&, const MixingConfig&);
 
 }  // namespace fluidbed

@@ -7,14 +7,12 @@
 #include <vector>
 
 #include "analysis/cell_view.hpp"
-#include "core/grid2.hpp"
 #include "dem/particle_store.hpp"
 
 namespace fluidbed {
 
 template <int Dim>
 class BallTracers;
-class CellTracers;
 
 /// Sample cells: the domain cut into cells of about sample_dx x sample_dy (x sample_dz in 3D); 0: the grid's cell
 /// size along that axis.
@@ -50,17 +48,9 @@ template <int Dim>
 LaceyResult lacey_index(const BallTracers<Dim>& tracers, int split_layer, const CellGeometry<Dim>& domain,
                         const MixingConfig& config);
 
-/// The 2D forms: positions (x, y) over the domain of a Grid2.
-LaceyResult lacey_index(std::span<const double> x, std::span<const double> y, std::span<const std::uint8_t> in_group,
-                        const Grid2& domain, const MixingConfig& config);
-std::vector<LaceyResult> lacey_index_per_group(std::span<const double> x, std::span<const double> y,
-                                               std::span<const std::int32_t> group, int n_groups, const Grid2& domain,
-                                               const MixingConfig& config);
-
 /// Lower part (layer < split_layer) vs upper part of the initial bed, for DEM particles.
-LaceyResult lacey_index(const ParticleStore<2>& particles, int split_layer, const Grid2& domain,
+template <int Dim>
+LaceyResult lacey_index(const ParticleStore<Dim>& particles, int split_layer, const CellGeometry<Dim>& domain,
                         const MixingConfig& config);
-/// Same for the cell tracer balls.
-LaceyResult lacey_index(const CellTracers& tracers, int split_layer, const Grid2& domain, const MixingConfig& config);
 
 }  // namespace fluidbed

@@ -9,7 +9,6 @@
 #include "analysis/time_average.hpp"
 #include "core/domain.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
 #include "core/vec2.hpp"
 #include "coupling/coupling_config.hpp"
 #include "dem/dem_config.hpp"
@@ -67,8 +66,6 @@ struct CaseGrid {
   std::size_t cells() const {
     return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
   }
-  /// The x-y grid without ghost layers (the two-fluid model, the 2D analysis); in 3D the grid of one z layer.
-  Grid2 grid2() const { return Grid2{nx, ny, dx, dy, 0.0, 0.0}; }
   /// The whole grid, owned by this process, with `ghost` layers (Dim = 2 ignores z).
   template <int Dim>
   Grid<Dim> grid_of(int ghost = 1) const {

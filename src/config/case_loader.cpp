@@ -880,13 +880,11 @@ void read_grid(CaseReader& r, CaseConfig& c, GasKeys& k) {
   if (three_d && std::abs(fz - std::round(fz)) > 1e-9 * fz) {
     r.fail("grid.cell_depth", fmt::format("{} m does not divide the domain depth {} m into whole cells", dz, c.domain.depth));
   }
-  const Grid2 xy = Grid2::uniform(c.domain.width, c.domain.height, static_cast<int>(std::lround(fx)),
-                                  static_cast<int>(std::lround(fy)));
   c.grid.dimension = c.domain.dimension;
-  c.grid.nx = xy.nx;
-  c.grid.ny = xy.ny;
-  c.grid.dx = xy.dx;
-  c.grid.dy = xy.dy;
+  c.grid.nx = static_cast<int>(std::lround(fx));
+  c.grid.ny = static_cast<int>(std::lround(fy));
+  c.grid.dx = c.domain.width / c.grid.nx;
+  c.grid.dy = c.domain.height / c.grid.ny;
   c.grid.nz = three_d ? static_cast<int>(std::lround(fz)) : 1;
   c.grid.dz = three_d ? c.domain.depth / c.grid.nz : 0.0;
   // The gas solver's rule (GasSolver refuses fewer cells), here so that `check` refuses what `run` would, gas or not.
@@ -1237,7 +1235,7 @@ void read_bubble(CaseReader& r, CaseConfig& c, const GasKeys& k) {
   GasConfig& g = c.gas;
   // [bubble]
   BubbleConfig& b = c.bubble;
-  b.grid = c.grid.grid2();
+  b.cells = {c.grid.nx, c.grid.ny, c.domain.dimension == 3 ? c.grid.nz : 0};
   b.eps_threshold = r.number("bubble.threshold", 0.8, "", "voidage above which a cell is bubble (the paper: 0.8)",
                              R::Range{0.0, 1.0, true, true});
   b.jet_x = r.number("bubble.jet_x", nj == 0 ? c.domain.width / 2 : g.boundary.jets[0].x_centre, "m",
@@ -1263,7 +1261,6 @@ void read_bubble(CaseReader& r, CaseConfig& c, const GasKeys& k) {
   if (c.domain.dimension == 3) {
     // The tracked bubble grows on the first jet: its footprint on the bottom face, and the nose line through its
     // centre.
-    b.nz = c.grid.nz;
     b.min_volume = r.number("bubble.min_volume", b.min_volume, "m^3", "smallest void counted as a bubble (3D)",
                             R::positive());
     if (nj > 0) {

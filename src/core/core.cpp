@@ -2,9 +2,7 @@
 // header is compiled once on its own.
 #include "core/error.hpp"
 #include "core/field.hpp"
-#include "core/field2.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
 #include "core/index_box.hpp"
 #include "core/vec.hpp"
 

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/grid.hpp"
 #include "core/index_box.hpp"
 
 namespace fluidbed {
@@ -84,5 +85,12 @@ struct FaceFields {
   Field<Dim>& operator[](int a) { return comp[a]; }
   const Field<Dim>& operator[](int a) const { return comp[a]; }
 };
+
+/// A ghost-free cell field on the grid's owned block, every entry `value`: its stored values are the interior, axis
+/// 0 fastest, the contiguous array that the analysis views and the writers read.
+template <int Dim>
+Field<Dim> cell_field(const Grid<Dim>& grid, double value = 0.0) {
+  return Field<Dim>(grid.owned, 0, value);
+}
 
 }  // namespace fluidbed

@@ -103,39 +103,6 @@ void cell_solids_velocity(const ParticleStore<Dim>& p, const std::vector<CellWei
 }
 
 
-CellWeights<2> cell_weights(const Grid2& grid, VoidageMethod method, double x, double y) {
-  const Grid<2> g = to_grid(grid);
-  return cell_weights(g, Field<2>(g.owned, 0), method, Vec2{x, y});
-}
-
-double gather(const Field2& f, const CellWeights<2>& cw) {
-  double s = 0.0;
-  for (int k = 0; k < cw.count; ++k) s += cw.w[static_cast<std::size_t>(k)] * f.v[cw.cell[static_cast<std::size_t>(k)]];
-  return s;
-}
-
-void compute_voidage(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, double depth, Field2& eps) {
-  const Grid<2> g = to_grid(grid);
-  Field<2> e(g.owned, 0);
-  std::vector<CellWeights<2>> w;
-  particle_cell_weights(p, g, e, method, w);
-  compute_voidage(p, w, g, depth, e);
-  eps = Field2(grid.nx, grid.ny);
-  eps.v = e.data();
-}
-
-void cell_solids_velocity(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, Field2& us, Field2& vs) {
-  const Grid<2> g = to_grid(grid);
-  std::array<Field<2>, 2> u{Field<2>(g.owned, 0), Field<2>(g.owned, 0)};
-  std::vector<CellWeights<2>> w;
-  particle_cell_weights(p, g, u[0], method, w);
-  cell_solids_velocity<2>(p, w, g, u);
-  us = Field2(grid.nx, grid.ny);
-  vs = Field2(grid.nx, grid.ny);
-  us.v = u[0].data();
-  vs.v = u[1].data();
-}
-
 #define FLUIDBED_VOIDAGE(D)                                                                                       \
   template CellWeights<D> cell_weights(const Grid<D>&, const Field<D>&, VoidageMethod, const Vec<D>&);           \
   template void particle_cell_weights(const ParticleStore<D>&, const Grid<D>&, const Field<D>&, VoidageMethod,   \

@@ -7,9 +7,7 @@
 #include <vector>
 
 #include "core/field.hpp"
-#include "core/field2.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
 #include "coupling/coupling_config.hpp"
 #include "dem/particle_store.hpp"
 
@@ -61,10 +59,29 @@ double deposition_volume(const Grid<Dim>& grid, double depth) {
   return Dim == 3 ? grid.cell_measure() : grid.cell_measure() * depth;
 }
 
-// The 2D forms on Grid2 / Field2 (cell index j nx + i) of the callers that have no generic grid.
-CellWeights<2> cell_weights(const Grid2& grid, VoidageMethod method, double x, double y);
-double gather(const Field2& f, const CellWeights<2>& cw);
-void compute_voidage(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, double depth, Field2& eps);
-void cell_solids_velocity(const ParticleStore<2>& p, const Grid2& grid, VoidageMethod method, Field2& us, Field2& vs);
+/// The voidage of particles p on cell field eps, the kernel weights computed here: for a caller that deposits
+/// once (the coupling keeps its weights for the gather instead). eps not on the grid's owned box is made a
+/// ghost-free field on it.
+template <int Dim>
+void compute_voidage(const ParticleStore<Dim>& p, const Grid<Dim>& grid, VoidageMethod method, double depth,
+                     Field<Dim>& eps) {
+  if (eps.box() != grid.owned) eps = Field<Dim>(grid.owned, 0);
+  std::vector<CellWeights<Dim>> w;
+  particle_cell_weights(p, grid, eps, method, w);
+  compute_voidage(p, w, grid, depth, eps);
+}
+
+/// The mean solids velocity of particles p on cell fields us, the weights computed here (fields not on the
+/// grid's owned box made ghost-free ones on it).
+template <int Dim>
+void cell_solids_velocity(const ParticleStore<Dim>& p, const Grid<Dim>& grid, VoidageMethod method,
+                          std::array<Field<Dim>, Dim>& us) {
+  for (Field<Dim>& u : us) {
+    if (u.box() != grid.owned) u = Field<Dim>(grid.owned, 0);
+  }
+  std::vector<CellWeights<Dim>> w;
+  particle_cell_weights(p, grid, us[0], method, w);
+  cell_solids_velocity<Dim>(p, w, grid, us);
+}
 
 }  // namespace fluidbed

@@ -157,27 +157,29 @@ std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx) {
   return f;
 }
 
-void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid2& grid,
-                               std::vector<double>& out) {
-  const std::size_t n = static_cast<std::size_t>(grid.nx);
+namespace {
+
+// The 2D bottom: slots across x, each face's background part through its distributor factor.
+void inlet_profile_2d(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<2>& grid,
+                      std::vector<double>& out) {
+  const int nx = grid.n(0);
+  const std::size_t n = static_cast<std::size_t>(nx);
   out.resize(n);
-  const std::vector<double> noise = inlet_noise_factors(bc, grid.nx);
+  const std::vector<double> noise = inlet_noise_factors(bc, nx);
   const double u_bg = v.background;
   std::vector<double> fraction(n);
-  for (int i = 0; i < grid.nx; ++i) {
-    const double x_lo = grid.x0 + i * grid.dx;
+  for (int i = 0; i < nx; ++i) {
+    const double x_lo = grid.face(0, grid.domain.lo[0] + i);
     const std::size_t f = static_cast<std::size_t>(i);
     // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
-    const double u = inlet_superficial_velocity(bc, v, x_lo, x_lo + grid.dx);
-    fraction[f] = background_fraction(bc, v, x_lo, x_lo + grid.dx);
+    const double u = inlet_superficial_velocity(bc, v, x_lo, x_lo + grid.h[0]);
+    fraction[f] = background_fraction(bc, v, x_lo, x_lo + grid.h[0]);
     out[f] = u + (noise[f] - 1.0) * u_bg * fraction[f];
   }
   keep_background_flow(noise, fraction, u_bg, out);
 }
 
-void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out) {
-  inlet_superficial_profile(bc, inlet_velocities(bc, t), grid, out);
-}
+}  // namespace
 
 std::vector<InletJet> perforated_plate_holes(const PerforatedPlate& plate, int dimension) {
   std::vector<InletJet> holes;
@@ -267,7 +269,7 @@ template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<Dim>& grid,
                                std::vector<double>& out) {
   if constexpr (Dim == 2) {
-    inlet_superficial_profile(bc, v, to_grid2(grid), out);
+    inlet_profile_2d(bc, v, grid, out);
   } else {
     const int nx = grid.n(0);
     const int nz = grid.n(2);
@@ -331,12 +333,6 @@ double mean_of(const std::vector<double>& u) {
 
 template <int Dim>
 double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t) {
-  std::vector<double> u;
-  inlet_superficial_profile(bc, grid, t, u);
-  return mean_of(u);
-}
-
-double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid2& grid, double t) {
   std::vector<double> u;
   inlet_superficial_profile(bc, grid, t, u);
   return mean_of(u);
@@ -499,111 +495,6 @@ void validate(const GasConfig& c) {
     validate(jet.schedule, "jet");
   }
   validate(c.boundary.schedule, "background");
-}
-
-void cell_to_u_faces(const Field2& cell, Field2& face) {
-  const int nx = cell.nx;
-  const int ny = cell.ny;
-  face = Field2(nx + 1, ny);
-  for (int j = 0; j < ny; ++j) {
-    face(0, j) = cell(0, j);
-    face(nx, j) = cell(nx - 1, j);
-    for (int i = 1; i < nx; ++i) face(i, j) = 0.5 * (cell(i - 1, j) + cell(i, j));
-  }
-}
-
-void cell_to_v_faces(const Field2& cell, Field2& face) {
-  const int nx = cell.nx;
-  const int ny = cell.ny;
-  face = Field2(nx, ny + 1);
-  for (int i = 0; i < nx; ++i) {
-    face(i, 0) = cell(i, 0);
-    face(i, ny) = cell(i, ny - 1);
-  }
-  for (int j = 1; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) face(i, j) = 0.5 * (cell(i, j - 1) + cell(i, j));
-}
-
-namespace {
-
-// Bilinear interpolation on nodes (x_first + i hx, y_first + j hy), i < n_i, j < n_j, clamped to the node box.
-double bilinear(const Field2& f, double x_first, double hx, double y_first, double hy, Vec2 x) {
-  const double sx = std::clamp((x.x - x_first) / hx, 0.0, static_cast<double>(f.nx - 1));
-  const double sy = std::clamp((x.y - y_first) / hy, 0.0, static_cast<double>(f.ny - 1));
-  const int i = std::min(static_cast<int>(sx), std::max(f.nx - 2, 0));
-  const int j = std::min(static_cast<int>(sy), std::max(f.ny - 2, 0));
-  const double fx = f.nx > 1 ? sx - i : 0.0;
-  const double fy = f.ny > 1 ? sy - j : 0.0;
-  const int i1 = std::min(i + 1, f.nx - 1);
-  const int j1 = std::min(j + 1, f.ny - 1);
-  return (1.0 - fy) * ((1.0 - fx) * f(i, j) + fx * f(i1, j)) + fy * ((1.0 - fx) * f(i, j1) + fx * f(i1, j1));
-}
-
-}  // namespace
-
-double interpolate_u(const Grid2& g, const Field2& u, Vec2 x) {
-  return bilinear(u, g.x0, g.dx, g.y0 + 0.5 * g.dy, g.dy, x);
-}
-
-double interpolate_v(const Grid2& g, const Field2& v, Vec2 x) {
-  return bilinear(v, g.x0 + 0.5 * g.dx, g.dx, g.y0, g.dy, x);
-}
-
-double interpolate_cell(const Grid2& g, const Field2& f, Vec2 x) {
-  return bilinear(f, g.x0 + 0.5 * g.dx, g.dx, g.y0 + 0.5 * g.dy, g.dy, x);
-}
-
-void cell_centre_velocity(const Field2& u, const Field2& v, Field2& ug, Field2& vg) {
-  const int nx = v.nx;
-  const int ny = u.ny;
-  ug = Field2(nx, ny);
-  vg = Field2(nx, ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      ug(i, j) = 0.5 * (u(i, j) + u(i + 1, j));
-      vg(i, j) = 0.5 * (v(i, j) + v(i, j + 1));
-    }
-}
-
-void cell_pressure_gradient(const Grid2& g, const Field2& p, Field2& dpdx, Field2& dpdy) {
-  const int nx = g.nx;
-  const int ny = g.ny;
-  dpdx = Field2(nx, ny);
-  dpdy = Field2(nx, ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const int iw = std::max(i - 1, 0);
-      const int ie = std::min(i + 1, nx - 1);
-      const int js = std::max(j - 1, 0);
-      const int jn = std::min(j + 1, ny - 1);
-      dpdx(i, j) = ie > iw ? (p(ie, j) - p(iw, j)) / ((ie - iw) * g.dx) : 0.0;
-      dpdy(i, j) = jn > js ? (p(i, jn) - p(i, js)) / ((jn - js) * g.dy) : 0.0;
-    }
-}
-
-}  // namespace fluidbed
-
-namespace fluidbed {
-
-Vec2 interpolate_pressure_gradient(const Grid2& g, const Field2& p, Vec2 x) {
-  const auto grad = [&](int i, int j) {
-    const int iw = std::max(i - 1, 0);
-    const int ie = std::min(i + 1, g.nx - 1);
-    const int js = std::max(j - 1, 0);
-    const int jn = std::min(j + 1, g.ny - 1);
-    return Vec2{ie > iw ? (p(ie, j) - p(iw, j)) / ((ie - iw) * g.dx) : 0.0,
-                jn > js ? (p(i, jn) - p(i, js)) / ((jn - js) * g.dy) : 0.0};
-  };
-  const double sx = std::clamp((x.x - g.x0) / g.dx - 0.5, 0.0, static_cast<double>(g.nx - 1));
-  const double sy = std::clamp((x.y - g.y0) / g.dy - 0.5, 0.0, static_cast<double>(g.ny - 1));
-  const int i = std::min(static_cast<int>(sx), std::max(g.nx - 2, 0));
-  const int j = std::min(static_cast<int>(sy), std::max(g.ny - 2, 0));
-  const int i1 = std::min(i + 1, g.nx - 1);
-  const int j1 = std::min(j + 1, g.ny - 1);
-  const double fx = g.nx > 1 ? sx - i : 0.0;
-  const double fy = g.ny > 1 ? sy - j : 0.0;
-  return (1.0 - fy) * ((1.0 - fx) * grad(i, j) + fx * grad(i1, j)) +
-         fy * ((1.0 - fx) * grad(i, j1) + fx * grad(i1, j1));
 }
 
 }  // namespace fluidbed

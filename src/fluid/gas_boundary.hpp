@@ -6,9 +6,7 @@
 
 #include "parallel/comm.hpp"
 #include "core/field.hpp"
-#include "core/field2.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
 #include "fluid/gas_config.hpp"
 
 namespace fluidbed {
@@ -43,13 +41,6 @@ double inlet_superficial_velocity(const GasBoundaryConfig& bc, const InletVeloci
 /// The fixed distributor factors of the nx bottom faces (all 1 without inlet_noise), mean exactly 1 up to rounding.
 std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx);
 
-/// Superficial inlet velocity of every bottom face of the grid (size nx) at time t: inlet_superficial_velocity of
-/// each face, its background part scaled by the distributor factors.
-void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid2& grid, double t, std::vector<double>& out);
-/// The same from the step's region velocities.
-void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid2& grid,
-                               std::vector<double>& out);
-
 /// The holes of a perforated plate as jets (2D: slots; 3D: discs), row by row in z, x fastest.
 std::vector<InletJet> perforated_plate_holes(const PerforatedPlate& plate, int dimension);
 
@@ -58,9 +49,10 @@ std::vector<InletJet> perforated_plate_holes(const PerforatedPlate& plate, int d
 double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_lo, double z_hi);
 
 /// Superficial inlet velocity of every bottom face of the grid's domain at time t, axis 0 fastest (then z in 3D).
-/// 2D: inlet_superficial_profile of the same grid as a Grid2 (slots only). 3D: each active jet replaces the
-/// background velocity over the area of the face it covers (jet_overlap_area), and the background part of face
-/// (i, k) is scaled by the distributor factor i + nx k of inlet_noise_factors(bc, nx nz).
+/// 2D: inlet_superficial_velocity of each face, its background part scaled by the distributor factors (slots
+/// only). 3D: each active jet replaces the background velocity over the area of the face it covers
+/// (jet_overlap_area), and the background part of face (i, k) is scaled by the distributor factor i + nx k of
+/// inlet_noise_factors(bc, nx nz).
 template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out);
 /// The same from the step's region velocities (inlet_velocities).
@@ -72,7 +64,6 @@ void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocitie
 /// as the profile delivers it (the monitor's inlet_velocity_m_s) [m/s].
 template <int Dim>
 double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t);
-double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid2& grid, double t);
 
 // ---- Ghost layers of the gas unknowns. Each function fills the ghosts of one side (axis e, `high`) of a field;
 // the caller applies it only where Grid::at_domain_side says the side is physical, so a sub-domain's internal
@@ -114,43 +105,5 @@ void fill_pressure_ghosts(const Grid<Dim>& grid, const GasBoundaryConfig& bc, co
 void validate(const GasConfig& config);
 /// Throws an input error naming the region ("background", "jet") and the offending schedule setting.
 void validate(const InletSchedule& schedule, const std::string& region);
-
-/// Staggered (MAC) storage of the gas unknowns: P at cell centres (nx x ny), u on vertical faces ((nx+1) x ny),
-/// v on horizontal faces (nx x (ny+1)); u(i, j) sits at x0 + i dx, v(i, j) at y0 + j dy.
-struct StaggeredFields {
-  Field2 p;
-  Field2 u;
-  Field2 v;
-  static StaggeredFields zeros(const Grid2& grid) {
-    return {Field2(grid.nx, grid.ny), Field2(grid.nx + 1, grid.ny), Field2(grid.nx, grid.ny + 1)};
-  }
-};
-
-/// Cell-centred value interpolated to vertical faces ((nx+1) x ny): mean of the two neighbours, copy at the walls.
-void cell_to_u_faces(const Field2& cell, Field2& face);
-/// Cell-centred value interpolated to horizontal faces (nx x (ny+1)).
-void cell_to_v_faces(const Field2& cell, Field2& face);
-
-/// u (on vertical faces) bilinearly interpolated to the point; clamped to the outermost nodes.
-double interpolate_u(const Grid2& grid, const Field2& u, Vec2 x);
-/// v (on horizontal faces) bilinearly interpolated to the point; clamped to the outermost nodes.
-double interpolate_v(const Grid2& grid, const Field2& v, Vec2 x);
-/// A cell-centred field bilinearly interpolated to the point; clamped to the outermost cell centres.
-double interpolate_cell(const Grid2& grid, const Field2& f, Vec2 x);
-
-/// Cell-centred velocity: mean of the two faces of each cell.
-void cell_centre_velocity(const Field2& u, const Field2& v, Field2& ug, Field2& vg);
-
-/// Cell-centred pressure gradient: central differences inside, one-sided in the outer rows/columns
-/// (exact for a pressure linear in x and y).
-void cell_pressure_gradient(const Grid2& grid, const Field2& p, Field2& dpdx, Field2& dpdy);
-
-}  // namespace fluidbed
-
-namespace fluidbed {
-
-/// The cell-centred pressure gradient of cell_pressure_gradient, bilinearly interpolated to the point
-/// (computed from the four surrounding cells only, so it is cheap per particle).
-Vec2 interpolate_pressure_gradient(const Grid2& grid, const Field2& p, Vec2 x);
 
 }  // namespace fluidbed

@@ -188,20 +188,6 @@ void cells_to_faces(const Field<Dim>& cell, int a, Field<Dim>& face) {
 
 }  // namespace
 
-Field<2> to_field(const Field2& f, int ghost) {
-  Field<2> out(IndexBox<2>{{0, 0}, {f.nx, f.ny}}, ghost);
-  for (int j = 0; j < f.ny; ++j)
-    for (int i = 0; i < f.nx; ++i) out(i, j) = f(i, j);
-  return out;
-}
-
-void copy_interior(const Field<2>& f, Field2& out) {
-  const IndexBox<2>& b = f.box();
-  out = Field2(b.extent(0), b.extent(1));
-  for (int j = 0; j < out.ny; ++j)
-    for (int i = 0; i < out.nx; ++i) out(i, j) = f(b.lo[0] + i, b.lo[1] + j);
-}
-
 // The case's backend; the constructor's kind chooses between Eigen's two where the case asks for Eigen.
 template <int Dim>
 std::unique_ptr<StructuredSolver<Dim>> make_pressure_backend(const Grid<Dim>& g, const GasConfig& c, PressureSolverKind kind) {
@@ -222,7 +208,6 @@ std::unique_ptr<StructuredSolver<Dim>> make_pressure_backend(const Grid<Dim>& g,
 template <int Dim>
 struct GasSolver<Dim>::Impl {
   Grid<Dim> grid;
-  Grid2 grid2;  // 2D only: the same grid for the Grid2 bridge
   GasConfig cfg;
   const Comm* comm;
   Vec<Dim> gravity;
@@ -240,7 +225,6 @@ struct GasSolver<Dim>::Impl {
       : grid(g), cfg(c), comm(&cm), pressure(make_pressure_backend<Dim>(g, c, kind)) {
     if constexpr (Dim == 2) {
       gravity = {c.gravity.x, c.gravity.y};
-      grid2 = to_grid2(g);
     } else {
       gravity = c.gravity;
     }
@@ -1104,52 +1088,6 @@ double GasSolver<Dim>::pressure_drop() const {
     count += 1.0;
   });
   return (comm.sum(bottom) - comm.sum(top)) / comm.sum(count);
-}
-
-// ---- the 2D bridge to Grid2 / Field2
-
-template <int Dim>
-GasSolver<Dim>::GasSolver(const Grid2& grid, const GasConfig& config, PressureSolverKind pressure_solver)
-  requires(Dim == 2)
-    : GasSolver(to_grid(grid), config, pressure_solver) {}
-
-template <int Dim>
-GasStepReport GasSolver<Dim>::advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new,
-                                      const Field2& beta, const Field2& us, const Field2& vs)
-  requires(Dim == 2)
-{
-  const Grid2& g = impl_->grid2;
-  for (const Field2* fld : {&eps_old, &eps_new, &beta, &us, &vs}) {
-    if (fld->nx != g.nx || fld->ny != g.ny) throw_input_error("gas advance: cell fields must be nx x ny");
-  }
-  return advance(t_new, dt, to_field(eps_old), to_field(eps_new), to_field(beta), CellVector<2>{to_field(us), to_field(vs)});
-}
-
-template <int Dim>
-const Grid2& GasSolver<Dim>::grid2() const
-  requires(Dim == 2)
-{
-  return impl_->grid2;
-}
-
-template <int Dim>
-void GasSolver<Dim>::cell_velocity(Field2& ug, Field2& vg) const
-  requires(Dim == 2)
-{
-  CellVector<2> u;
-  cell_velocity(u);
-  copy_interior(u[0], ug);
-  copy_interior(u[1], vg);
-}
-
-template <int Dim>
-void GasSolver<Dim>::cell_pressure_gradient(Field2& dpdx, Field2& dpdy) const
-  requires(Dim == 2)
-{
-  CellVector<2> grad;
-  cell_pressure_gradient(grad);
-  copy_interior(grad[0], dpdx);
-  copy_interior(grad[1], dpdy);
 }
 
 template class GasSolver<2>;

@@ -2,16 +2,14 @@
 // Locally averaged gas of Anderson & Jackson (Eqs. 11-12) on a staggered grid in Dim = 2 or 3 dimensions,
 // advanced by backward Euler with SIMPLE/SIMPLEC pressure-velocity coupling. Voidage, beta and the solids
 // velocity come from outside each step. Axis 1 is vertical (the distributor at its low side, the outlet or lid at
-// its high side); axis 0 and, in 3D, axis 2 end at walls. Mass flows are per metre of depth [kg/s/m] in 2D and
+// its high side); axis 0 and, in 3D, axis 2 end at walls or are periodic (Grid::periodic). Mass flows are per metre of depth [kg/s/m] in 2D and
 // [kg/s] in 3D.
 #include <array>
 #include <memory>
 
 #include "parallel/comm.hpp"
 #include "core/field.hpp"
-#include "core/field2.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
 #include "core/vec.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "fluid/gas_config.hpp"
@@ -87,17 +85,6 @@ class GasSolver {
   /// Mean pressure of the bottom cell layer minus that of the top cell layer [Pa].
   double pressure_drop() const;
 
-  // The 2D instance on the Grid2 / Field2 arrays of the modules not yet on the generic types (the coupling):
-  // same arithmetic, the fields copied in and out.
-  GasSolver(const Grid2& grid, const GasConfig& config, PressureSolverKind pressure_solver = PressureSolverKind::Direct)
-    requires(Dim == 2);
-  GasStepReport advance(double t_new, double dt, const Field2& eps_old, const Field2& eps_new, const Field2& beta,
-                        const Field2& us, const Field2& vs)
-    requires(Dim == 2);
-  const Grid2& grid2() const requires(Dim == 2);
-  void cell_velocity(Field2& ug, Field2& vg) const requires(Dim == 2);
-  void cell_pressure_gradient(Field2& dpdx, Field2& dpdy) const requires(Dim == 2);
-
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -105,9 +92,5 @@ class GasSolver {
 
 extern template class GasSolver<2>;
 extern template class GasSolver<3>;
-
-/// A Field2 (nx x ny, i fastest) as a cell field on the box [0, nx) x [0, ny) with `ghost` layers, and back.
-Field<2> to_field(const Field2& f, int ghost = 0);
-void copy_interior(const Field<2>& f, Field2& out);
 
 }  // namespace fluidbed

@@ -139,24 +139,7 @@ class VtkFile {
   std::vector<Array> arrays_;
 };
 
-void check_shape(const Grid2& grid, const Field2* f, const std::string& name) {
-  if (f == nullptr) throw std::invalid_argument("write_vti: array '" + name + "' has no field");
-  if (f->nx != grid.nx || f->ny != grid.ny || f->size() != grid.cells()) {
-    throw std::invalid_argument(fmt::format("write_vti: array '{}' is {} x {}, the grid {} x {}", name, f->nx,
-                                            f->ny, grid.nx, grid.ny));
-  }
-}
-
 }  // namespace
-
-VtiGrid VtiGrid::of(const Grid2& g) {
-  VtiGrid v;
-  v.dimension = 2;
-  v.n = {g.nx, g.ny, 1};
-  v.h = {g.dx, g.dy, 0.0};
-  v.origin = {g.x0, g.y0, 0.0};
-  return v;
-}
 
 void write_vti(const std::filesystem::path& path, const VtiGrid& grid, double time,
                const std::vector<VtiComponents>& cell_data) {
@@ -208,17 +191,6 @@ void write_vti(const std::filesystem::path& path, const VtiGrid& grid, double ti
   file.xml += "      </CellData>\n";
   file.xml += "    </Piece>\n  </ImageData>\n";
   file.write(path, "ImageData");
-}
-
-void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
-               const std::vector<VtiArray>& cell_data) {
-  std::vector<VtiComponents> arrays;
-  for (const VtiArray& a : cell_data) {
-    check_shape(grid, a.x, a.name);
-    if (a.y) check_shape(grid, a.y, a.name);
-    arrays.push_back({a.name, {a.x->v.data(), a.y ? a.y->v.data() : nullptr, nullptr}, a.y ? 2 : 1});
-  }
-  write_vti(path, VtiGrid::of(grid), time, arrays);
 }
 
 void write_vtu(const std::filesystem::path& path, double time, const ParticleArrays& particles) {
@@ -295,14 +267,6 @@ FieldSeries::FieldSeries(const std::filesystem::path& out_dir, std::optional<dou
     : out_dir_(out_dir), pvd_(open_series(out_dir, "fields", restart_time)) {}
 
 std::size_t FieldSeries::write(double time, const VtiGrid& grid, const std::vector<VtiComponents>& cell_data) {
-  const std::size_t index = pvd_.next_index();
-  const std::string file = frame_file_name("fields", index, "vti");
-  write_vti(out_dir_ / file, grid, time, cell_data);
-  pvd_.add(time, file);
-  return index;
-}
-
-std::size_t FieldSeries::write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data) {
   const std::size_t index = pvd_.next_index();
   const std::string file = frame_file_name("fields", index, "vti");
   write_vti(out_dir_ / file, grid, time, cell_data);

@@ -9,25 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
 #include "io/particle_arrays.hpp"
 #include "io/pvd.hpp"
 
 namespace fluidbed {
-
-/// One CellData array of a .vti file: a scalar field, or a 2D vector field (written as 3 components, z = 0).
-/// Holds pointers: the fields must outlive the write_vti call.
-struct VtiArray {
-  std::string name;
-  const Field2* x = nullptr;
-  const Field2* y = nullptr;  ///< nullptr for a scalar
-
-  static VtiArray scalar(std::string name, const Field2& f) { return {std::move(name), &f, nullptr}; }
-  static VtiArray vector(std::string name, const Field2& fx, const Field2& fy) {
-    return {std::move(name), &fx, &fy};
-  }
-};
 
 /// The shape of an ImageData grid in either dimension: cells, cell size and low corner per axis (2D: n[2] = 1,
 /// written as a collapsed z extent).
@@ -36,7 +21,6 @@ struct VtiGrid {
   std::array<int, 3> n{0, 0, 1};
   std::array<double, 3> h{0.0, 0.0, 0.0};       ///< m
   std::array<double, 3> origin{0.0, 0.0, 0.0};  ///< m
-  static VtiGrid of(const Grid2& grid);
   std::size_t cells() const {
     return static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
   }
@@ -56,11 +40,6 @@ struct VtiComponents {
 void write_vti(const std::filesystem::path& path, const VtiGrid& grid, double time,
                const std::vector<VtiComponents>& cell_data);
 
-/// Write an ImageData file of cell-centred arrays on `grid` (every field nx x ny, else std::invalid_argument),
-/// with FieldData TimeValue = `time`. Atomic; throws Error(BadInput) when the file cannot be written.
-void write_vti(const std::filesystem::path& path, const Grid2& grid, double time,
-               const std::vector<VtiArray>& cell_data);
-
 /// Write an UnstructuredGrid of one VTK_VERTEX per particle of `particles` (a particle_arrays() view of a store),
 /// sorted by particle id. Point arrays: id (Int64), species (Int32), diameter (Float64, m), velocity (Float64 x3,
 /// z = 0 in 2D, m/s), angular_velocity (2D: Float64 scalar, spin about z, rad/s, anticlockwise positive; 3D:
@@ -75,8 +54,6 @@ class FieldSeries {
   explicit FieldSeries(const std::filesystem::path& out_dir, std::optional<double> restart_time = std::nullopt);
   /// Write one frame and list it in the .pvd; returns its frame number (for files of the same instant, such as
   /// tracers/NNNNNN.csv).
-  std::size_t write(double time, const Grid2& grid, const std::vector<VtiArray>& cell_data);
-  /// The same in either dimension.
   std::size_t write(double time, const VtiGrid& grid, const std::vector<VtiComponents>& cell_data);
   const PvdCollection& collection() const { return pvd_; }
 

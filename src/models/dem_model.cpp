@@ -434,15 +434,8 @@ class DemModel final : public ModelRun {
       v[7] = sim_.min_voidage();
       v[8] = sim_.total_fluid_force().y;
       v[9] = sim_.total_gas_reaction().y;
-      LaceyResult l;
-      if constexpr (Dim == 2) {
-        l = lacey_index(p, config_.particles.layers / 2, config_.grid.grid2(), MixingConfig{});
-      } else {
-        std::vector<std::uint8_t> lower(p.size());
-        for (std::size_t k = 0; k < p.size(); ++k) lower[k] = p.layer[k] < config_.particles.layers / 2 ? 1 : 0;
-        const std::array<std::span<const double>, 3> pos{p.x, p.y, p.z};
-        l = lacey_index<3>(pos, lower, cell_geometry(sim_.gas().grid()), MixingConfig{});
-      }
+      const LaceyResult l =
+          lacey_index<Dim>(p, config_.particles.layers / 2, cell_geometry(sim_.gas().grid()), MixingConfig{});
       if (l.valid) v[11] = l.index;
     }
     if (config_.dem.insertion.enabled()) {

@@ -9,8 +9,6 @@
 #include <vector>
 
 #include "analysis/cell_view.hpp"
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
 #include "io/particle_arrays.hpp"
 
 namespace fluidbed {
@@ -51,22 +49,6 @@ struct FieldView {
     }
     return g;
   }
-  /// The x-y grid of a 2D view (for the 2D analysis).
-  Grid2 grid2() const { return Grid2{n[0], n[1], h[0], h[1], origin[0], origin[1]}; }
-  /// A copy of a 2D view's field as a Field2 (for the 2D analysis); `values` one of the pointers above.
-  Field2 field2(const double* values) const {
-    Field2 f(n[0], n[1]);
-    std::copy(values, values + f.size(), f.v.begin());
-    return f;
-  }
-  /// Set the shape from a 2D grid and point the fields at Field2 arrays (nullptr where absent).
-  void set_grid(const Grid2& g) {
-    dimension = 2;
-    n = {g.nx, g.ny, 1};
-    h = {g.dx, g.dy, 0.0};
-    origin = {g.x0, g.y0, 0.0};
-  }
-  static const double* data(const Field2* f) { return f ? f->v.data() : nullptr; }
 };
 
 struct CostInfo {

@@ -215,38 +215,4 @@ template void throw_non_finite_row<3>(const Index<3>&, double);
 template std::unique_ptr<StructuredSolver<2>> make_eigen_structured_solver(const Grid<2>&, PressureSolverKind, double);
 template std::unique_ptr<StructuredSolver<3>> make_eigen_structured_solver(const Grid<3>&, PressureSolverKind, double);
 
-struct PressureCorrectionSolver::Impl {
-  Grid2 grid;
-  std::unique_ptr<StructuredSolver<2>> backend;
-  FaceFields<2> coeff;
-  Field<2> rhs;
-  Field<2> x;
-};
-
-PressureCorrectionSolver::PressureCorrectionSolver(const Grid2& grid, PressureSolverKind kind, double cg_tolerance)
-    : impl_(std::make_unique<Impl>()) {
-  const Grid<2> g = to_grid(grid);
-  impl_->grid = grid;
-  impl_->backend = make_eigen_structured_solver<2>(g, kind, cg_tolerance);
-  impl_->coeff = FaceFields<2>(g.domain, 0);
-  impl_->rhs = Field<2>(g.domain, 0);
-  impl_->x = Field<2>(g.domain, 0);
-}
-
-PressureCorrectionSolver::~PressureCorrectionSolver() = default;
-PressureCorrectionSolver::PressureCorrectionSolver(PressureCorrectionSolver&&) noexcept = default;
-PressureCorrectionSolver& PressureCorrectionSolver::operator=(PressureCorrectionSolver&&) noexcept = default;
-
-void PressureCorrectionSolver::solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x,
-                                     bool reuse_factorisation) {
-  Impl& s = *impl_;
-  // Field2 and a ghost-free Field<2> share the layout (i fastest), so the arrays are copied whole.
-  s.coeff[0].data() = ax.v;
-  s.coeff[1].data() = ay.v;
-  s.rhs.data() = rhs.v;
-  s.x.data() = x.v;
-  s.backend->solve(s.coeff, s.rhs, s.x, reuse_factorisation);
-  x.v = s.x.data();
-}
-
 }  // namespace fluidbed

@@ -1,15 +1,14 @@
 #pragma once
 // Pressure-correction equation of SIMPLE on cell centres: aP p'_P - sum_nb a_nb p'_nb = b, aP = sum of the
-// 2 Dim face coefficients. A structured problem (one coefficient per cell face, cells of a box), so that a
-// structured multigrid library (hypre's PFMG/SMG take exactly this) can replace the first backend, Eigen's sparse
-// Cholesky, without touching the solvers. Reused by the gas solver and the two-fluid model.
+// 2 Dim face coefficients. A structured problem (one coefficient per cell face, cells of a box), solved behind one
+// interface by three backends: Eigen's sparse Cholesky here, hypre's structured multigrid
+// (structured_solver_hypre.hpp) and the band LDL^T of thin slabs (band_pressure_solver.hpp). The CFD-DEM gas
+// solver and the two-fluid model both solve through it.
 #include <array>
 #include <memory>
 
 #include "core/field.hpp"
-#include "core/field2.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
 
 namespace fluidbed {
 
@@ -61,35 +60,11 @@ bool couples_to_boundary(const IndexBox<Dim>& cells, const FaceFields<Dim>& coef
 template <int Dim>
 [[noreturn]] void throw_non_finite_row(const Index<Dim>& cell, double imbalance);
 
-/// Today's backend: Eigen's sparse Cholesky (Direct: factorised at the first solve of a step, CG preconditioned by
+/// The Eigen backend: sparse Cholesky (Direct: factorised at the first solve of a step, CG preconditioned by
 /// that factorisation after, to cg_tolerance) or incomplete-Cholesky CG to cg_tolerance. Serial: the grid's owned box must be its whole domain.
 template <int Dim>
 std::unique_ptr<StructuredSolver<Dim>> make_eigen_structured_solver(const Grid<Dim>& grid,
                                                                     PressureSolverKind kind = PressureSolverKind::Direct,
                                                                     double cg_tolerance = 1e-12);
-
-/// The 2D problem on Grid2 / Field2 arrays for the two-fluid model: the Eigen backend behind it.
-class PressureCorrectionSolver {
- public:
-  explicit PressureCorrectionSolver(const Grid2& grid, PressureSolverKind kind = PressureSolverKind::Direct,
-                                    double cg_tolerance = 1e-12);
-  ~PressureCorrectionSolver();
-  PressureCorrectionSolver(PressureCorrectionSolver&&) noexcept;
-  PressureCorrectionSolver& operator=(PressureCorrectionSolver&&) noexcept;
-
-  /// Solves for x (size nx x ny). ax ((nx+1) x ny) and ay (nx x (ny+1)) hold the coupling coefficient of every
-  /// face (see StructuredSolver). x is the initial guess on entry (used by ConjugateGradient). Throws a
-  /// simulation error on failure.
-  ///
-  /// With `reuse_factorisation` (Direct kind, after a first solve) the matrix is not factorised again: the system
-  /// is solved by conjugate gradients preconditioned with the last factorisation, to a relative residual of
-  /// cg_tolerance (also the ConjugateGradient kind's). Within one SIMPLE step the coefficients change little between iterations, so a few CG iterations
-  /// (one triangular solve each) replace a factorisation.
-  void solve(const Field2& ax, const Field2& ay, const Field2& rhs, Field2& x, bool reuse_factorisation = false);
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-};
 
 }  // namespace fluidbed

@@ -21,7 +21,7 @@ class StencilMatrix {
   /// row is its diagonal and these columns, in the order given (the slot order of set_row).
   void build(int n, const std::vector<std::array<int, 4>>& neighbours) { build_impl(n, neighbours); }
   void build(int n, const std::vector<std::array<int, 6>>& neighbours) { build_impl(n, neighbours); }
-  /// The cell-centred five-point pattern of an nx x ny grid, rows numbered i fastest (Grid2::index), neighbours
+  /// The cell-centred five-point pattern of an nx x ny grid, rows numbered i fastest (row j nx + i), neighbours
   /// in the order W, E, S, N.
   void build_cells(int nx, int ny);
 

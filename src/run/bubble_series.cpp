@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "run/analysis_csv.hpp"
+
 namespace fluidbed {
 
 namespace {

@@ -36,6 +36,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/pvd.hpp"
 #include "io/vtk_writer.hpp"
+#include "run/analysis_csv.hpp"
 
 namespace fluidbed {
 
@@ -641,7 +642,8 @@ class Run {
           const CellGeometry<3> geo = fv.geometry<3>();
           b = bubbles_->observe<3>(stamp, CellView<3>{geo, fv.eps}, CellView<3>{geo, fv.ug[1]});
         } else {
-          b = bubbles_->observe(stamp, fv.grid2(), fv.field2(fv.eps), fv.field2(fv.ug[0]), fv.field2(fv.ug[1]));
+          const CellGeometry<2> geo = fv.geometry<2>();
+          b = bubbles_->observe<2>(stamp, CellView<2>{geo, fv.eps}, CellView<2>{geo, fv.ug[1]});
         }
         const auto values = bubble_csv_values(b, true);
         bubble_csv_->row(std::span<const std::optional<double>>(values.data(), values.size()));

@@ -13,6 +13,7 @@
 
 #include "analysis/bubble_population.hpp"
 #include "core/error.hpp"
+#include "run/analysis_csv.hpp"
 
 namespace fluidbed {
 namespace {

@@ -13,6 +13,7 @@
 #include "analysis/bubble_tracker.hpp"
 #include "analysis/rise_velocity.hpp"
 #include "core/error.hpp"
+#include "run/analysis_csv.hpp"
 
 namespace fluidbed {
 namespace {
@@ -54,7 +55,7 @@ BubbleConfig config_3d(const CellGeometry<3>& g, double jet_x, double jet_z) {
   c.jet_x = jet_x;
   c.jet_z = jet_z;
   c.jet_width = 0.02;
-  c.nz = g.n[2];
+  c.cells = {0, 0, g.n[2]};
   c.min_volume = 4.0 * g.cell_measure();
   return c;
 }
@@ -331,26 +332,26 @@ TEST(BubbleTracker3d, OneCellDeepSlabIsThe2dTracker) {
   // A 3D field one cell deep holding a 2D field: the nose line at mid-depth has zero z weight, so nose, rise
   // velocity, attachment, detachment and bed height are bit for bit those of the 2D tracker; the measure is the
   // area times the depth.
-  const Grid2 g2 = Grid2::uniform(0.6, 1.0, 60, 100);
-  const CellGeometry<3> g3{{60, 100, 1}, {g2.dx, g2.dy, 0.004}, {0.0, 0.0, 0.0}};
+  const Grid<2> g2 = Grid<2>::uniform({0.6, 1.0}, {60, 100});
+  const CellGeometry<3> g3{{60, 100, 1}, {g2.h[0], g2.h[1], 0.004}, {0.0, 0.0, 0.0}};
   BubbleConfig c2;
-  c2.grid = g2;
+  c2.cells = {g2.n(0), g2.n(1), 0};
   c2.jet_x = 0.3;
-  c2.min_area = 4.0 * g2.dx * g2.dy;
+  c2.min_area = 4.0 * g2.h[0] * g2.h[1];
   BubbleConfig c3 = c2;
   c3.min_volume = c2.min_area * 0.004;
   BubbleTracker t2(c2), t3(c3);
-  const Field2 zero(g2.nx, g2.ny, 0.0);
+  const Field<2> zero(cell_field(g2, 0.0));
   for (int n = 0; n < 30; ++n) {
-    Field2 eps(g2.nx, g2.ny, eps_bed);
+    Field<2> eps(cell_field(g2, eps_bed));
     const double yd = 0.03 + 0.9 * n * 0.01;
-    for (int j = 0; j < g2.ny; ++j)
-      for (int i = 0; i < g2.nx; ++i) {
-        const double r = std::hypot(g2.xc(i) - 0.3, g2.yc(j) - yd);
+    for (int j = 0; j < g2.n(1); ++j)
+      for (int i = 0; i < g2.n(0); ++i) {
+        const double r = std::hypot(g2.centre(0, i) - 0.3, g2.centre(1, j) - yd);
         eps(i, j) = j > 80 ? 1.0 : eps_bed + (1.0 - eps_bed) * std::clamp((0.06 - r) / 0.02, 0.0, 1.0);
       }
-    const BubbleSample s2 = t2.observe(n * 0.01, g2, eps, zero, zero);
-    const BubbleSample s3 = t3.observe<3>(n * 0.01, {g3, eps.v.data()}, {g3, zero.v.data()});
+    const BubbleSample s2 = t2.observe<2>(n * 0.01, cell_view(g2, eps, "eps"), cell_view(g2, zero, "vg"));
+    const BubbleSample s3 = t3.observe<3>(n * 0.01, {g3, eps.data().data()}, {g3, zero.data().data()});
     EXPECT_EQ(s2.nose_height, s3.nose_height) << n;
     EXPECT_EQ(s2.rise_velocity, s3.rise_velocity) << n;
     EXPECT_EQ(s2.attached, s3.attached) << n;

@@ -11,6 +11,7 @@
 #include "analysis/layer_tracers.hpp"
 #include "analysis/mixing_index.hpp"
 #include "core/error.hpp"
+#include "run/analysis_csv.hpp"
 
 namespace fluidbed {
 namespace {

@@ -99,7 +99,7 @@ TEST(Case3d, TwoDimensionalCasesRefuseTheKeysOfADepth) {
   EXPECT_EQ(c.grid.nz, 1);
   EXPECT_EQ(c.grid.dz, 0.0);
   EXPECT_EQ(c.grid.cells(), 1500u);
-  EXPECT_EQ(c.grid.grid2().nx, 30);
+  EXPECT_EQ(c.grid.grid_of<2>().n(0), 30);
 }
 
 }  // namespace

@@ -164,9 +164,9 @@ TEST(CaseCheck, EverySpeciesEveryPairAndTheBedOfAllSpecies) {
 
 TEST(CaseCheck, AGridTheGasSolverRefusesIsRefusedByTheLoaderGasOrNot) {
   // Before: `check` passed a one-cell-wide grid that GasSolver then refused at the start of `run`.
-  const Grid2 one_wide = Grid2::uniform(0.6, 1.0, 1, 50);
+  const Grid<2> one_wide = Grid<2>::uniform({0.6, 1.0}, {1, 50});
   EXPECT_THROW(GasSolver<2>(one_wide, GasConfig{}), Error);
-  EXPECT_NO_THROW(GasSolver<2>(Grid2::uniform(0.04, 0.04, 2, 2), GasConfig{}));
+  EXPECT_NO_THROW(GasSolver<2>(Grid<2>::uniform({0.04, 0.04}, {2, 2}), GasConfig{}));
   for (const char* gas : {"true", "false"}) {
     const std::string e = error_of(dem_case(std::string("gas.enabled = ") + gas + "\ngrid.cell_width = 0.6\ngrid.cell_height = 0.02\n"));
     EXPECT_TRUE(contains(e, "grid.cell_width: 0.6 m leaves 1 cell across the domain width 0.6 m")) << e;

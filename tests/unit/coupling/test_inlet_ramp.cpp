@@ -2,7 +2,7 @@
 // with the jets still replacing it over their width.
 #include <gtest/gtest.h>
 
-#include "core/grid2.hpp"
+#include "core/grid.hpp"
 #include "fluid/gas_boundary.hpp"
 
 namespace fluidbed {
@@ -33,11 +33,11 @@ TEST(InletRamp, LinearFromStartVelocityThenConstant) {
 TEST(InletRamp, FacesCarryTheRampAndJetsKeepTheirFlux) {
   GasBoundaryConfig bc = ramped();
   bc.jets.push_back(InletJet{0.05, 0.02, 30.0, 0.0, 1.0});
-  const Grid2 g = Grid2::uniform(0.1, 0.1, 10, 10);
+  const Grid<2> g = Grid<2>::uniform({0.1, 0.1}, {10, 10});
   std::vector<double> u;
   inlet_superficial_profile(bc, g, 0.25, u);
   double flux = 0.0;
-  for (double x : u) flux += x * g.dx;
+  for (double x : u) flux += x * g.h[0];
   // Background 2.7 m/s over 0.08 m, the jet 30 m/s over 0.02 m.
   EXPECT_NEAR(flux, 2.7 * 0.08 + 30.0 * 0.02, 1e-14);
   EXPECT_NEAR(u[0], 2.7, 1e-15);
@@ -56,11 +56,11 @@ TEST(InletNoise, FixedFactorsKeepTheTotalInflow) {
   GasBoundaryConfig bc;
   bc.inlet_velocity = 3.6;
   bc.jets.clear();
-  const Grid2 g = Grid2::uniform(0.6, 1.0, 30, 50);
+  const Grid<2> g = Grid<2>::uniform({0.6, 1.0}, {30, 50});
   std::vector<double> uniform, noisy, later;
   inlet_superficial_profile(bc, g, 0.1, uniform);
-  for (int i = 0; i < g.nx; ++i) {  // exactly the per-face value of the uniform distributor
-    EXPECT_EQ(uniform[static_cast<std::size_t>(i)], inlet_superficial_velocity(bc, g.x0 + i * g.dx, g.x0 + i * g.dx + g.dx, 0.1));
+  for (int i = 0; i < g.n(0); ++i) {  // exactly the per-face value of the uniform distributor
+    EXPECT_EQ(uniform[static_cast<std::size_t>(i)], inlet_superficial_velocity(bc, g.origin[0] + i * g.h[0], g.origin[0] + i * g.h[0] + g.h[0], 0.1));
   }
   bc.inlet_noise = 0.1;
   bc.noise_seed = 1998;
@@ -68,7 +68,7 @@ TEST(InletNoise, FixedFactorsKeepTheTotalInflow) {
   inlet_superficial_profile(bc, g, 1.7, later);
   double flux = 0.0, lo = 1e300, hi = 0.0;
   for (std::size_t i = 0; i < noisy.size(); ++i) {
-    flux += noisy[i] * g.dx;
+    flux += noisy[i] * g.h[0];
     lo = std::min(lo, noisy[i]);
     hi = std::max(hi, noisy[i]);
     EXPECT_EQ(noisy[i], later[i]) << "the distributor does not change in time";

@@ -140,24 +140,24 @@ TEST(CheckedSparseSolver, NonFiniteCoefficientNamesItsRow) {
 // momentum solve must go to the LU, and the step must come out as the converged one (SIMPLE to 1e-8).
 TEST(GasSolverLinearSolves, OneIterationCapFallsBackAndGivesTheConvergedStep) {
   const int nx = 12, ny = 20;
-  const Grid2 grid = Grid2::uniform(0.24, 0.4, nx, ny);
+  const Grid<2> grid = Grid<2>::uniform({0.24, 0.4}, {nx, ny});
   GasConfig cfg;
   cfg.boundary.jets = {InletJet{0.12, 0.02, 20.0, 0.0, 1.0}};
   cfg.boundary.inlet_velocity = 1.8;
-  Field2 eps(nx, ny, 1.0), beta(nx, ny, 0.0);
+  Field<2> eps(cell_field(grid, 1.0)), beta(cell_field(grid, 0.0));
   for (int j = 0; j < ny / 2; ++j)
     for (int i = 0; i < nx; ++i) {
       eps(i, j) = 0.45 + 0.01 * ((i * 7 + j * 3) % 5);
       beta(i, j) = 2.0e4;
     }
-  const Field2 zero(nx, ny, 0.0);
+  const Field<2> zero(cell_field(grid, 0.0));
   auto run = [&](int cap, int& fallbacks) {
     GasConfig c = cfg;
     c.momentum_solver_max_iterations = cap;
     GasSolver<2> gas(grid, c);
     fallbacks = 0;
     for (int step = 1; step <= 5; ++step) {
-      fallbacks += gas.advance(step * 1e-3, 1e-3, eps, eps, beta, zero, zero).linear_fallbacks;
+      fallbacks += gas.advance(step * 1e-3, 1e-3, eps, eps, beta, {zero, zero}).linear_fallbacks;
     }
     return gas.fields();
   };

@@ -1,5 +1,4 @@
-// Jets as regions of a 3D bed's bottom face (slot, rectangle, disc), and the 2D profile of a Grid<2> equal to the
-// Grid2 one.
+// Jets as regions of a 3D bed's bottom face (slot, rectangle, disc).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -76,17 +75,6 @@ TEST(InletRegions, TwoDimensionalSolverRefusesThreeDimensionalShapes) {
   cfg.boundary.jets[0].shape = InletShape::Rectangle;
   cfg.boundary.jets[0].depth = 0.0;
   EXPECT_THROW(GasSolver<3>(Grid<3>::uniform({0.6, 0.2, 0.1}, {6, 4, 2}), cfg), Error);
-}
-
-TEST(InletRegions, GridOfDimensionTwoGivesTheGrid2Profile) {
-  GasBoundaryConfig bc;
-  bc.inlet_noise = 0.3;
-  const Grid2 g2 = Grid2::uniform(0.6, 1.0, 30, 50);
-  const Grid<2> g = Grid<2>::uniform({0.6, 1.0}, {30, 50});
-  std::vector<double> a, b;
-  inlet_superficial_profile(bc, g2, 0.1, a);
-  inlet_superficial_profile(bc, g, 0.1, b);
-  EXPECT_EQ(a, b);
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/field2.hpp"
-#include "core/grid2.hpp"
+#include <string>
+#include <utility>
 #include "dem/particle_store.hpp"
 #include "io/particle_arrays.hpp"
 #include "io/vtk_writer.hpp"
@@ -15,28 +15,45 @@ namespace fluidbed::test {
 
 inline constexpr int sample_frames = 3;
 inline double sample_time(int k) { return 0.1 * k / 3.0; }
-inline Grid2 sample_grid() { return Grid2{4, 3, 0.0025, 0.005, 0.0, 0.0}; }
+/// A 2D ImageData grid of nx x ny cells.
+inline VtiGrid grid_2d(int nx, int ny, double dx, double dy, double x0 = 0.0, double y0 = 0.0) {
+  VtiGrid g;
+  g.n = {nx, ny, 1};
+  g.h = {dx, dy, 0.0};
+  g.origin = {x0, y0, 0.0};
+  return g;
+}
+inline VtiGrid sample_grid() { return grid_2d(4, 3, 0.0025, 0.005); }
 
+/// Cell arrays of a 2D sample, i fastest.
 struct SampleFields {
-  Field2 voidage, pressure, ug, vg;
+  std::vector<double> voidage, pressure, ug, vg;
 };
 
 /// The large sample: 128 x 64 cells, so a scalar array is exactly one compression block (64 KiB) and a vector
 /// array three (the last block full).
-inline Grid2 sample_large_grid() { return Grid2{128, 64, 0.0025, 0.005, 0.0, 0.0}; }
+inline VtiGrid sample_large_grid() { return grid_2d(128, 64, 0.0025, 0.005); }
 inline constexpr std::int64_t sample_large_particles = 20000;  ///< 480,000 bytes of Points: 7 full blocks and a part
 
-inline SampleFields sample_fields(double t, const Grid2& g = sample_grid()) {
-  SampleFields f{Field2(g.nx, g.ny), Field2(g.nx, g.ny), Field2(g.nx, g.ny), Field2(g.nx, g.ny)};
-  for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      f.voidage(i, j) = 0.4 + 0.01 * i + j / 30.0 + t;
-      f.pressure(i, j) = 101325.0 + 1000.0 * j - t * i;
-      f.ug(i, j) = i * t;
-      f.vg(i, j) = -1.0 * j + 0.5;
+inline SampleFields sample_fields(double t, const VtiGrid& g = sample_grid()) {
+  SampleFields f;
+  for (int j = 0; j < g.n[1]; ++j) {
+    for (int i = 0; i < g.n[0]; ++i) {
+      f.voidage.push_back(0.4 + 0.01 * i + j / 30.0 + t);
+      f.pressure.push_back(101325.0 + 1000.0 * j - t * i);
+      f.ug.push_back(i * t);
+      f.vg.push_back(-1.0 * j + 0.5);
     }
   }
   return f;
+}
+
+/// A scalar cell array and a 2D vector one (written with z = 0) over contiguous values.
+inline VtiComponents scalar(std::string name, const std::vector<double>& f) {
+  return {std::move(name), {f.data(), nullptr, nullptr}, 1};
+}
+inline VtiComponents vector(std::string name, const std::vector<double>& x, const std::vector<double>& y) {
+  return {std::move(name), {x.data(), y.data(), nullptr}, 2};
 }
 
 /// Five particles stored out of id order, so the writers' sorting is exercised.

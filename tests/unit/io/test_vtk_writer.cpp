@@ -32,17 +32,17 @@ void expect_same_bits(const std::vector<double>& a, const std::vector<double>& b
 TEST(VtkWriter, ImageDataHeaderAndCellArrays) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  const Grid2 grid{3, 2, 0.01, 0.02, 0.1, -0.05};
-  Field2 eps(3, 2), u(3, 2), v(3, 2);
+  const VtiGrid grid = test::grid_2d(3, 2, 0.01, 0.02, 0.1, -0.05);
+  std::vector<double> eps(6), u(6), v(6);
   for (int j = 0; j < 2; ++j) {
     for (int i = 0; i < 3; ++i) {
-      eps(i, j) = 0.4 + i / 7.0 + j;
-      u(i, j) = -1e-300 * (i + 1);
-      v(i, j) = 1e300 * (j + 1);
+      eps[static_cast<std::size_t>(i + 3 * j)] = 0.4 + i / 7.0 + j;
+      u[static_cast<std::size_t>(i + 3 * j)] = -1e-300 * (i + 1);
+      v[static_cast<std::size_t>(i + 3 * j)] = 1e300 * (j + 1);
     }
   }
   const double time = 0.1 / 3.0;
-  write_vti(dir / "f.vti", grid, time, {VtiArray::scalar("voidage", eps), VtiArray::vector("gas_velocity", u, v)});
+  write_vti(dir / "f.vti", grid, time, {test::scalar("voidage", eps), test::vector("gas_velocity", u, v)});
   EXPECT_EQ(test::temp_files_in(dir), 0);
 
   const auto parsed = parse_vtk(test::slurp(dir / "f.vti"));
@@ -63,26 +63,28 @@ TEST(VtkWriter, ImageDataHeaderAndCellArrays) {
   EXPECT_EQ(parsed.arrays.at("voidage").type, "Float64");
   EXPECT_EQ(parsed.arrays.at("voidage").components, 1);
   EXPECT_EQ(parsed.arrays.at("gas_velocity").components, 3);
-  expect_same_bits(parsed.values<double>("voidage"), eps.v);
+  expect_same_bits(parsed.values<double>("voidage"), eps);
   const auto uvw = parsed.values<double>("gas_velocity");
   ASSERT_EQ(uvw.size(), 18u);
   for (std::size_t k = 0; k < 6; ++k) {
-    EXPECT_EQ(uvw[3 * k], u.v[k]);
-    EXPECT_EQ(uvw[3 * k + 1], v.v[k]);
+    EXPECT_EQ(uvw[3 * k], u[k]);
+    EXPECT_EQ(uvw[3 * k + 1], v[k]);
     EXPECT_EQ(uvw[3 * k + 2], 0.0);
   }
 }
 
-TEST(VtkWriter, FieldOfWrongShapeIsRejectedAndNothingWritten) {
+TEST(VtkWriter, ArrayWithoutItsComponentsOrWithABadNameIsRejectedAndNothingWritten) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
-  const Grid2 grid{3, 2, 0.01, 0.02, 0.0, 0.0};
-  const Field2 good(3, 2), bad(2, 3);
-  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::scalar("a", good), VtiArray::scalar("b", bad)}),
+  const VtiGrid grid = test::grid_2d(3, 2, 0.01, 0.02);
+  const std::vector<double> good(6, 0.0);
+  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {test::scalar("a", good), {"b", {nullptr, nullptr, nullptr}, 1}}),
                std::invalid_argument);
-  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::vector("u", good, bad)}), std::invalid_argument);
-  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::scalar("a\"b", good)}), std::invalid_argument);
-  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {VtiArray::scalar("", good)}), std::invalid_argument);
+  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {{"u", {good.data(), nullptr, nullptr}, 2}}), std::invalid_argument);
+  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {{"u", {good.data(), good.data(), good.data()}, 4}}),
+               std::invalid_argument);
+  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {test::scalar("a\"b", good)}), std::invalid_argument);
+  EXPECT_THROW(write_vti(dir / "f.vti", grid, 0.0, {test::scalar("", good)}), std::invalid_argument);
   EXPECT_FALSE(std::filesystem::exists(dir / "f.vti"));
   EXPECT_EQ(test::temp_files_in(dir), 0);
 }
@@ -175,21 +177,21 @@ TEST(VtkWriter, CompressedInVtkBlocksBitForBit) {
   const test::ScratchDir scratch;
   const auto& dir = scratch.path;
   // 128 x 64 cells: a scalar array is exactly one full block, a vector array three.
-  const Grid2 grid = test::sample_large_grid();
+  const VtiGrid grid = test::sample_large_grid();
   const auto f = test::sample_fields(0.25, grid);
   write_vti(dir / "f.vti", grid, 0.25,
-            {VtiArray::scalar("voidage", f.voidage), VtiArray::vector("gas_velocity", f.ug, f.vg)});
+            {test::scalar("voidage", f.voidage), test::vector("gas_velocity", f.ug, f.vg)});
   const auto vti = parse_vtk(test::slurp(dir / "f.vti"));
   expect_vtk_block_layout(vti, 2);
   EXPECT_EQ(vti.block_header("voidage").blocks, 1u);
   EXPECT_EQ(vti.block_header("voidage").last_size, 0u);
   EXPECT_EQ(vti.block_header("gas_velocity").blocks, 3u);
-  expect_same_bits(vti.values<double>("voidage"), f.voidage.v);
+  expect_same_bits(vti.values<double>("voidage"), f.voidage);
   const auto uvw = vti.values<double>("gas_velocity");
   ASSERT_EQ(uvw.size(), 3 * grid.cells());
   for (std::size_t k = 0; k < grid.cells(); ++k) {
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(uvw[3 * k]), std::bit_cast<std::uint64_t>(f.ug.v[k]));
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(uvw[3 * k + 1]), std::bit_cast<std::uint64_t>(f.vg.v[k]));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(uvw[3 * k]), std::bit_cast<std::uint64_t>(f.ug[k]));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(uvw[3 * k + 1]), std::bit_cast<std::uint64_t>(f.vg[k]));
   }
 
   // 20,000 particles: 480,000 bytes of points are 7 full blocks and a last one of 21,248 bytes.
@@ -248,25 +250,25 @@ TEST(VtkWriter, WritesSampleSeriesForReadback) {
   ensure_directory(dir / "particles");
   PvdCollection fields(dir / "fields.pvd");
   PvdCollection particles(dir / "particles.pvd");
-  const Grid2 grid = test::sample_grid();
+  const VtiGrid grid = test::sample_grid();
   for (int k = 0; k < test::sample_frames; ++k) {
     const double t = test::sample_time(k);
     const auto f = test::sample_fields(t);
     const std::string vti = frame_file_name("fields", fields.next_index(), "vti");
     write_vti(dir / vti, grid, t,
-              {VtiArray::scalar("voidage", f.voidage), VtiArray::scalar("pressure", f.pressure),
-               VtiArray::vector("gas_velocity", f.ug, f.vg)});
+              {test::scalar("voidage", f.voidage), test::scalar("pressure", f.pressure),
+               test::vector("gas_velocity", f.ug, f.vg)});
     fields.add(t, vti);
     const std::string vtu = frame_file_name("particles", particles.next_index(), "vtu");
     write_vtu(dir / vtu, t, particle_arrays(test::sample_particles(t)));
     particles.add(t, vtu);
   }
   // Files of several compression blocks (a last block full and a last block partial) and an empty piece.
-  const Grid2 large = test::sample_large_grid();
+  const VtiGrid large = test::sample_large_grid();
   const auto lf = test::sample_fields(test::sample_time(1), large);
   write_vti(dir / "large.vti", large, test::sample_time(1),
-            {VtiArray::scalar("voidage", lf.voidage), VtiArray::scalar("pressure", lf.pressure),
-             VtiArray::vector("gas_velocity", lf.ug, lf.vg)});
+            {test::scalar("voidage", lf.voidage), test::scalar("pressure", lf.pressure),
+             test::vector("gas_velocity", lf.ug, lf.vg)});
   write_vtu(dir / "large.vtu", test::sample_time(1),
             particle_arrays(test::sample_particles(test::sample_time(1), test::sample_large_particles)));
   write_vtu(dir / "empty.vtu", 0.0, particle_arrays(ParticleStore<2>{}));
@@ -330,13 +332,6 @@ TEST(VtkWriter, TwoDimensionalViewGivesTheStoreBytes) {
   write_vtu(scratch.path / "a.vtu", 0.05, particle_arrays(p));
   write_vtu(scratch.path / "b.vtu", 0.05, particle_arrays(p));
   EXPECT_EQ(test::slurp(scratch.path / "a.vtu"), test::slurp(scratch.path / "b.vtu"));
-  const Grid2 grid = test::sample_grid();
-  const auto f = test::sample_fields(0.05);
-  write_vti(scratch.path / "a.vti", grid, 0.05, {VtiArray::scalar("voidage", f.voidage), VtiArray::vector("gas_velocity", f.ug, f.vg)});
-  write_vti(scratch.path / "b.vti", VtiGrid::of(grid), 0.05,
-            {{"voidage", {f.voidage.v.data(), nullptr, nullptr}, 1},
-             {"gas_velocity", {f.ug.v.data(), f.vg.v.data(), nullptr}, 2}});
-  EXPECT_EQ(test::slurp(scratch.path / "a.vti"), test::slurp(scratch.path / "b.vti"));
 }
 
 }  // namespace
@@ -348,14 +343,14 @@ namespace {
 TEST(VtkSeries, NumbersFramesAndContinuesAfterRestart) {
   const test::ScratchDir scratch;
   const auto& out = scratch.path / "run";
-  const Grid2 grid = test::sample_grid();
+  const VtiGrid grid = test::sample_grid();
   {
     FieldSeries fields(out);
     ParticleSeries particles(out);
     for (int k = 0; k < 4; ++k) {
       const double t = 0.1 * k;
       const auto f = test::sample_fields(t);
-      EXPECT_EQ(fields.write(t, grid, {VtiArray::scalar("voidage", f.voidage)}), static_cast<std::size_t>(k));
+      EXPECT_EQ(fields.write(t, grid, {test::scalar("voidage", f.voidage)}), static_cast<std::size_t>(k));
       EXPECT_EQ(particles.write(t, particle_arrays(test::sample_particles(t)), k % 2 == 0), static_cast<std::size_t>(k));
     }
   }
@@ -369,7 +364,7 @@ TEST(VtkSeries, NumbersFramesAndContinuesAfterRestart) {
   EXPECT_EQ(fields.collection().entries().size(), 2u);
   EXPECT_EQ(particles.collection().entries().size(), 2u);
   const auto f = test::sample_fields(0.15);
-  EXPECT_EQ(fields.write(0.15, grid, {VtiArray::scalar("voidage", f.voidage)}), 2u);
+  EXPECT_EQ(fields.write(0.15, grid, {test::scalar("voidage", f.voidage)}), 2u);
   EXPECT_EQ(particles.write(0.15, particle_arrays(test::sample_particles(0.15))), 2u);
   const auto e = read_pvd(out / "fields.pvd");
   ASSERT_EQ(e.size(), 3u);

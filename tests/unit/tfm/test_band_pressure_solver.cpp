@@ -100,7 +100,7 @@ void check(const Index<Dim>& n, bool open_top) {
   EXPECT_LT(em, kTol);
 }
 
-TEST(BandPressureSolver, PaperGrid2dOpenTop) { check<2>({30, 50}, true); }
+TEST(BandPressureSolver, PaperBedIn2dOpenTop) { check<2>({30, 50}, true); }
 TEST(BandPressureSolver, AllNeumannPinned2d) { check<2>({17, 9}, false); }
 TEST(BandPressureSolver, Thin3dBox) { check<3>({4, 3, 6}, true); }
 

@@ -42,7 +42,7 @@ struct SettledBed {
   double settle_time = 0.0;
 };
 
-inline Grid2 bed_grid() { return Grid2::uniform(kWidth, kHeight, kNx, kNy); }
+inline Grid<2> bed_grid() { return Grid<2>::uniform({kWidth, kHeight}, {kNx, kNy}); }
 
 inline DemConfig bed_dem_config() {
   DemConfig c;  // paper particles, k = 800 N/m, restitution 0.9, friction 0.3
@@ -55,14 +55,14 @@ inline DemConfig bed_dem_config() {
 /// Mean counted voidage (bilinear, depth = d_p) over the cells at least one cell away from the side walls and
 /// the distributor and two cells below the bed surface, where neither folding nor the surface enters.
 inline double interior_voidage(const ParticleStore<2>& p, double bed_height) {
-  const Grid2 g = bed_grid();
-  Field2 eps;
+  const Grid<2> g = bed_grid();
+  Field<2> eps;
   compute_voidage(p, g, VoidageMethod::Bilinear, Species{}.diameter, eps);
-  const int j_top = static_cast<int>(std::floor(bed_height / g.dy)) - 2;
+  const int j_top = static_cast<int>(std::floor(bed_height / g.h[1])) - 2;
   double sum = 0.0;
   int n = 0;
   for (int j = 1; j < j_top; ++j) {
-    for (int i = 1; i < g.nx - 1; ++i) {
+    for (int i = 1; i < g.n(0) - 1; ++i) {
       sum += eps(i, j);
       ++n;
     }

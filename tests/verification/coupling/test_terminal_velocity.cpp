@@ -96,11 +96,11 @@ TEST_F(TerminalVelocity, StillGasInClosedBoxConverges) {
   GasConfig gas;
   gas.boundary.inlet_velocity = 0.0;
   gas.boundary.jets.clear();
-  const Grid2 grid = Grid2::uniform(kWidth, kHeight, 3, 80);
+  const Grid<2> grid = Grid<2>::uniform({kWidth, kHeight}, {3, 80});
   GasSolver<2> solver(grid, gas);
-  const Field2 eps(grid.nx, grid.ny, 1.0), zero(grid.nx, grid.ny, 0.0);
+  const Field<2> eps(cell_field(grid, 1.0)), zero(cell_field(grid, 0.0));
   for (int k = 1; k <= 3; ++k) {
-    const GasStepReport r = solver.advance(k * 5e-4, 5e-4, eps, eps, zero, zero, zero);
+    const GasStepReport r = solver.advance(k * 5e-4, 5e-4, eps, eps, zero, {zero, zero});
     EXPECT_LT(r.mass_residual, gas.mass_tolerance);
   }
   double v_max = 0.0;
@@ -121,15 +121,15 @@ TEST_F(TerminalVelocity, TwoWayCoupledInStillGas) {
   // 1 - eps ~ 4e-6. We check that the particle's disturbance of the gas at its own position is negligible
   // (|u_g - inflow| < 1e-3 u_t), so the slip is the terminal velocity of an isolated sphere.
   const int nx = 3, ny = 80;
-  const Grid2 grid = Grid2::uniform(kWidth, kHeight, nx, ny);
+  const Grid<2> grid = Grid<2>::uniform({kWidth, kHeight}, {nx, ny});
   CouplingConfig cc;
-  cc.depth = grid.dx;
+  cc.depth = grid.h[0];
   cc.dem_substeps = 5;
   const double dt = 1e-4;
   GasSolver<2> solver(grid, gas);
   // Start from the hydrostatic pressure of gas at rest, so SIMPLE need not build it in the first step.
   for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) solver.fields().p(i, j) = gas.rho_g * gas.gravity.y * (grid.yc(j) - kHeight);
+    for (int i = 0; i < nx; ++i) solver.fields().p(i, j) = gas.rho_g * gas.gravity.y * (grid.centre(1, j) - kHeight);
   CfdDemSimulation<2> sim(DemSolver<2>(single_particle_dem(dt), one_particle()), std::move(solver), cc);
   sim.initialize();
   const auto steps = static_cast<int>(std::lround(kFallTime / sim.macro_dt()));

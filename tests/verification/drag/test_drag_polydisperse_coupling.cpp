@@ -33,7 +33,7 @@ TEST(DragLawsCfdDem, BeetstraSeesTheCellsSauterMean) {
   CouplingConfig cc;
   cc.voidage = VoidageMethod::Centre;
   cc.drag_law = DragLaw::Beetstra;
-  CfdDemSimulation<2> sim(DemSolver<2>(dem, p), GasSolver<2>(Grid2::uniform(0.02, 0.02, 2, 2), gas), cc);
+  CfdDemSimulation<2> sim(DemSolver<2>(dem, p), GasSolver<2>(Grid<2>::uniform({0.02, 0.02}, {2, 2}), gas), cc);
   sim.initialize();
   const ParticleStore<2>& q = sim.dem().particles();
   const double d_mean = (std::pow(0.004, 3) + std::pow(0.002, 3)) / (std::pow(0.004, 2) + std::pow(0.002, 2));

@@ -53,10 +53,10 @@ CavityResult run_cavity(int n, double re, const std::array<double, 15>& u_ref, c
   cfg.boundary.lid_velocity = 1.0;
   cfg.max_simple_iterations = 1000;
   cfg.mass_tolerance = 1e-6;
-  const Grid2 grid = Grid2::uniform(1.0, 1.0, n, n);
+  const Grid<2> grid = Grid<2>::uniform({1.0, 1.0}, {n, n});
   GasSolver<2> gas(grid, cfg);
-  const Field2 eps(n, n, 1.0);
-  const Field2 zero(n, n, 0.0);
+  const Field<2> eps(cell_field(grid, 1.0));
+  const Field<2> zero(cell_field(grid, 0.0));
   // March in pseudo-time (dt = 3 lid transit times) until the steady state: every velocity changes by less
   // than 1e-6 per unit time, far below the 2% being tested.
   const double dt = 3.0;
@@ -64,7 +64,7 @@ CavityResult run_cavity(int n, double re, const std::array<double, 15>& u_ref, c
   bool steady = false;
   for (int step = 1; step <= 400 && !steady; ++step) {
     const GasFields<2> before = gas.fields();
-    res.simple_iterations += gas.advance(step * dt, dt, eps, eps, zero, zero, zero).simple_iterations;
+    res.simple_iterations += gas.advance(step * dt, dt, eps, eps, zero, {zero, zero}).simple_iterations;
     double change = 0.0;
     for (int a = 0; a < 2; ++a)
       for (std::size_t k = 0; k < before.u[a].data().size(); ++k)

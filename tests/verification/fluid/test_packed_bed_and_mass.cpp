@@ -16,13 +16,15 @@ namespace {
 constexpr double kD = 0.004;  // Table 1: 4 mm particles
 
 // beta of Eq. 13 per cell from the current gas velocity, the solids being at rest.
-void update_beta(const GasSolver<2>& gas, const Field2& eps, Field2& beta) {
-  Field2 ug, vg;
-  gas.cell_velocity(ug, vg);
+void update_beta(const GasSolver<2>& gas, const Field<2>& eps, Field<2>& beta) {
+  CellVector<2> u;
+  gas.cell_velocity(u);
+  const Field<2>& ug = u[0];
+  const Field<2>& vg = u[1];
   const GasConfig& c = gas.config();
-  for (std::size_t k = 0; k < eps.size(); ++k) {
-    const double slip = std::hypot(ug.v[k], vg.v[k]);
-    beta.v[k] = beta_ergun_wen_yu({eps.v[k], kD, c.rho_g, c.mu_g, slip});
+  for (std::size_t k = 0; k < eps.data().size(); ++k) {
+    const double slip = std::hypot(ug.data()[k], vg.data()[k]);
+    beta.data()[k] = beta_ergun_wen_yu({eps.data()[k], kD, c.rho_g, c.mu_g, slip});
   }
 }
 
@@ -32,27 +34,27 @@ TEST(PackedBed, PressureDropFollowsErgun) {
   // (1e-8) and the lagged beta, converged here to 1e-10: a relative tolerance of 1e-6 is ample (brief: 2%).
   const int nx = 5;
   const int ny = 25;
-  const Grid2 grid = Grid2::uniform(0.1, 0.5, nx, ny);
+  const Grid<2> grid = Grid<2>::uniform({0.1, 0.5}, {nx, ny});
   const double eps_bed = 0.4;
   for (double u_sup : {0.5, 1.0, 1.8, 3.0}) {
     GasConfig cfg;
     cfg.boundary.jets.clear();
     cfg.boundary.inlet_velocity = u_sup;
     GasSolver<2> gas(grid, cfg);
-    const Field2 eps(nx, ny, eps_bed);
-    const Field2 zero(nx, ny, 0.0);
-    Field2 beta(nx, ny, 0.0);
+    const Field<2> eps(cell_field(grid, eps_bed));
+    const Field<2> zero(cell_field(grid, 0.0));
+    Field<2> beta(cell_field(grid, 0.0));
     double dp_prev = 0.0;
     bool steady = false;
     for (int step = 1; step <= 200 && !steady; ++step) {
       update_beta(gas, eps, beta);
-      const GasStepReport rep = gas.advance(step * 0.01, 0.01, eps, eps, beta, zero, zero);
+      const GasStepReport rep = gas.advance(step * 0.01, 0.01, eps, eps, beta, {zero, zero});
       ASSERT_LT(rep.mass_residual, cfg.mass_tolerance);
       steady = std::abs(gas.pressure_drop() - dp_prev) < 1e-10 * std::abs(gas.pressure_drop());
       dp_prev = gas.pressure_drop();
     }
     ASSERT_TRUE(steady);
-    const double height = (ny - 1) * grid.dy;  // between the bottom and top cell centres
+    const double height = (ny - 1) * grid.h[1];  // between the bottom and top cell centres
     const double measured = gas.pressure_drop() / height - cfg.rho_g * std::abs(cfg.gravity.y);
     const double ergun = ergun_pressure_gradient(eps_bed, kD, cfg.rho_g, cfg.mu_g, u_sup);
     std::printf("[ ergun    ] U = %.2f m/s: dP/dy (frictional) computed %.4f Pa/m, Ergun %.4f Pa/m, rel. error %.2e\n",
@@ -65,10 +67,10 @@ TEST(PackedBed, PressureDropFollowsErgun) {
 
 // Voidage: bed of 0.45 with a disc of radius 0.05 m whose centre rises at 1 m/s and whose voidage breathes,
 // so the total gas volume changes in time (a non-zero accumulation term).
-double blob_eps(const Grid2& g, int i, int j, double t) {
+double blob_eps(const Grid<2>& g, int i, int j, double t) {
   const double xc = 0.15;
   const double yc = 0.12 + 1.0 * t;
-  const double r = std::hypot(g.xc(i) - xc, g.yc(j) - yc);
+  const double r = std::hypot(g.centre(0, i) - xc, g.centre(1, j) - yc);
   const double inside = 0.5 * (1.0 - std::tanh((r - 0.05) / 0.01));
   return 0.45 + (0.25 + 0.2 * std::sin(60.0 * t)) * inside;
 }
@@ -76,12 +78,12 @@ double blob_eps(const Grid2& g, int i, int j, double t) {
 TEST(GasMassBalance, ClosedEveryStepWithMovingBlobAndJet) {
   const int nx = 15;
   const int ny = 30;
-  const Grid2 grid = Grid2::uniform(0.3, 0.6, nx, ny);
+  const Grid<2> grid = Grid<2>::uniform({0.3, 0.6}, {nx, ny});
   GasConfig cfg;
   cfg.boundary.inlet_velocity = 1.8;
   cfg.boundary.jets = {InletJet{0.15, 0.02, 30.0, 0.01, 0.05}};
   GasSolver<2> gas(grid, cfg);
-  Field2 eps_old(nx, ny), eps_new(nx, ny), beta(nx, ny), zero(nx, ny, 0.0);
+  Field<2> eps_old(cell_field(grid)), eps_new(cell_field(grid)), beta(cell_field(grid)), zero(cell_field(grid, 0.0));
   const double dt = 1e-3;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) eps_old(i, j) = blob_eps(grid, i, j, 0.0);
@@ -95,18 +97,18 @@ TEST(GasMassBalance, ClosedEveryStepWithMovingBlobAndJet) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) eps_new(i, j) = blob_eps(grid, i, j, t);
     update_beta(gas, eps_new, beta);
-    const GasStepReport rep = gas.advance(t, dt, eps_old, eps_new, beta, zero, zero);
+    const GasStepReport rep = gas.advance(t, dt, eps_old, eps_new, beta, {zero, zero});
     // Independent bookkeeping from the fields: inflow and outflow through the faces, change of gas volume.
     const GasFields<2>& f = gas.fields();
     double in = 0.0;
     double out = 0.0;
     double acc = 0.0;
     for (int i = 0; i < nx; ++i) {
-      in += cfg.rho_g * eps_new(i, 0) * f.u[1](i, 0) * grid.dx;
-      out += cfg.rho_g * eps_new(i, ny - 1) * f.u[1](i, ny) * grid.dx;
+      in += cfg.rho_g * eps_new(i, 0) * f.u[1](i, 0) * grid.h[0];
+      out += cfg.rho_g * eps_new(i, ny - 1) * f.u[1](i, ny) * grid.h[0];
     }
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) acc += cfg.rho_g * (eps_new(i, j) - eps_old(i, j)) * grid.dx * grid.dy / dt;
+      for (int i = 0; i < nx; ++i) acc += cfg.rho_g * (eps_new(i, j) - eps_old(i, j)) * grid.h[0] * grid.h[1] / dt;
     const double balance = std::abs(out - in + acc) / rep.reference_mass_flow;
     // The report and the independent sum agree, and both close to the solver tolerance.
     EXPECT_NEAR(rep.mass_in, in, 1e-12 * rep.reference_mass_flow);
@@ -132,21 +134,21 @@ TEST(GasMassBalance, ClosedEveryStepWithMovingBlobAndJet) {
 
 /// Two gas steps of the blob and a jet on an nx x ny grid of the 0.3 x 0.6 m box with the given OpenMP threads.
 GasFields<2> blob_steps_with_threads(int nx, int ny, int threads, ViscousStress viscous = ViscousStress::Off) {
-  const Grid2 grid = Grid2::uniform(0.3, 0.6, nx, ny);
+  const Grid<2> grid = Grid<2>::uniform({0.3, 0.6}, {nx, ny});
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
   GasConfig cfg;
   cfg.viscous = viscous;
   cfg.boundary.jets = {InletJet{0.15, 0.02, 30.0, 0.0, 1.0}};
   GasSolver<2> gas(grid, cfg);
-  Field2 eps_old(nx, ny), eps_new(nx, ny), beta(nx, ny), zero(nx, ny, 0.0);
+  Field<2> eps_old(cell_field(grid)), eps_new(cell_field(grid)), beta(cell_field(grid)), zero(cell_field(grid, 0.0));
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) eps_old(i, j) = blob_eps(grid, i, j, 0.0);
   for (int step = 1; step <= 2; ++step) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) eps_new(i, j) = blob_eps(grid, i, j, step * 1e-4);
     update_beta(gas, eps_new, beta);
-    const GasStepReport rep = gas.advance(step * 1e-4, 1e-4, eps_old, eps_new, beta, zero, zero);
+    const GasStepReport rep = gas.advance(step * 1e-4, 1e-4, eps_old, eps_new, beta, {zero, zero});
     std::printf("[ threads  ] %d x %d, %d thread(s), step %d: %d SIMPLE iterations\n", nx, ny, threads, step,
                 rep.simple_iterations);
     eps_old = eps_new;

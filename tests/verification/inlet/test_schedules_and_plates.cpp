@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/grid.hpp"
-#include "core/grid2.hpp"
+#include "core/grid.hpp"
 #include "fluid/gas_boundary.hpp"
 
 namespace fluidbed {
@@ -83,7 +83,7 @@ TEST(InletSchedule, OncePerStepValuesMatchTheFaces) {
   jet.schedule.kind = ScheduleKind::Ramp;
   jet.schedule.ramp_time = 0.5;
   bc.jets = {jet};
-  const Grid2 g = Grid2::uniform(0.1, 0.1, 10, 10);
+  const Grid<2> g = Grid<2>::uniform({0.1, 0.1}, {10, 10});
   const double t = 0.2;
   const InletVelocities v = inlet_velocities(bc, t);
   std::vector<double> u;
@@ -111,11 +111,11 @@ TEST(PerforatedPlate, SlotsIn2DHaveTheExactOpenWidthAndFlux) {
   ASSERT_EQ(bc.jets.size(), 7u);
   EXPECT_NEAR(bc.jets[3].x_centre, 0.05, 1e-17);
   EXPECT_NEAR(bc.jets[1].x_centre - bc.jets[0].x_centre, 0.011, 1e-17);
-  const Grid2 g = Grid2::uniform(0.1, 0.1, 20, 10);
+  const Grid<2> g = Grid<2>::uniform({0.1, 0.1}, {20, 10});
   std::vector<double> u;
   inlet_superficial_profile(bc, g, 0.5, u);
   double flux = 0.0;
-  for (double x : u) flux += x * g.dx;
+  for (double x : u) flux += x * g.h[0];
   const double open = 7 * 0.0013;
   const double exact = 12.0 * open + 0.4 * (0.1 - open);
   report("2D plate volume flux per depth [m^2/s]", exact, flux);

@@ -89,7 +89,7 @@ TEST(Segregation, LightParticlesRiseInABidisperseBed) {
   gas.boundary.inlet_velocity = u;
   CouplingConfig cc;
   cc.depth = 0.004;
-  CfdDemSimulation<2> sim(DemSolver<2>(dem, settler.particles()), GasSolver<2>(Grid2::uniform(kWidth, kHeight, kNx, kNy), gas), cc);
+  CfdDemSimulation<2> sim(DemSolver<2>(dem, settler.particles()), GasSolver<2>(Grid<2>::uniform({kWidth, kHeight}, {kNx, kNy}), gas), cc);
   sim.initialize();
   double flotsam_weight = 0.0, weight = 0.0;
   for (std::size_t i = 0; i < sim.dem().particles().size(); ++i) {
