@@ -7,7 +7,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
 DEBS = build-essential cmake ninja-build pkg-config libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev \
-       libspdlog-dev libhdf5-dev libgtest-dev libgmock-dev libbenchmark-dev libhypre-dev \
+       libspdlog-dev libhdf5-dev libgtest-dev libgmock-dev libbenchmark-dev libhypre-dev libopenmpi-dev openmpi-bin \
        zlib1g-dev python3 python3-numpy python3-matplotlib python3-vtk9 universal-ctags
 
 .PHONY: all deps build test test-fast asan demo bench clean
