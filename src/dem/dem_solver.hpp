@@ -153,6 +153,9 @@ class DemSolver {
   /// (Eq. 8) is taken on each pair's own reduced mass.
   template <class Law, bool Mixed, bool Periodic, bool Sized>
   double compute_forces_of(double dt);
+  /// The pointwise contact functions and the loops of compute_forces_of, over the pointers it hoists once.
+  template <class Law, bool Mixed, bool Periodic, bool Sized>
+  struct ForcePass;
   void rebuild();
   void link_mirrors();
   /// Drop the particles whose centre is beyond an outflow side, keeping the order of the others, their neighbour
