@@ -33,11 +33,11 @@ $(ASAN_BUILD)/build.ninja: | deps
 
 UNIT_TARGETS = $(patsubst tests/unit/%/,test_unit_%,$(sort $(dir $(wildcard tests/unit/*/*.cpp))))
 
-# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (only the unit test programs are built there).
+# Unit and MPI tests under AddressSanitizer + UndefinedBehaviorSanitizer (only those test programs are built there).
 asan: deps $(ASAN_BUILD)/build.ninja
-	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(UNIT_TARGETS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(UNIT_TARGETS) test_mpi
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest -L unit --output-on-failure -j $(JOBS)
+	  ctest -L 'unit|mpi' --output-on-failure -j $(JOBS)
 
 # Every test of the Release build (unit, verification, cli, post), then the sanitizer build's unit tests.
 test: build
