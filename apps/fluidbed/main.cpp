@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "config/case_check.hpp"
 #include "config/case_loader.hpp"
+#include "parallel/launcher.hpp"
 #include "run/ensemble.hpp"
 #include "run/runner.hpp"
 
@@ -175,6 +176,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
+  }
+
+  // Started by mpirun or srun on several processes: each would run the whole case into the same output folder.
+  // Refused (once, by the first process) until the decomposition over ranks exists.
+  if (const fluidbed::LaunchedAs l = fluidbed::launched_as(); (*run || *ens) && l.size > 1) {
+    if (l.rank == 0) {
+      std::cerr << fmt::format("fluidbed: started as {} processes by an MPI launcher (mpirun, srun): this version runs "
+                               "a case on one process, and {} copies of it would write the same output folder; run it "
+                               "without the launcher (--threads N uses the cores of one machine)\n", l.size, l.size);
+    }
+    return 2;
   }
 
   try {

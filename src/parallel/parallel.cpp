@@ -2,5 +2,6 @@
 // particle exchange).
 #include "parallel/comm.hpp"
 #include "parallel/decomposition.hpp"
+#include "parallel/launcher.hpp"
 #include "parallel/mpi_comm.hpp"
 #include "parallel/periodic_halo.hpp"
