@@ -77,24 +77,32 @@ std::vector<LaceyResult> lacey_index_per_group(const std::array<std::span<const 
   return out;
 }
 
+namespace {
+
+// Lower part (layer < split_layer) against the rest, for any set with size(), layer[] and coord(axis): the tracer
+// balls and the DEM particles alike.
+template <int Dim, class Layered>
+LaceyResult lacey_of_layers(const Layered& set, int split_layer, const CellGeometry<Dim>& domain,
+                            const MixingConfig& config) {
+  std::vector<std::uint8_t> lower(set.size());
+  for (std::size_t k = 0; k < set.size(); ++k) lower[k] = set.layer[k] < split_layer ? 1 : 0;
+  std::array<std::span<const double>, Dim> pos;
+  for (int a = 0; a < Dim; ++a) pos[static_cast<std::size_t>(a)] = set.coord(a);
+  return lacey_index<Dim>(pos, lower, domain, config);
+}
+
+}  // namespace
+
 template <int Dim>
 LaceyResult lacey_index(const BallTracers<Dim>& tracers, int split_layer, const CellGeometry<Dim>& domain,
                         const MixingConfig& config) {
-  std::vector<std::uint8_t> lower(tracers.size());
-  for (std::size_t k = 0; k < tracers.size(); ++k) lower[k] = tracers.layer[k] < split_layer ? 1 : 0;
-  std::array<std::span<const double>, Dim> pos;
-  for (int a = 0; a < Dim; ++a) pos[static_cast<std::size_t>(a)] = tracers.coord(a);
-  return lacey_index<Dim>(pos, lower, domain, config);
+  return lacey_of_layers<Dim>(tracers, split_layer, domain, config);
 }
 
 template <int Dim>
 LaceyResult lacey_index(const ParticleStore<Dim>& particles, int split_layer, const CellGeometry<Dim>& domain,
                         const MixingConfig& config) {
-  std::vector<std::uint8_t> lower(particles.size());
-  for (std::size_t k = 0; k < particles.size(); ++k) lower[k] = particles.layer[k] < split_layer ? 1 : 0;
-  std::array<std::span<const double>, Dim> pos;
-  for (int a = 0; a < Dim; ++a) pos[static_cast<std::size_t>(a)] = particles.coord(a);
-  return lacey_index<Dim>(pos, lower, domain, config);
+  return lacey_of_layers<Dim>(particles, split_layer, domain, config);
 }
 
 template LaceyResult lacey_index<2>(const std::array<std::span<const double>, 2>&, std::span<const std::uint8_t>,
