@@ -6,6 +6,7 @@
 #include <fstream>
 #include <fmt/format.h>
 #include <iostream>
+#include <memory>
 #include <string>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -17,6 +18,7 @@
 #include "config/case_check.hpp"
 #include "config/case_loader.hpp"
 #include "parallel/launcher.hpp"
+#include "parallel/mpi_comm.hpp"
 #include "run/ensemble.hpp"
 #include "run/runner.hpp"
 
@@ -178,16 +180,40 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : 2;
   }
 
-  // Started by mpirun or srun on several processes: each would run the whole case into the same output folder.
-  // Refused (once, by the first process) until the decomposition over ranks exists.
-  if (const fluidbed::LaunchedAs l = fluidbed::launched_as(); (*run || *ens) && l.size > 1) {
-    if (l.rank == 0) {
-      std::cerr << fmt::format("fluidbed: started as {} processes by an MPI launcher (mpirun, srun): this version runs "
-                               "a case on one process, and {} copies of it would write the same output folder; run it "
-                               "without the launcher (--threads N uses the cores of one machine)\n", l.size, l.size);
+  // Started by mpirun or srun on several processes: `run` splits the case over them (docs/parallel.md); an ensemble
+  // already runs its members as processes of its own, so it is refused (once, by the first process).
+  const fluidbed::LaunchedAs launch = fluidbed::launched_as();
+  if (*ens && launch.size > 1) {
+    if (launch.rank == 0) {
+      std::cerr << fmt::format("fluidbed: started as {} processes by an MPI launcher (mpirun, srun): an ensemble runs "
+                               "its members as processes of its own (--jobs); start it without the launcher, or run "
+                               "each member with mpirun\n", launch.size);
     }
     return 2;
   }
+  // The ranks of a run: MPI is started only when a launcher started several processes (one process is the serial
+  // run of every earlier version).
+  std::unique_ptr<fluidbed::Comm> mpi;
+#ifdef FLUIDBED_HAVE_MPI
+  if (*run && launch.size > 1) mpi = std::make_unique<fluidbed::MpiComm>();
+#endif
+  if (*run && launch.size > 1 && !mpi) {
+    if (launch.rank == 0) std::cerr << "fluidbed: started on several processes, but built without MPI (libopenmpi-dev)\n";
+    return 2;
+  }
+  const bool speaks = !mpi || mpi->rank() == 0;
+  // A failure on several ranks: said once, by rank 0, when every rank met it (a verdict the ranks reached
+  // together); a failure of one rank alone, which the others are waiting on in a collective, is said by that rank,
+  // which then ends them all with its exit code.
+  auto fail = [&](int code, const std::string& message) {
+    if (mpi && !mpi->all_arrive_within(fluidbed::failure_verdict_seconds())) {
+      std::cerr << fmt::format("fluidbed: rank {}: {}\n", mpi->rank(), message);
+      std::cerr.flush();
+      mpi->abort(code);
+    }
+    if (speaks) std::cerr << "fluidbed: " << message << "\n";
+    return code;
+  };
 
   try {
     if (*run) {
@@ -198,6 +224,7 @@ int main(int argc, char** argv) {
       }
       if (max_wall > 0) ro.max_wall_time = max_wall;
       const fluidbed::LoadedCase lc = fluidbed::load_case(case_file, sets);
+      ro.comm = mpi.get();
       return fluidbed::run_case(lc, ro);
     }
     if (*check) {
@@ -215,11 +242,9 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const fluidbed::Error& e) {
-    std::cerr << "fluidbed: " << e.what() << "\n";
-    return e.exit_code();
+    return fail(e.exit_code(), e.what());
   } catch (const std::exception& e) {
-    std::cerr << "fluidbed: internal error: " << e.what() << "\n";
-    return 3;
+    return fail(3, std::string("internal error: ") + e.what());
   }
   return 0;
 }

@@ -12,13 +12,14 @@
 namespace fluidbed {
 
 template <int Dim>
-LaceyResult lacey_index(const std::array<std::span<const double>, Dim>& pos, std::span<const std::uint8_t> in_group,
-                        const CellGeometry<Dim>& domain, const MixingConfig& config) {
+LaceyCounts<Dim> lacey_counts(const std::array<std::span<const double>, Dim>& pos, std::span<const std::uint8_t> in_group,
+                              const CellGeometry<Dim>& domain, const MixingConfig& config) {
   for (const auto& p : pos) {
     if (p.size() != in_group.size()) throw_input_error("lacey index: positions and colours differ in length");
   }
   const std::array<double, 3> wanted{config.sample_dx, config.sample_dy, config.sample_dz};
-  CellGeometry<Dim> samples;
+  LaceyCounts<Dim> out;
+  CellGeometry<Dim>& samples = out.samples;
   for (int a = 0; a < Dim; ++a) {
     const double sd = wanted[static_cast<std::size_t>(a)] > 0.0 ? wanted[static_cast<std::size_t>(a)] : domain.h[a];
     if (!(sd > 0.0)) throw_input_error("lacey index: sample size must be positive");
@@ -26,29 +27,35 @@ LaceyResult lacey_index(const std::array<std::span<const double>, Dim>& pos, std
     samples.h[a] = domain.length(a) / samples.n[a];
     samples.origin[a] = domain.origin[a];
   }
-
-  std::vector<double> count(samples.cells(), 0.0), coloured(samples.cells(), 0.0);
-  double total = 0.0, total_coloured = 0.0;
+  out.count.assign(samples.cells(), 0);
+  out.coloured.assign(samples.cells(), 0);
   for (std::size_t k = 0; k < in_group.size(); ++k) {
     Index<Dim> cell{};
     for (int a = 0; a < Dim; ++a) cell[a] = samples.cell(a, pos[static_cast<std::size_t>(a)][k]);
     const std::size_t c = samples.index(cell);
-    count[c] += 1.0;
-    total += 1.0;
-    if (in_group[k]) {
-      coloured[c] += 1.0;
-      total_coloured += 1.0;
-    }
+    ++out.count[c];
+    if (in_group[k]) ++out.coloured[c];
+  }
+  return out;
+}
+
+template <int Dim>
+LaceyResult lacey_from_counts(const LaceyCounts<Dim>& counts) {
+  double total = 0.0, total_coloured = 0.0;
+  for (std::size_t c = 0; c < counts.count.size(); ++c) {
+    total += static_cast<double>(counts.count[c]);
+    total_coloured += static_cast<double>(counts.coloured[c]);
   }
   LaceyResult r;
   if (total == 0.0) return r;
   r.p = total_coloured / total;
-  for (std::size_t c = 0; c < count.size(); ++c) {
-    if (count[c] == 0.0) continue;
+  for (std::size_t c = 0; c < counts.count.size(); ++c) {
+    if (counts.count[c] == 0) continue;
     ++r.samples;
-    const double dc = coloured[c] / count[c] - r.p;
+    const double n = static_cast<double>(counts.count[c]);
+    const double dc = static_cast<double>(counts.coloured[c]) / n - r.p;
     // Weighted by the particles in the sample, so that a random mixture has E[S^2] = p(1-p)/n exactly.
-    r.s2 += count[c] * dc * dc;
+    r.s2 += n * dc * dc;
   }
   r.s2 /= total;
   r.mean_per_sample = total / r.samples;
@@ -59,6 +66,12 @@ LaceyResult lacey_index(const std::array<std::span<const double>, Dim>& pos, std
   r.valid = den > 0.0;
   r.index = r.valid ? (r.s0_2 - r.s2) / den : 0.0;
   return r;
+}
+
+template <int Dim>
+LaceyResult lacey_index(const std::array<std::span<const double>, Dim>& pos, std::span<const std::uint8_t> in_group,
+                        const CellGeometry<Dim>& domain, const MixingConfig& config) {
+  return lacey_from_counts(lacey_counts<Dim>(pos, in_group, domain, config));
 }
 
 template <int Dim>
@@ -105,6 +118,16 @@ LaceyResult lacey_index(const ParticleStore<Dim>& particles, int split_layer, co
   return lacey_of_layers<Dim>(particles, split_layer, domain, config);
 }
 
+template <int Dim>
+LaceyCounts<Dim> lacey_counts(const ParticleStore<Dim>& particles, std::size_t first_n, int split_layer,
+                              const CellGeometry<Dim>& domain, const MixingConfig& config) {
+  std::vector<std::uint8_t> lower(first_n);
+  for (std::size_t k = 0; k < first_n; ++k) lower[k] = particles.layer[k] < split_layer ? 1 : 0;
+  std::array<std::span<const double>, Dim> pos;
+  for (int a = 0; a < Dim; ++a) pos[static_cast<std::size_t>(a)] = std::span<const double>(particles.coord(a)).first(first_n);
+  return lacey_counts<Dim>(pos, lower, domain, config);
+}
+
 template LaceyResult lacey_index<2>(const std::array<std::span<const double>, 2>&, std::span<const std::uint8_t>,
                                     const CellGeometry<2>&, const MixingConfig&);
 template LaceyResult lacey_index<3>(const std::array<std::span<const double>, 3>&, std::span<const std::uint8_t>,
@@ -119,6 +142,10 @@ template LaceyResult lacey_index<2>(const BallTracers<2>&, int, const CellGeomet
 template LaceyResult lacey_index<3>(const BallTracers<3>&, int, const CellGeometry<3>&, const MixingConfig&);
 
 template LaceyResult lacey_index<2>(const ParticleStore<2>&, int, const CellGeometry<2>&, const MixingConfig&);
+template LaceyCounts<2> lacey_counts<2>(const ParticleStore<2>&, std::size_t, int, const CellGeometry<2>&, const MixingConfig&);
+template LaceyCounts<3> lacey_counts<3>(const ParticleStore<3>&, std::size_t, int, const CellGeometry<3>&, const MixingConfig&);
+template LaceyResult lacey_from_counts<2>(const LaceyCounts<2>&);
+template LaceyResult lacey_from_counts<3>(const LaceyCounts<3>&);
 template LaceyResult lacey_index<3>(const ParticleStore<3>&, int, const CellGeometry<3>&, const MixingConfig&);
 
 }  // namespace fluidbed

@@ -33,6 +33,25 @@ struct LaceyResult {
   bool valid = false;            ///< false when the index is undefined (one colour only, n <= 1, no particles)
 };
 
+/// The particles of a sample cell and those of them in the group, per sample cell of the sampling grid: the
+/// part of the index that adds up over any split of the particles (integers), so that the index of particles spread
+/// over ranks is that of all of them.
+template <int Dim>
+struct LaceyCounts {
+  CellGeometry<Dim> samples;
+  std::vector<std::int64_t> count, coloured;
+};
+template <int Dim>
+LaceyCounts<Dim> lacey_counts(const std::array<std::span<const double>, Dim>& pos, std::span<const std::uint8_t> in_group,
+                              const CellGeometry<Dim>& domain, const MixingConfig& config);
+template <int Dim>
+LaceyResult lacey_from_counts(const LaceyCounts<Dim>& counts);
+/// The counts of the first `first_n` particles of a store (the owned ones of a rank), lower part of the bed
+/// (layer < split_layer) against the rest.
+template <int Dim>
+LaceyCounts<Dim> lacey_counts(const ParticleStore<Dim>& particles, std::size_t first_n, int split_layer,
+                              const CellGeometry<Dim>& domain, const MixingConfig& config);
+
 /// Lacey index of the two-colour mixture in_group != 0 vs == 0 at positions pos[a][k] (axis a, particle k), over
 /// the box of `domain`.
 template <int Dim>

@@ -48,6 +48,11 @@ struct OutputConfig {
   bool tracers = true;
 };
 
+/// [parallel]: how a run over several ranks deals its blocks (docs/parallel.md). Nothing here changes a result.
+struct ParallelConfig {
+  double rebalance_threshold = 1.2;  ///< deal the blocks again when the largest rank cost exceeds this times the mean
+};
+
 struct RunConfig {
   double end_time = 1.0;
   double max_wall_time = 0.0;  ///< s; 0 means no limit
@@ -94,6 +99,7 @@ struct CaseConfig {
   ParticleInit particles{};
   SettleConfig settle{};
   OutputConfig output{};
+  ParallelConfig parallel{};
   bool gas_enabled = true;
   CaseGrid grid{};
   GasConfig gas{};

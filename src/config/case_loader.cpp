@@ -158,6 +158,7 @@ LoadedCase finish(CaseReader& r, const std::vector<std::string>& overrides) {
   LoadedCase out;
   read_case(r, out.config);
   read_output(r, out.config);  // before the gas: a derived gas step divides the output intervals
+  read_parallel(r, out.config);
   read_gas(r, out.config);  // read (and checked) even when the gas is off, so toggling gas.enabled is safe
   read_probes(r, out.config);
   read_averages(r, out.config);

@@ -49,4 +49,7 @@ void read_averages(CaseReader& r, CaseConfig& c);
 // output_section.cpp: into c.output.
 void read_output(CaseReader& r, CaseConfig& c);
 
+// parallel_section.cpp: into c.parallel.
+void read_parallel(CaseReader& r, CaseConfig& c);
+
 }  // namespace fluidbed::case_sections

@@ -10,6 +10,7 @@
 #include "coupling/voidage.hpp"
 #include "core/error.hpp"
 #include "closures/drag.hpp"
+#include "parallel/exact_sum.hpp"
 
 namespace fluidbed {
 
@@ -36,6 +37,38 @@ void CfdDemSimulation<Dim>::clip_voidage() {
 }
 
 template <int Dim>
+std::span<const std::uint32_t> CfdDemSimulation<Dim>::id_order() {
+  if (id_order_generation_ != dem_.store_generation() || id_order_.size() != dem_.particles().size()) {
+    slots_by_id(dem_.particles(), id_order_);
+    id_order_generation_ = dem_.store_generation();
+  }
+  return id_order_;
+}
+
+template <int Dim>
+void CfdDemSimulation<Dim>::share_owned_cells(std::span<Field<Dim>* const> fields) const {
+  const BlockLayout<Dim>* layout = dem_.layout();
+  if (layout == nullptr) return;
+  const Comm& comm = dem_.comm();
+  Bytes mine;
+  for (int b = 0; b < layout->blocks(); ++b) {
+    if (layout->owner(b) != comm.rank()) continue;
+    for_each(layout->cells_of(b), [&](const Index<Dim>& c) {
+      for (Field<Dim>* f : fields) pack(mine, (*f)[c]);
+    });
+  }
+  const std::vector<Bytes> all = comm.allgather(mine);
+  std::vector<Unpacker> from;
+  for (const Bytes& b : all) from.emplace_back(b);
+  for (int b = 0; b < layout->blocks(); ++b) {
+    Unpacker& u = from[static_cast<std::size_t>(layout->owner(b))];
+    for_each(layout->cells_of(b), [&](const Index<Dim>& c) {
+      for (Field<Dim>* f : fields) (*f)[c] = u.get<double>();
+    });
+  }
+}
+
+template <int Dim>
 void CfdDemSimulation<Dim>::deposit() {
   const Grid<Dim>& g = gas_->grid();
   // One set of kernel weights per gas step serves the deposition here and the interpolation to the particles in
@@ -44,8 +77,18 @@ void CfdDemSimulation<Dim>::deposit() {
   // Voidage, mean solids velocity and the interphase coefficient as the gas sees it in one pass: the particles'
   // drag coefficients K_p = V_p beta / (1 - eps) summed with the deposition kernel per unit cell volume (Eq. 12's
   // beta) and the K-weighted mean particle velocity, so that the gas receives what the particles feel (Newton's
-  // third law).
-  deposition_.deposit(dem_.particles(), weights_, g, depth_, DepositedFields<Dim>{&eps_, &us_, &beta_, &us_gas_});
+  // third law). On several ranks each computes the cells of its blocks (its particles and the ghosts reach them
+  // all) and shares them.
+  deposition_.deposit(dem_.particles(), weights_, g, depth_, DepositedFields<Dim>{&eps_, &us_, &beta_, &us_gas_},
+                      id_order());
+  if (dem_.distributed()) {
+    std::vector<Field<Dim>*> f{&eps_, &beta_};
+    for (int a = 0; a < Dim; ++a) {
+      f.push_back(&us_[static_cast<std::size_t>(a)]);
+      f.push_back(&us_gas_[static_cast<std::size_t>(a)]);
+    }
+    share_owned_cells(f);
+  }
   refuse_negative_voidage();
   clip_voidage();
 }
@@ -68,10 +111,11 @@ void CfdDemSimulation<Dim>::refuse_negative_voidage() const {
 
 template <int Dim>
 double CfdDemSimulation<Dim>::largest_diameter() const {
+  // Over every rank (collective): the slab depth must not depend on the split.
   const ParticleStore<Dim>& p = dem_.particles();
   double r = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) r = std::max(r, p.radius[i]);
-  return 2.0 * r;
+  for (std::size_t i = 0; i < dem_.owned(); ++i) r = std::max(r, p.radius[i]);
+  return 2.0 * dem_.comm().max(r);
 }
 
 template <int Dim>
@@ -91,21 +135,26 @@ void CfdDemSimulation<Dim>::update_particle_forces() {
   if (counting) particle_cell_weights(p, g, eps_, VoidageMethod::Bilinear, interp_weights_);
   const std::vector<CellWeights<Dim>>& iw = counting ? interp_weights_ : weights_;
   // Beetstra et al.'s polydisperse correction needs the Sauter mean diameter sum d^3 / sum d^2 around each
-  // particle: both sums deposited with the particles' own kernel weights (serially, in storage order, so the
-  // thread count cannot change them) and gathered back with the same weights.
+  // particle: both sums deposited with the particles' own kernel weights (per cell in ascending particle id, as the
+  // deposition) and gathered back with the same weights.
   Field<Dim> sum_d3, sum_d2;
   if (coupling_.drag_law == DragLaw::Beetstra) {
     sum_d3 = Field<Dim>(g.owned, 0);
     sum_d2 = Field<Dim>(g.owned, 0);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const double d = 2.0 * p.radius[i];
-      const CellWeights<Dim>& cw = weights_[i];
-      for (int k = 0; k < cw.count; ++k) {
-        const auto kk = static_cast<std::size_t>(k);
-        sum_d3.data()[cw.cell[kk]] += cw.w[kk] * d * d * d;
-        sum_d2.data()[cw.cell[kk]] += cw.w[kk] * d * d;
+    CellEntries e;
+    e.build(weights_, id_order(), sum_d3.data().size());
+    for (std::size_t c = 0; c < e.cells(); ++c) {
+      double s3 = 0.0, s2 = 0.0;
+      for (std::size_t q = e.begin(c); q < e.end(c); ++q) {
+        const double d = 2.0 * p.radius[e.slot(q)];
+        s3 += e.weight(q) * d * d * d;
+        s2 += e.weight(q) * d * d;
       }
+      sum_d3.data()[c] = s3;
+      sum_d2.data()[c] = s2;
     }
+    Field<Dim>* f[2] = {&sum_d3, &sum_d2};
+    share_owned_cells(f);
   }
   // The drag law is chosen here, once; the particle loop is compiled per law.
   with_drag_law(DragModel{coupling_.drag_law, coupling_.drag_switch}, [&](auto law) {
@@ -139,6 +188,7 @@ void CfdDemSimulation<Dim>::update_particle_forces() {
 template <int Dim>
 void CfdDemSimulation<Dim>::initialize() {
   if (!gas_) return;
+  dem_.prepare();  // on several ranks: the ghosts, which the deposition needs
   deposit();
   eps_gas_old_ = eps_gas_;
   // One quasi-steady gas solve for the bed at rest (particles have no drag coefficient yet: do it twice, the
@@ -184,13 +234,16 @@ double CfdDemSimulation<Dim>::min_voidage() const {
 
 template <int Dim>
 Vec<Dim> CfdDemSimulation<Dim>::total_fluid_force() const {
+  // Summed exactly over the owned particles: the same bits for any order and split of the particles.
   const ParticleStore<Dim>& p = dem_.particles();
-  Vec<Dim> f{};
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  std::array<ExactSum, Dim> s;
+  for (std::size_t i = 0; i < dem_.owned(); ++i) {
     for (int a = 0; a < Dim; ++a) {
-      f[a] += p.force_ext(a)[i] + p.drag_k[i] * (p.gas_velocity(a)[i] - p.velocity(a)[i]);
+      s[static_cast<std::size_t>(a)].add(p.force_ext(a)[i] + p.drag_k[i] * (p.gas_velocity(a)[i] - p.velocity(a)[i]));
     }
   }
+  Vec<Dim> f{};
+  for (int a = 0; a < Dim; ++a) f[a] = dem_.comm().sum(s[static_cast<std::size_t>(a)]);
   return f;
 }
 
@@ -213,12 +266,19 @@ void CfdDemSimulation<Dim>::restore(Field<Dim> eps, std::uint64_t gas_steps) {
   eps_ = std::move(eps);
   const Grid<Dim>& g = gas_->grid();
   clip_voidage();
+  dem_.prepare();  // on several ranks: the ghosts, which the deposition needs
   particle_cell_weights(dem_.particles(), g, eps_, coupling_.voidage, weights_);  // of the restored particles
   // The solids velocity as deposit() computes it (the voidage stays the restored one; the rest is recomputed
   // before the next gas step).
   Field<Dim> eps_now, beta_now;
   std::array<Field<Dim>, Dim> us_gas_now;
-  deposition_.deposit(dem_.particles(), weights_, g, depth_, DepositedFields<Dim>{&eps_now, &us_, &beta_now, &us_gas_now});
+  deposition_.deposit(dem_.particles(), weights_, g, depth_, DepositedFields<Dim>{&eps_now, &us_, &beta_now, &us_gas_now},
+                      id_order());
+  if (dem_.distributed()) {
+    std::vector<Field<Dim>*> f;
+    for (Field<Dim>& u : us_) f.push_back(&u);
+    share_owned_cells(f);
+  }
   gas_->cell_velocity(ug_);
 }
 

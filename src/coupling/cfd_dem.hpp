@@ -3,7 +3,9 @@
 // deposited on the grid, then one gas step (Eqs. 11-12), then the new fluid force on every particle. One code for
 // 2D monolayers and 3D beds (template <int Dim>).
 #include <array>
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/field.hpp"
@@ -64,6 +66,11 @@ class CfdDemSimulation {
   double largest_diameter() const;
   void deposit();
   void update_particle_forces();
+  /// The slots of the DEM store in ascending id (kept until the store changes).
+  std::span<const std::uint32_t> id_order();
+  /// Distributed: every rank's own cells (those of its blocks) of these fields to every rank, so that each holds
+  /// the whole grid (the gas is solved on every rank, the same way).
+  void share_owned_cells(std::span<Field<Dim>* const> fields) const;
 
   DemSolver<Dim> dem_;
   std::optional<GasSolver<Dim>> gas_;
@@ -76,6 +83,8 @@ class CfdDemSimulation {
   std::vector<CellWeights<Dim>> weights_;  ///< kernel weights of the particles at the last deposit
   std::vector<CellWeights<Dim>> interp_weights_;  ///< multilinear weights for the gather when the deposition counts
   Deposition<Dim> deposition_;
+  std::vector<std::uint32_t> id_order_;
+  std::uint64_t id_order_generation_ = ~0ull;
   GasStepReport report_{};
   std::uint64_t gas_steps_ = 0;
 };

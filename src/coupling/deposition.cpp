@@ -2,12 +2,78 @@
 
 #include <algorithm>
 #include <numbers>
+#include <omp.h>
 
 namespace fluidbed {
 
 template <int Dim>
+void slots_by_id(const ParticleStore<Dim>& p, std::vector<std::uint32_t>& out) {
+  out.resize(p.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<std::uint32_t>(k);
+  const std::int64_t* id = p.id.data();
+  if (std::is_sorted(out.begin(), out.end(), [id](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; })) return;
+  std::sort(out.begin(), out.end(), [id](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; });
+}
+
+template <int Dim>
+void CellEntries::build(const std::vector<CellWeights<Dim>>& weights, std::span<const std::uint32_t> id_order,
+                        std::size_t cells) {
+  const std::size_t n = id_order.size();
+  const auto chunks = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
+  if (chunk_count_.size() != chunks) chunk_count_.assign(chunks, {});
+  // Pass 1, per chunk of the id order: the shares each chunk gives each cell.
+#pragma omp parallel for schedule(static, 1)
+  for (std::ptrdiff_t cc = 0; cc < static_cast<std::ptrdiff_t>(chunks); ++cc) {
+    const auto c = static_cast<std::size_t>(cc);
+    std::vector<std::size_t>& count = chunk_count_[c];
+    count.assign(cells, 0);
+    for (std::size_t k = n * c / chunks; k < n * (c + 1) / chunks; ++k) {
+      const CellWeights<Dim>& cw = weights[id_order[k]];
+      for (int q = 0; q < cw.count; ++q) ++count[cw.cell[static_cast<std::size_t>(q)]];
+    }
+  }
+  // Offsets: cell by cell, chunk after chunk within a cell (so a cell's shares come in id order).
+  start_.assign(cells + 1, 0);
+  std::size_t at = 0;
+  for (std::size_t cell = 0; cell < cells; ++cell) {
+    start_[cell] = at;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::size_t m = chunk_count_[c][cell];
+      chunk_count_[c][cell] = at;  // now the chunk's next place in this cell
+      at += m;
+    }
+  }
+  start_[cells] = at;
+  slot_.resize(at);
+  w_.resize(at);
+  // Pass 2, per chunk: each share into its place.
+#pragma omp parallel for schedule(static, 1)
+  for (std::ptrdiff_t cc = 0; cc < static_cast<std::ptrdiff_t>(chunks); ++cc) {
+    const auto c = static_cast<std::size_t>(cc);
+    std::vector<std::size_t>& next = chunk_count_[c];
+    for (std::size_t k = n * c / chunks; k < n * (c + 1) / chunks; ++k) {
+      const std::uint32_t i = id_order[k];
+      const CellWeights<Dim>& cw = weights[i];
+      for (int q = 0; q < cw.count; ++q) {
+        const std::size_t e = next[cw.cell[static_cast<std::size_t>(q)]]++;
+        slot_[e] = i;
+        w_[e] = cw.w[static_cast<std::size_t>(q)];
+      }
+    }
+  }
+}
+
+template <int Dim>
 void Deposition<Dim>::deposit(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights,
                               const Grid<Dim>& g, double depth, const DepositedFields<Dim>& out) {
+  slots_by_id(p, order_);
+  deposit(p, weights, g, depth, out, order_);
+}
+
+template <int Dim>
+void Deposition<Dim>::deposit(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights,
+                              const Grid<Dim>& g, double depth, const DepositedFields<Dim>& out,
+                              std::span<const std::uint32_t> id_order) {
   Field<Dim>& eps = *out.eps;
   if (eps.box() != g.owned) eps = Field<Dim>(g.owned, 0);
   for (std::array<Field<Dim>, Dim>* v : {out.us, out.us_gas}) {
@@ -17,62 +83,35 @@ void Deposition<Dim>::deposit(const ParticleStore<Dim>& p, const std::vector<Cel
   }
   if (out.beta->box() != eps.box()) *out.beta = Field<Dim>(g.owned, 0);
   const std::size_t ncell = eps.data().size();
+  entries_.build(weights, id_order, ncell);
   const std::size_t n = p.size();
-  const std::size_t nblock = (n + kBlock - 1) / kBlock;
-  if (blocks_.size() < nblock) blocks_.resize(nblock);
-
-  // Pass 1, per block (any thread): the cell range its particles touch, then its partial sums in storage order.
-  // Particles are stored in spatial order, so a block's range is a slab of the grid and the buffers stay small.
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::ptrdiff_t bb = 0; bb < static_cast<std::ptrdiff_t>(nblock); ++bb) {
-    const auto b = static_cast<std::size_t>(bb);
-    Block& blk = blocks_[b];
-    const std::size_t i0 = b * kBlock;
-    const std::size_t i1 = std::min(n, i0 + kBlock);
-    std::size_t lo = ncell, hi = 0;
-    for (std::size_t i = i0; i < i1; ++i) {
-      const CellWeights<Dim>& cw = weights[i];
-      for (int k = 0; k < cw.count; ++k) {
-        lo = std::min(lo, cw.cell[static_cast<std::size_t>(k)]);
-        hi = std::max(hi, cw.cell[static_cast<std::size_t>(k)] + 1);
-      }
-    }
-    if (lo > hi) lo = hi = 0;
-    blk.first_cell = lo;
-    blk.end_cell = hi;
-    blk.sums.assign((hi - lo) * kStride, 0.0);
-    for (std::size_t i = i0; i < i1; ++i) {
-      const double r = p.radius[i];
-      const double vp = 4.0 / 3.0 * std::numbers::pi * r * r * r;
-      const double kp = p.drag_k[i];
-      std::array<double, Dim> v{};
-      for (int a = 0; a < Dim; ++a) v[static_cast<std::size_t>(a)] = p.velocity(a)[i];
-      const CellWeights<Dim>& cw = weights[i];
-      for (int k = 0; k < cw.count; ++k) {
-        double* s = blk.sums.data() + (cw.cell[static_cast<std::size_t>(k)] - lo) * kStride;
-        const double wv = cw.w[static_cast<std::size_t>(k)] * vp;
-        const double wk = cw.w[static_cast<std::size_t>(k)] * kp;
-        s[0] += wv;
-        s[1 + Dim] += wk;
-        for (int a = 0; a < Dim; ++a) {
-          s[1 + a] += wv * v[static_cast<std::size_t>(a)];
-          s[2 + Dim + a] += wk * v[static_cast<std::size_t>(a)];
-        }
-      }
-    }
+  vp_.resize(n);
+  const double* r = p.radius.data();
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < static_cast<std::ptrdiff_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    vp_[i] = 4.0 / 3.0 * std::numbers::pi * r[i] * r[i] * r[i];
   }
-
-  // Pass 2, per cell (any thread): the blocks' sums added in block order, then the cell values.
+  // Per cell (any thread): its shares in id order, then the cell values.
   const double vcell = deposition_volume(g, depth);
+  const double* kp = p.drag_k.data();
+  std::array<const double*, Dim> v{};
+  for (int a = 0; a < Dim; ++a) v[static_cast<std::size_t>(a)] = p.velocity(a).data();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t cc = 0; cc < static_cast<std::ptrdiff_t>(ncell); ++cc) {
     const auto c = static_cast<std::size_t>(cc);
-    std::array<double, kStride> s{};
-    for (std::size_t b = 0; b < nblock; ++b) {
-      const Block& blk = blocks_[b];
-      if (c < blk.first_cell || c >= blk.end_cell) continue;
-      const double* q = blk.sums.data() + (c - blk.first_cell) * kStride;
-      for (std::size_t m = 0; m < kStride; ++m) s[m] += q[m];
+    // Solids volume, volume-weighted velocity sums, K, K-weighted velocity sums.
+    std::array<double, 2 + 2 * Dim> s{};
+    for (std::size_t e = entries_.begin(c); e < entries_.end(c); ++e) {
+      const std::size_t i = entries_.slot(e);
+      const double wv = entries_.weight(e) * vp_[i];
+      const double wk = entries_.weight(e) * kp[i];
+      s[0] += wv;
+      s[1 + Dim] += wk;
+      for (int a = 0; a < Dim; ++a) {
+        s[1 + static_cast<std::size_t>(a)] += wv * v[static_cast<std::size_t>(a)][i];
+        s[2 + Dim + static_cast<std::size_t>(a)] += wk * v[static_cast<std::size_t>(a)][i];
+      }
     }
     const double vol = s[0];
     const double k = s[1 + Dim];
@@ -86,6 +125,10 @@ void Deposition<Dim>::deposit(const ParticleStore<Dim>& p, const std::vector<Cel
   }
 }
 
+template void slots_by_id<2>(const ParticleStore<2>&, std::vector<std::uint32_t>&);
+template void slots_by_id<3>(const ParticleStore<3>&, std::vector<std::uint32_t>&);
+template void CellEntries::build<2>(const std::vector<CellWeights<2>>&, std::span<const std::uint32_t>, std::size_t);
+template void CellEntries::build<3>(const std::vector<CellWeights<3>>&, std::span<const std::uint32_t>, std::size_t);
 template class Deposition<2>;
 template class Deposition<3>;
 

@@ -1,9 +1,13 @@
 #pragma once
 // Particle -> grid in one pass: solids volume, solids momentum and drag coefficient of every cell from the stored
-// kernel weights, threaded over fixed blocks of particles whose partial sums are added in block order, so that the
-// result is independent of the thread count (the blocks do not depend on it).
+// kernel weights. Each cell sums its particles' shares in ascending particle id (CellEntries), so a cell's value
+// depends only on the particles that reach it: not on the thread count, not on how the particles are stored, and
+// not on how the domain is split over ranks (a rank computes its cells from its own particles and the ghosts of
+// its neighbours', in the same order as one rank holding them all).
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/field.hpp"
@@ -22,27 +26,50 @@ struct DepositedFields {
   std::array<Field<Dim>, Dim>* us_gas = nullptr;  ///< K-weighted mean particle velocity (us where no drag)
 };
 
+/// The slots of a store in ascending id (ties cannot occur: ids are unique).
+template <int Dim>
+void slots_by_id(const ParticleStore<Dim>& p, std::vector<std::uint32_t>& out);
+
+/// Every cell's shares (particle slot, kernel weight), in ascending particle id and, for one particle, in the order
+/// of its weights: the order of every per-cell sum over particles. Built by a counting sort over the particles in id
+/// order, in chunks whose results are laid out chunk after chunk per cell, so the order is the same for any number
+/// of chunks (threads).
+class CellEntries {
+ public:
+  template <int Dim>
+  void build(const std::vector<CellWeights<Dim>>& weights, std::span<const std::uint32_t> id_order, std::size_t cells);
+  std::size_t cells() const { return start_.empty() ? 0 : start_.size() - 1; }
+  std::size_t begin(std::size_t c) const { return start_[c]; }
+  std::size_t end(std::size_t c) const { return start_[c + 1]; }
+  std::uint32_t slot(std::size_t e) const { return slot_[e]; }
+  double weight(std::size_t e) const { return w_[e]; }
+
+ private:
+  std::vector<std::size_t> start_;
+  std::vector<std::uint32_t> slot_;
+  std::vector<double> w_;
+  std::vector<std::vector<std::size_t>> chunk_count_;
+};
+
 /// Fused deposition with its work buffers kept between calls (no allocation once the sizes have settled).
 template <int Dim>
 class Deposition {
  public:
-  /// Particles per block: fixed, so that the order of the additions does not depend on the thread count.
-  static constexpr std::size_t kBlock = 2048;
-
   /// Deposits the particles (weights from particle_cell_weights on the owned box, one per particle in storage
-  /// order; drag coefficients K_p = p.drag_k) into `out`; V_cell is deposition_volume(grid, depth).
+  /// order; drag coefficients K_p = p.drag_k) into `out`; V_cell is deposition_volume(grid, depth). Every cell any
+  /// particle reaches gets the sums of the particles the store holds.
   void deposit(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights, const Grid<Dim>& grid,
                double depth, const DepositedFields<Dim>& out);
+  /// The same, with the slots in ascending id given (a caller that keeps them between depositions).
+  void deposit(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights, const Grid<Dim>& grid,
+               double depth, const DepositedFields<Dim>& out, std::span<const std::uint32_t> id_order);
+  /// The entries of the last deposition (for other sums in the same order, e.g. Beetstra's size moments).
+  const CellEntries& entries() const { return entries_; }
 
  private:
-  // Per cell: solids volume, volume-weighted velocity sums, K, K-weighted velocity sums.
-  static constexpr std::size_t kStride = 2 + 2 * Dim;
-  struct Block {
-    std::size_t first_cell = 0, end_cell = 0;  // the cells this block's particles touch
-    std::vector<double> sums;                  // kStride per cell of [first_cell, end_cell)
-  };
-  std::vector<Block> blocks_;
-  std::vector<double> total_;
+  CellEntries entries_;
+  std::vector<std::uint32_t> order_;
+  std::vector<double> vp_;
 };
 
 extern template class Deposition<2>;

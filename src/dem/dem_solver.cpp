@@ -153,94 +153,252 @@ DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move
     }
   }
   walls_.reset(p_.size());
+  n_owned_ = p_.size();
+  held_.clear(p_.size(), config_.contact.needs_rolling_history());
 }
 
 template <int Dim>
-void DemSolver<Dim>::rebuild() {
-  const std::size_t n = p_.size();
-  // The stretched springs of the old list, by old storage slot and partner id: only the held ones (about one
-  // entry in four in a packed bed), not a copy of the whole old list, so the rebuild needs little memory beyond
-  // the list itself.
-  const bool have_old = nbr_.offset.size() == n + 1 && nbr_.history.size() == nbr_.entries();
-  const bool rolling_history = config_.contact.needs_rolling_history();
-  const bool carry_rolling = rolling_history && have_old && nbr_.rolling.size() == nbr_.history.size();
-  if (have_old) gather_held_springs(carry_rolling);
-  // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles
-  // drift from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
-  const bool sorted = rebuilds_ % kSortEvery == 0;
-  std::vector<std::size_t> order;
-  if (sorted) {
-    order = sort_by_cell(p_, cell_size_);
-    p_.permute(order);
-    permute_wall_roll(order);
-    walls_.permute(order);
+void DemSolver<Dim>::distribute(const Comm& comm, const Index<Dim>& cells, const Vec<Dim>& h, const Vec<Dim>& origin,
+                                const Vec<Dim>& kernel_reach, double rebalance_threshold) {
+  if (comm.size() == 1) return;
+  rebalance_threshold_ = rebalance_threshold;
+  // Ghosts within the contact reach and, with the kernel's cells, a skin beyond: a particle moves less than half the
+  // skin between rebuilds, and the deposition happens after the step that sets off a rebuild.
+  Vec<Dim> kernel{};
+  Index<Dim> per_block{};
+  for (int a = 0; a < Dim; ++a) {
+    kernel[a] = kernel_reach[a] > 0.0 ? kernel_reach[a] + config_.skin : 0.0;
+    const double reach = std::max(cell_size_, kernel[a]);
+    per_block[a] = std::max(1, static_cast<int>(std::ceil(reach / h[a] * (1.0 + 1e-12))));
+  }
+  domain_.emplace(comm, BlockLayout<Dim>(cells, h, origin, per_block, periodic_.on), periodic_);
+  domain_->set_reach(cell_size_, kernel);
+  for (int a = 0; a < Dim; ++a) {
+    const BlockLayout<Dim>& l = domain_->layout();
+    if (l.counts()[a] > 1 && l.min_width(a) < domain_->reach(a)) {
+      throw_simulation_error(fmt::format("the blocks of the decomposition are {} m wide along axis {}, less than the "
+                                         "ghost reach of {} m (internal error)", l.min_width(a), a, domain_->reach(a)));
+    }
+  }
+  // Every rank holds the same particles here: the blocks are dealt by their particle counts, then each keeps its own.
+  std::vector<double> weight(static_cast<std::size_t>(domain_->layout().blocks()), 0.0);
+  for (std::size_t i = 0; i < p_.size(); ++i) weight[static_cast<std::size_t>(domain_->layout().block_at(p_.pos(i)))] += 1.0;
+  domain_->layout().assign(weight, comm.size());
+  imbalance_ = imbalance(domain_->layout().rank_weights(weight, comm.size()));
+  if (!list_springs_) {
+    // A restored (portable) state or a fresh one: nothing is in a list yet.
   } else {
+    gather_held_springs();
+    list_springs_ = false;
+  }
+  std::vector<std::size_t> keep;
+  for (std::size_t i = 0; i < n_owned_; ++i) {
+    if (domain_->owner_of(p_.pos(i)) == comm.rank()) keep.push_back(i);
+  }
+  select_owned(keep);
+  list_stale_ = true;
+}
+
+template <int Dim>
+std::uint64_t DemSolver<Dim>::total_particles() const {
+  std::int64_t n[1] = {static_cast<std::int64_t>(n_owned_)};
+  comm().sum(std::span<std::int64_t>(n));
+  return static_cast<std::uint64_t>(n[0]);
+}
+
+template <int Dim>
+typename DemSolver<Dim>::Store DemSolver<Dim>::all_particles(int root) const {
+  Bytes mine;
+  for (std::size_t i = 0; i < n_owned_; ++i) pack_particle(mine, p_, i);
+  const std::vector<Bytes> all = root < 0 ? comm().allgather(mine) : comm().gather(mine, root);
+  Store out;
+  for (const Bytes& b : all) {
+    Unpacker u(b);
+    while (!u.done()) unpack_particle(u, out);
+  }
+  out.sort_by_id();
+  return out;
+}
+
+template <int Dim>
+DemParallelStats DemSolver<Dim>::parallel_stats() const {
+  DemParallelStats s;
+  s.owned = n_owned_;
+  s.ghosts = p_.size() - n_owned_;
+  s.ghost_sends = plan_.sent();
+  s.partners = static_cast<int>(plan_.ranks.size());
+  s.migrated = migrated_;
+  s.rebalances = rebalances_;
+  s.imbalance = imbalance_;
+  return s;
+}
+
+template <int Dim>
+void DemSolver<Dim>::rebuild(bool counted) {
+  // The springs of the owned particles by partner id: only the held ones (about one entry in four in a packed bed),
+  // not a copy of the whole old list, so the rebuild needs little memory beyond the list itself.
+  if (list_springs_) gather_held_springs();
+  list_springs_ = false;
+  std::vector<std::size_t> keep(n_owned_);
+  for (std::size_t i = 0; i < n_owned_; ++i) keep[i] = i;
+  if (domain_) {
+    select_owned(keep);  // the ghosts go; the new set comes after migration
+    if (counted) rebalance_if_needed();
+    migrate();
+  }
+  // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles drift
+  // from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
+  if (counted && rebuilds_ % kSortEvery == 0) {
+    select_owned(sort_by_cell(p_, cell_size_));
+  } else if (!domain_) {
     walls_.compact();  // springs back at +0 give up their records
   }
-  build_neighbor_list(p_, cell_size_, config_.skin, nbr_, scratch_, periodic_);
-  if (rolling_history) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
+  if (counted) {
+    for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)] = p_.coord(a);
+  }
+  n_owned_ = p_.size();
+  if (domain_) plan_ = domain_->exchange_ghosts(p_, n_owned_);
+  build_neighbor_list(p_, n_owned_, cell_size_, config_.skin, nbr_, scratch_, periodic_);
+  if (config_.contact.needs_rolling_history()) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
+  carry_held_springs();
+  link_mirrors();
+  list_springs_ = true;
+  list_stale_ = false;
+  ++generation_;
+  if (counted) {
+    need_rebuild_ = false;
+    ++rebuilds_;
+  }
+}
 
-  if (have_old) {
-    // Carry each stretched spring over to the new entry of the same pair, found by the partner's id (so that
-    // it does not matter where either partner is stored now); released springs (zero) need no search, and a
-    // pair that left the list had released its spring already (it was beyond contact).
-    const auto sn = static_cast<std::ptrdiff_t>(n);
+template <int Dim>
+void DemSolver<Dim>::gather_held_springs() {
+  const std::size_t n = n_owned_;
+  const bool rolling = config_.contact.needs_rolling_history() && nbr_.rolling.size() == nbr_.history.size();
+  held_.clear(0, config_.contact.needs_rolling_history());
+  if (nbr_.offset.size() < n + 1) {
+    for (std::size_t i = 0; i < n; ++i) held_.add_particle();
+    return;
+  }
+  auto held = [&](std::size_t q) {
+    if (!HeldSprings<Dim>::plus_zero(nbr_.history[q])) return true;
+    if (!rolling) return false;
+    if constexpr (Dim == 2) {
+      return !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
+    } else {
+      return !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
+    }
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    held_.add_particle();
+    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
+      if (held(q)) held_.add(p_.id[nbr_.partner[q]], nbr_.history[q], rolling ? nbr_.rolling[q] : Spin<Dim>{});
+    }
+  }
+}
+
+template <int Dim>
+void DemSolver<Dim>::carry_held_springs() {
+  // Each held spring to the new entry of the same pair, found by the partner's id (so that it does not matter
+  // where either partner is stored now); a pair that left the list had released its spring (it was beyond contact).
+  if (held_.particles() != n_owned_) return;  // nothing held (a fresh solver)
+  const bool rolling = !nbr_.rolling.empty() && held_.keeps_rolling();
+  const auto sn = static_cast<std::ptrdiff_t>(n_owned_);
 #pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      const std::size_t o = sorted ? order[i] : i;
-      for (std::size_t q = held_offset_[o]; q < held_offset_[o + 1]; ++q) {
-        const Vec<Dim> h = held_history_[q];
-        const Spin<Dim> hr = carry_rolling ? held_rolling_[q] : Spin<Dim>{};
-        const std::int64_t j = held_partner_id_[q];
-        for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
-          if (p_.id[nbr_.partner[k]] == j) {
-            nbr_.history[k] = h;
-            if (carry_rolling) nbr_.rolling[k] = hr;
-            break;
-          }
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    for (std::size_t q = held_.offset[i]; q < held_.offset[i + 1]; ++q) {
+      const std::int64_t j = held_.partner_id[q];
+      for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+        if (p_.id[nbr_.partner[k]] == j) {
+          nbr_.history[k] = held_.xi[q];
+          if (rolling) nbr_.rolling[k] = held_.roll[q];
+          break;
         }
       }
     }
   }
-  link_mirrors();
-  for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)] = p_.coord(a);
-  need_rebuild_ = false;
-  ++rebuilds_;
 }
 
 template <int Dim>
-void DemSolver<Dim>::gather_held_springs(bool rolling) {
-  const std::size_t n = p_.size();
-  auto held = [&](std::size_t q) {
-    return !is_zero<Dim>(nbr_.history[q]) || (rolling && spin_norm2<Dim>(nbr_.rolling[q]) != 0.0);
-  };
-  held_offset_.assign(n + 1, 0);
-  const auto sn = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    std::size_t c = 0;
-    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) c += held(q) ? 1 : 0;
-    held_offset_[i + 1] = static_cast<std::uint32_t>(c);
+void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order) {
+  // What is the particles' own goes with them: the store, the springs against the walls and of the pairs, the
+  // positions of the last build. The ghosts (slots from n_owned_ on) are never named, so they go.
+  p_.permute(order);
+  walls_.permute(order);
+  permute_wall_roll(order);
+  if (held_.particles() == n_owned_) held_.select(order);
+  for (int a = 0; a < Dim; ++a) {
+    std::vector<double>& b = build_[static_cast<std::size_t>(a)];
+    if (b.size() != n_owned_) continue;
+    std::vector<double> nb(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) nb[k] = b[order[k]];
+    b.swap(nb);
   }
-  for (std::size_t i = 0; i < n; ++i) held_offset_[i + 1] += held_offset_[i];
-  const std::size_t m = held_offset_[n];
-  held_partner_id_.resize(m);
-  held_history_.resize(m);
-  held_rolling_.resize(rolling ? m : 0);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    std::size_t c = held_offset_[i];
-    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
-      if (!held(q)) continue;
-      held_partner_id_[c] = p_.id[nbr_.partner[q]];
-      held_history_[c] = nbr_.history[q];
-      if (rolling) held_rolling_[c] = nbr_.rolling[q];
-      ++c;
+  n_owned_ = order.size();
+  nbr_.offset.clear();  // the list named the old slots
+  upper_offset_.clear();
+  last_valid_ = false;
+  ++generation_;
+}
+
+template <int Dim>
+void DemSolver<Dim>::migrate() {
+  // Called with no ghosts in the store: every slot is owned. Particles whose block is another rank's go there,
+  // the others keep their order, the arrivals follow in the order of their senders' ranks.
+  const int me = domain_->rank();
+  const auto nr = static_cast<std::size_t>(domain_->size());
+  std::vector<Bytes> out(nr);
+  std::vector<std::size_t> keep;
+  keep.reserve(n_owned_);
+  for (int a = 0; a < Dim; ++a) {
+    if (build_[static_cast<std::size_t>(a)].size() != n_owned_) build_[static_cast<std::size_t>(a)] = p_.coord(a);
+  }
+  if (held_.particles() != n_owned_) held_.clear(n_owned_, config_.contact.needs_rolling_history());
+  for (std::size_t i = 0; i < n_owned_; ++i) {
+    const int r = domain_->owner_of(p_.pos(i));
+    if (r == me) {
+      keep.push_back(i);
+    } else {
+      pack_owned(out[static_cast<std::size_t>(r)], i);
     }
   }
+  const std::vector<Bytes> in = domain_->comm().exchange(out);
+  if (keep.size() != n_owned_) select_owned(keep);
+  for (std::size_t r = 0; r < nr; ++r) {
+    if (static_cast<int>(r) == me) continue;
+    Unpacker u(in[r]);
+    while (!u.done()) {
+      unpack_owned(u);
+      ++migrated_;
+    }
+  }
+  ++generation_;
+}
+
+template <int Dim>
+void DemSolver<Dim>::rebalance_if_needed() {
+  // The cost of a rank: its particles and their list entries (the force and list work) and its blocks' cells (the
+  // deposition); counts, not timings, so every rank reaches the same verdict and the same deal.
+  const Comm& c = domain_->comm();
+  const BlockLayout<Dim>& layout = domain_->layout();
+  const auto nr = static_cast<std::size_t>(c.size());
+  auto cost_of = [&](std::size_t i) {
+    const double entries = nbr_.offset.size() > i + 1 ? static_cast<double>(nbr_.offset[i + 1] - nbr_.offset[i]) : 0.0;
+    return 1.0 + 0.25 * entries;
+  };
+  std::vector<double> mine(nr, 0.0);
+  for (std::size_t i = 0; i < n_owned_; ++i) mine[static_cast<std::size_t>(c.rank())] += cost_of(i);
+  c.max(std::span<double>(mine));  // each rank's own total, one entry each
+  imbalance_ = imbalance(mine);
+  if (imbalance_ <= rebalance_threshold_) return;
+  std::vector<double> weight(static_cast<std::size_t>(layout.blocks()), 0.0);
+  for (std::size_t i = 0; i < n_owned_; ++i) weight[static_cast<std::size_t>(layout.block_at(p_.pos(i)))] += cost_of(i);
+  c.max(std::span<double>(weight));  // a block's particles are all on its owner: the maximum is its weight
+  const std::vector<int> before = layout.owners();
+  domain_->layout().assign(weight, c.size());
+  if (layout.owners() != before) ++rebalances_;
+  imbalance_ = imbalance(layout.rank_weights(weight, c.size()));
 }
 
 template <int Dim>
@@ -630,11 +788,13 @@ struct DemSolver<Dim>::ForcePass {
 template <int Dim>
 template <class Law, bool Mixed, bool Periodic, bool Sized>
 double DemSolver<Dim>::compute_forces_of(double dt) {
-  const std::size_t n = p_.size();
-  if (upper_offset_.size() != n + 1 || linked_entries_ != nbr_.entries()) link_mirrors();  // a restored list
+  if (upper_offset_.size() != p_.size() + 1 || linked_entries_ != nbr_.entries()) link_mirrors();  // a restored list
   if (Law::kRollingHistory && nbr_.rolling.size() != nbr_.entries()) {
     nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});  // a list restored from a run without rolling springs
   }
+  // Only the owned particles take forces; a ghost's pairs with owned particles are in their owners' half lists (the
+  // owned slots come first), and its pairs with other ghosts are its own rank's business.
+  const std::size_t n = n_owned_;
   if (Law::kRollingHistory && wall_roll_.size() != n * 2 * Dim) wall_roll_.assign(n * 2 * Dim, Spin<Dim>{});
   ForcePass<Law, Mixed, Periodic, Sized> pass(*this, dt);
   double max_ov = 0.0;
@@ -678,8 +838,11 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   }
   contact_force_.resize(base[nb]);
   contact_torque_.resize(2 * base[nb]);
-  contact_force_[0] = Vec<Dim>{};
-  contact_torque_[0] = contact_torque_[1] = Spin<Dim>{};
+  // The zero record is -0: adding it leaves every sum as it was, -0 and +0 included (x + (-0) = x for every x),
+  // so a particle's sum is that of its contacts alone, whatever other pairs its list holds (a list built at
+  // another time, or on another rank, holds other pairs out of contact).
+  contact_force_[0] = -Vec<Dim>{};
+  contact_torque_[0] = contact_torque_[1] = -Spin<Dim>{};
 #pragma omp parallel num_threads(max_threads) reduction(max : max_ov, max_frac)
   {
     const auto [t0, nt] = team_slot();
@@ -737,15 +900,17 @@ template <int Dim>
 DemStepInfo DemSolver<Dim>::advance(double dt) {
   DemStepInfo info;
   if (need_rebuild_) {
-    rebuild();
+    rebuild(true);
     info.rebuilt = true;
+  } else if (list_stale_) {
+    rebuild(false);
   }
   info.max_overlap = compute_forces(dt);
 
   // Eq. 10: explicit update, new velocity first, then position with the new velocity. The drag
   // drag_k (ug - v) is taken implicitly in v so that light or fine particles do not limit the time step;
-  // with drag_k = 0 this is exactly Eq. 10.
-  const std::size_t n = p_.size();
+  // with drag_k = 0 this is exactly Eq. 10. Owned particles only: the ghosts follow their owners.
+  const std::size_t n = n_owned_;
   const Vec<Dim> g = config_.domain.gravity_vector<Dim>();
   const double half_skin2 = 0.25 * config_.skin * config_.skin;
   const DomainTest in_domain = domain_test();
@@ -801,11 +966,27 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
     if (moved2 >= half_skin2) moved_far = 1;
     if (!ok) bad = 1;
   }
+  if (domain_) finish_step_distributed(moved_far, bad, escaped);
+  info.max_overlap = max_overlap_;
   need_rebuild_ = moved_far != 0;
   ++steps_;
   if (bad != 0) check_particles();
-  if (escaped != 0) info.removed = remove_escaped();
+  if (escaped != 0) info.removed = domain_ ? remove_escaped_distributed() : remove_escaped();
   return info;
+}
+
+template <int Dim>
+void DemSolver<Dim>::finish_step_distributed(int& moved_far, int& bad, int& escaped) {
+  domain_->forward(p_, plan_);
+  // One reduction a step: the rebuild trigger, a failure, an escape and the largest overlaps, over every rank.
+  double v[5] = {static_cast<double>(moved_far), static_cast<double>(bad), static_cast<double>(escaped), max_overlap_,
+                 max_overlap_fraction_};
+  domain_->comm().max(std::span<double>(v));
+  moved_far = v[0] != 0.0 ? 1 : 0;
+  bad = v[1] != 0.0 ? 1 : 0;
+  escaped = v[2] != 0.0 ? 1 : 0;
+  max_overlap_ = v[3];
+  max_overlap_fraction_ = v[4];
 }
 
 template <int Dim>
@@ -816,18 +997,27 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   std::vector<std::size_t> keep, new_slot(n, kGone);
   keep.reserve(n);
   std::size_t removed = 0;
+  ExactSum mass;  // the step's removed mass, in no order: the same bits as on any split over ranks
   for (std::size_t i = 0; i < n; ++i) {
     bool gone = false;
     for (int a = 0; a < Dim; ++a) gone = gone || in_domain.escaped(a, p_.coord(a)[i]);
     if (gone) {
       ++removed;
-      removed_mass_ += p_.mass[i];
+      mass.add(p_.mass[i]);
     } else {
       new_slot[i] = keep.size();
       keep.push_back(i);
     }
   }
   removed_count_ += removed;
+  removed_mass_ += mass.value();
+  if (!list_springs_ || nbr_.offset.size() != n + 1) {
+    // No current list (none built yet): the held springs go with their particles, the list is built before the
+    // next force evaluation.
+    select_owned(keep);
+    list_stale_ = true;
+    return removed;
+  }
   // The neighbour list of the particles that stay, in the same order, with their springs: the remaining pairs
   // are still within reach of their last build, so the list stays valid without a rebuild.
   List list;
@@ -836,33 +1026,51 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   list.history.reserve(nbr_.history.size());
   const bool rolling = nbr_.rolling.size() == nbr_.history.size() && !nbr_.rolling.empty();
   if (rolling) list.rolling.reserve(nbr_.rolling.size());
-  if (nbr_.offset.size() == n + 1) {
-    for (std::size_t k = 0; k < keep.size(); ++k) {
-      const std::size_t i = keep[k];
-      for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
-        const std::size_t j = new_slot[nbr_.partner[q]];
-        if (j == kGone) continue;
-        list.partner.push_back(static_cast<std::uint32_t>(j));
-        list.history.push_back(nbr_.history[q]);
-        if (rolling) list.rolling.push_back(nbr_.rolling[q]);
-      }
-      list.offset[k + 1] = list.partner.size();
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    const std::size_t i = keep[k];
+    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
+      const std::size_t j = new_slot[nbr_.partner[q]];
+      if (j == kGone) continue;
+      list.partner.push_back(static_cast<std::uint32_t>(j));
+      list.history.push_back(nbr_.history[q]);
+      if (rolling) list.rolling.push_back(nbr_.rolling[q]);
     }
-    nbr_ = std::move(list);
-  } else {
-    need_rebuild_ = true;
+    list.offset[k + 1] = list.partner.size();
   }
-  p_.permute(keep);
-  permute_wall_roll(keep);
-  walls_.permute(keep);
-  for (int a = 0; a < Dim; ++a) {
-    std::vector<double>& b = build_[static_cast<std::size_t>(a)];
-    std::vector<double> nb(keep.size());
-    for (std::size_t k = 0; k < keep.size(); ++k) nb[k] = b.empty() ? p_.coord(a)[k] : b[keep[k]];
-    b.swap(nb);
-  }
-  if (!need_rebuild_) link_mirrors();
+  select_owned(keep);  // the store and what goes with it (it forgets the list: restored below)
+  nbr_ = std::move(list);
+  link_mirrors();
   return removed;
+}
+
+template <int Dim>
+std::size_t DemSolver<Dim>::remove_escaped_distributed() {
+  // As on one rank, but the ghosts of the removed particles are on other ranks: every rank drops its escaped owned
+  // particles and builds its list and ghosts anew (not counted: the same list, without them).
+  if (list_springs_) gather_held_springs();
+  list_springs_ = false;
+  const DomainTest in_domain = domain_test();
+  std::vector<std::size_t> keep;
+  keep.reserve(n_owned_);
+  ExactSum mass;
+  std::int64_t removed[1] = {0};
+  for (std::size_t i = 0; i < n_owned_; ++i) {
+    bool gone = false;
+    for (int a = 0; a < Dim; ++a) gone = gone || in_domain.escaped(a, p_.coord(a)[i]);
+    if (gone) {
+      ++removed[0];
+      mass.add(p_.mass[i]);
+    } else {
+      keep.push_back(i);
+    }
+  }
+  select_owned(keep);
+  const Comm& c = domain_->comm();
+  c.sum(std::span<std::int64_t>(removed));
+  removed_count_ += static_cast<std::uint64_t>(removed[0]);
+  removed_mass_ += c.sum(mass);
+  rebuild(false);
+  return static_cast<std::size_t>(removed[0]);
 }
 
 namespace {
@@ -888,7 +1096,14 @@ std::size_t DemSolver<Dim>::insert_due() {
   const Species& species = config_.species[static_cast<std::size_t>(in.species)];
   Vec<Dim> vel;
   for (int a = 0; a < Dim; ++a) vel[a] = in.velocity[a];
+  // The particles a new one could touch: all of them on one rank; on several, every rank's particles near the
+  // region, gathered, so that every rank draws and tests the same way and adds the new particles in its blocks.
+  std::vector<Vec<Dim>> near_x;
+  std::vector<double> near_r;
+  if (domain_) gather_near_region(near_x, near_r);
   std::size_t added = 0;
+  std::vector<std::pair<std::int64_t, Vec<Dim>>> mine;  // distributed: the new particles in this rank's blocks
+  std::vector<Species> mine_species;
   std::uint64_t tries = static_cast<std::uint64_t>(std::max(in.attempts_per_particle, 1)) * (due - feed_.inserted);
   while (feed_.inserted < due && tries-- > 0) {
     // A species with a size distribution: the k-th fed particle's size from a counter-based stream of its own
@@ -904,90 +1119,308 @@ std::size_t DemSolver<Dim>::insert_due() {
     }
     // Clear of every particle (their nearest images on periodic axes): a new particle starts out of contact.
     bool clear = true;
-    for (std::size_t i = 0; i < p_.size() && clear; ++i) {
-      const Vec<Dim> d = periodic_.min_image(p_.pos(i) - x);
-      const double reach = p_.radius[i] + r;
-      clear = dot(d, d) >= reach * reach;
+    if (!domain_) {
+      for (std::size_t i = 0; i < p_.size() && clear; ++i) {
+        const Vec<Dim> d = periodic_.min_image(p_.pos(i) - x);
+        const double reach = p_.radius[i] + r;
+        clear = dot(d, d) >= reach * reach;
+      }
+    } else {
+      for (std::size_t i = 0; i < near_x.size() && clear; ++i) {
+        const Vec<Dim> d = periodic_.min_image(near_x[i] - x);
+        const double reach = near_r[i] + r;
+        clear = dot(d, d) >= reach * reach;
+      }
     }
     if (!clear) continue;
-    const bool list_valid = nbr_.offset.size() == p_.size() + 1;
-    p_.add(feed_.next_id++, in.species, sp, x, vel);
-    // The list stays that of the old particles, the new one without partners, so the next rebuild carries the
-    // springs of the old contacts over as after any other step.
-    if (list_valid) nbr_.offset.push_back(nbr_.offset.back());
-    // Its wall rolling springs start relaxed; the others' stay (a size mismatch would reset them all).
-    if (!wall_roll_.empty()) wall_roll_.resize(wall_roll_.size() + 2 * Dim, Spin<Dim>{});
-    walls_.push_back();
-    for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)].push_back(x[a]);
+    if (domain_) {
+      near_x.push_back(x);
+      near_r.push_back(r);
+      if (domain_->owner_of(x) == domain_->rank()) {
+        mine.emplace_back(feed_.next_id, x);
+        mine_species.push_back(sp);
+      }
+      ++feed_.next_id;
+    } else {
+      const bool list_valid = nbr_.offset.size() == p_.size() + 1;
+      p_.add(feed_.next_id++, in.species, sp, x, vel);
+      // The list stays that of the old particles, the new one without partners, so the next rebuild carries the
+      // springs of the old contacts over as after any other step.
+      if (list_valid) nbr_.offset.push_back(nbr_.offset.back());
+      // Its wall rolling springs start relaxed; the others' stay (a size mismatch would reset them all).
+      if (!wall_roll_.empty()) wall_roll_.resize(wall_roll_.size() + 2 * Dim, Spin<Dim>{});
+      walls_.push_back();
+      for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)].push_back(x[a]);
+      if (held_.particles() == n_owned_) held_.add_particle();
+      ++n_owned_;
+      ++generation_;
+    }
     ++feed_.inserted;
-    feed_.mass += p_.mass.back();
+    feed_.mass += sp.mass();
     ++added;
   }
   if (added > 0) need_rebuild_ = true;
   if (added > 0 && species.sized()) sized_ = true;
+  if (domain_ && added > 0) {
+    // The new particles join their owners' stores, then the list and the ghosts are built again so that the next
+    // deposition sees them on every rank (not counted: the counted rebuild comes at the next step, as on one rank).
+    if (list_springs_) gather_held_springs();
+    list_springs_ = false;
+    std::vector<std::size_t> keep(n_owned_);
+    for (std::size_t i = 0; i < n_owned_; ++i) keep[i] = i;
+    select_owned(keep);
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      p_.add(mine[k].first, in.species, mine_species[k], mine[k].second, vel);
+      if (!wall_roll_.empty()) wall_roll_.resize(wall_roll_.size() + 2 * Dim, Spin<Dim>{});
+      walls_.push_back();
+      for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)].push_back(mine[k].second[a]);
+      held_.add_particle();
+      ++n_owned_;
+    }
+    rebuild(false);
+  }
   return added;
 }
 
 template <int Dim>
+void DemSolver<Dim>::gather_near_region(std::vector<Vec<Dim>>& x, std::vector<double>& r) const {
+  const InsertionConfig& in = config_.insertion;
+  // A particle can touch a new one only within its own and the new one's radius of the region: the cell size
+  // (largest diameter + skin) is more than that.
+  const double margin = cell_size_;
+  Bytes out;
+  for (std::size_t i = 0; i < n_owned_; ++i) {
+    bool near = true;
+    for (int a = 0; a < Dim && near; ++a) {
+      const double xi = p_.coord(a)[i];
+      const double lo = in.region_lo[a], hi = in.region_hi[a];
+      double d = std::max({lo - xi, xi - hi, 0.0});
+      if (periodic_.periodic(a)) {
+        const double L = periodic_.length[a];
+        d = std::min({d, std::max({lo - (xi + L), (xi + L) - hi, 0.0}), std::max({lo - (xi - L), (xi - L) - hi, 0.0})});
+      }
+      near = d <= margin;
+    }
+    if (!near) continue;
+    pack(out, p_.pos(i));
+    pack(out, p_.radius[i]);
+  }
+  const Bytes all = domain_->comm().allgather_concat(out);
+  Unpacker u(all);
+  while (!u.done()) {
+    x.push_back(u.get<Vec<Dim>>());
+    r.push_back(u.get<double>());
+  }
+}
+
+template <int Dim>
 void DemSolver<Dim>::check_particles() const {
-  const std::size_t n = p_.size();
+  // The offending particle with the smallest id over every rank, so the message depends neither on the threads
+  // nor on the split of the domain; every rank stops with it.
+  const auto mine = particle_failure();
+  const std::optional<std::string> what =
+      domain_ ? comm().first_failure(mine ? std::optional<std::string>(mine->second) : std::nullopt,
+                                     mine ? static_cast<double>(mine->first) : 0.0)
+              : (mine ? std::optional<std::string>(mine->second) : std::nullopt);
+  if (what) throw_simulation_error(*what);
+}
+
+template <int Dim>
+std::optional<std::pair<std::int64_t, std::string>> DemSolver<Dim>::particle_failure() const {
+  const std::size_t n = n_owned_;
   const double W = config_.domain.width;
   const double H = config_.domain.height;
-  // Report the offending particle with the smallest id, so the message does not depend on threads.
   const DomainTest in_domain = domain_test();
   std::size_t worst = n;
   for (std::size_t i = 0; i < n; ++i) {
     if (!in_domain(p_, i) && (worst == n || p_.id[i] < p_.id[worst])) worst = i;
   }
-  if (worst == n) return;
+  if (worst == n) return std::nullopt;
   bool finite = true;
   for (int a = 0; a < Dim; ++a) finite = finite && std::isfinite(p_.coord(a)[worst]) && std::isfinite(p_.velocity(a)[worst]);
   for (int c = 0; c < kSpinComponents<Dim>; ++c) finite = finite && std::isfinite(p_.spin_component(c)[worst]);
   bool inside_across = p_.x[worst] >= 0.0 && p_.x[worst] <= W;
   if constexpr (Dim == 3) inside_across = inside_across && p_.z[worst] >= 0.0 && p_.z[worst] <= config_.domain.depth;
+  const std::int64_t id = p_.id[worst];
   if (finite && p_.y[worst] > H && inside_across) {
-    throw_simulation_error(fmt::format(
+    return std::pair{id, fmt::format(
         "t = {:.6g} s: particle {} left through the open top of the domain (y = {:.6g} m > {} m, velocity "
         "({:.6g}, {:.6g}) m/s). The top is open to the gas but particles may not leave: likely cause, the gas lifts "
         "the bed (a plug or a burst at the surface); remedy: domain.particle_top = \"outflow\" removes and counts "
         "the particles that leave (monitor.csv particles_lost, mass_lost_kg), domain.particle_top = \"wall\" keeps "
         "them in, or make the domain taller or ramp the inlet up (inlet.ramp_time).",
-        time_, p_.id[worst], p_.y[worst], H, p_.vx[worst], p_.vy[worst]));
+        time_, id, p_.y[worst], H, p_.vx[worst], p_.vy[worst])};
   }
   if constexpr (Dim == 2) {
-    throw_simulation_error(fmt::format(
+    return std::pair{id, fmt::format(
         "t = {:.6g} s: particle {} left the domain [0, {}] x [0, {}] m or its state is not finite: position "
         "({:.6g}, {:.6g}) m, velocity ({:.6g}, {:.6g}) m/s. Likely cause: the time step is too large for the "
         "stiffness (check `fluidbed check`); remedy: reduce dem.time_step.",
-        time_, p_.id[worst], W, H, p_.x[worst], p_.y[worst], p_.vx[worst], p_.vy[worst]));
+        time_, id, W, H, p_.x[worst], p_.y[worst], p_.vx[worst], p_.vy[worst])};
   } else {
-    throw_simulation_error(fmt::format(
+    return std::pair{id, fmt::format(
         "t = {:.6g} s: particle {} left the domain [0, {}] x [0, {}] x [0, {}] m or its state is not finite: "
         "position ({:.6g}, {:.6g}, {:.6g}) m, velocity ({:.6g}, {:.6g}, {:.6g}) m/s. Likely cause: the time step is "
         "too large for the stiffness (check `fluidbed check`); remedy: reduce dem.time_step.",
-        time_, p_.id[worst], W, H, config_.domain.depth, p_.x[worst], p_.y[worst], p_.z[worst], p_.vx[worst],
-        p_.vy[worst], p_.vz[worst]));
+        time_, id, W, H, config_.domain.depth, p_.x[worst], p_.y[worst], p_.z[worst], p_.vx[worst],
+        p_.vy[worst], p_.vz[worst])};
   }
 }
 
 template <int Dim>
 double DemSolver<Dim>::kinetic_energy() const {
-  double e = 0.0;
-  for (std::size_t i = 0; i < p_.size(); ++i) {
-    e += 0.5 * p_.mass[i] * norm2(p_.vel(i)) + 0.5 * spin_norm2<Dim>(p_.spin(i)) / p_.inv_inertia[i];
+  ExactSum e;
+  for (std::size_t i = 0; i < n_owned_; ++i) {
+    e.add(0.5 * p_.mass[i] * norm2(p_.vel(i)) + 0.5 * spin_norm2<Dim>(p_.spin(i)) / p_.inv_inertia[i]);
   }
-  return e;
+  return comm().sum(e);
+}
+
+template <int Dim>
+double DemSolver<Dim>::total_mass() const {
+  ExactSum m;
+  for (std::size_t i = 0; i < n_owned_; ++i) m.add(p_.mass[i]);
+  return comm().sum(m);
 }
 
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
-  return State{p_,           nbr_,         walls_,        build_,        time_,         steps_,       rebuilds_,
-               need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,
-               wall_roll_};
+  if (domain_) throw std::logic_error("DemSolver::state: a distributed solver gives portable_state()");
+  State st{p_,           nbr_,         walls_,        build_,        time_,         steps_,       rebuilds_,
+           need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,
+           wall_roll_};
+  if (!list_springs_) {
+    st.neighbors = List{};  // no current list: the springs are the held ones
+    st.held = held_;
+  }
+  return st;
+}
+
+namespace {
+// One particle of a state's arrays as a message, with its wall springs, rolling wall springs, build position and
+// pair springs by partner id; and back, appended. The record migration, gathers and checkpoints share.
+template <int Dim>
+void pack_record(Bytes& b, const ParticleStore<Dim>& p, const WallSprings<Dim>& walls,
+                 const std::vector<Spin<Dim>>& wall_roll, const std::array<std::vector<double>, Dim>& build,
+                 const HeldSprings<Dim>& held, std::size_t i, std::size_t owned) {
+  pack_particle(b, p, i);
+  for (int w = 0; w < 2 * Dim; ++w) pack(b, walls.get(i, w));
+  const bool roll = !wall_roll.empty();
+  pack(b, static_cast<std::uint8_t>(roll));
+  if (roll) {
+    for (int w = 0; w < 2 * Dim; ++w) pack(b, wall_roll[i * 2 * Dim + static_cast<std::size_t>(w)]);
+  }
+  for (int a = 0; a < Dim; ++a) {
+    const std::vector<double>& bl = build[static_cast<std::size_t>(a)];
+    pack(b, bl.size() == owned ? bl[i] : p.coord(a)[i]);
+  }
+  const bool has = held.particles() == owned;
+  const std::size_t q0 = has ? held.offset[i] : 0, q1 = has ? held.offset[i + 1] : 0;
+  pack(b, static_cast<std::uint64_t>(q1 - q0));
+  for (std::size_t q = q0; q < q1; ++q) {
+    pack(b, held.partner_id[q]);
+    pack(b, held.xi[q]);
+    pack(b, held.keeps_rolling() ? held.roll[q] : Spin<Dim>{});
+  }
+}
+
+template <int Dim>
+void unpack_record(Unpacker& u, ParticleStore<Dim>& p, WallSprings<Dim>& walls, std::vector<Spin<Dim>>& wall_roll,
+                   std::array<std::vector<double>, Dim>& build, HeldSprings<Dim>& held) {
+  unpack_particle(u, p);
+  const std::size_t i = p.size() - 1;
+  walls.push_back();
+  for (int w = 0; w < 2 * Dim; ++w) walls.set(i, w, u.get<Vec<Dim>>());
+  const bool roll = u.get<std::uint8_t>() != 0;
+  if (roll || !wall_roll.empty()) wall_roll.resize(2 * Dim * (i + 1), Spin<Dim>{});
+  if (roll) {
+    for (int w = 0; w < 2 * Dim; ++w) wall_roll[i * 2 * Dim + static_cast<std::size_t>(w)] = u.get<Spin<Dim>>();
+  }
+  for (int a = 0; a < Dim; ++a) build[static_cast<std::size_t>(a)].push_back(u.get<double>());
+  const auto m = static_cast<std::size_t>(u.get<std::uint64_t>());
+  held.add_particle();
+  for (std::size_t q = 0; q < m; ++q) {
+    const auto id = u.get<std::int64_t>();
+    const auto xi = u.get<Vec<Dim>>();
+    const auto r = u.get<Spin<Dim>>();
+    held.add(id, xi, r);
+  }
+}
+}  // namespace
+
+template <int Dim>
+void DemSolver<Dim>::pack_owned(Bytes& b, std::size_t i) const {
+  pack_record<Dim>(b, p_, walls_, wall_roll_, build_, held_, i, n_owned_);
+}
+
+template <int Dim>
+void DemSolver<Dim>::unpack_owned(Unpacker& u) {
+  // Called with no ghosts in the store.
+  for (int a = 0; a < Dim; ++a) {
+    if (build_[static_cast<std::size_t>(a)].size() != p_.size()) build_[static_cast<std::size_t>(a)] = p_.coord(a);
+  }
+  if (held_.particles() != p_.size()) held_.clear(p_.size(), config_.contact.needs_rolling_history());
+  unpack_record<Dim>(u, p_, walls_, wall_roll_, build_, held_);
+  ++n_owned_;
+}
+
+template <int Dim>
+typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
+  // Every owned particle with its springs by partner id (from the list when it is current), gathered on rank 0.
+  HeldSprings<Dim> held_now;
+  const HeldSprings<Dim>* held = &held_;
+  if (list_springs_) {
+    DemSolver& self = const_cast<DemSolver&>(*this);
+    HeldSprings<Dim> saved = std::move(self.held_);
+    self.gather_held_springs();
+    held_now = std::move(self.held_);
+    self.held_ = std::move(saved);
+    held = &held_now;
+  }
+  Bytes mine;
+  for (std::size_t i = 0; i < n_owned_; ++i) pack_record<Dim>(mine, p_, walls_, wall_roll_, build_, *held, i, n_owned_);
+  State st;
+  st.time = time_;
+  st.steps = steps_;
+  st.rebuilds = rebuilds_;
+  st.need_rebuild = need_rebuild_;
+  st.time_origin = time_origin_;
+  st.steps_origin = steps_origin_;
+  st.removed_count = removed_count_;
+  st.removed_mass = removed_mass_;
+  st.feed = feed_;
+  st.held.clear(0, config_.contact.needs_rolling_history());
+  const std::vector<Bytes> all = comm().gather(mine, 0);
+  if (all.empty()) return st;
+  for (const Bytes& b : all) {
+    Unpacker u(b);
+    while (!u.done()) unpack_record<Dim>(u, st.particles, st.walls, st.wall_roll, st.build, st.held);
+  }
+  // Ascending id: the same file whatever the storage order and the number of ranks.
+  std::vector<std::size_t> order(st.particles.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return st.particles.id[a] < st.particles.id[b]; });
+  st.particles.permute(order);
+  st.walls.permute(order);
+  if (!st.wall_roll.empty()) {
+    std::vector<Spin<Dim>> r(st.wall_roll.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      for (std::size_t w = 0; w < 2 * Dim; ++w) r[k * 2 * Dim + w] = st.wall_roll[order[k] * 2 * Dim + w];
+    }
+    st.wall_roll.swap(r);
+  }
+  for (auto& b : st.build) {
+    std::vector<double> nb(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) nb[k] = b[order[k]];
+    b.swap(nb);
+  }
+  st.held.select(order);
+  return st;
 }
 
 template <int Dim>
 void DemSolver<Dim>::restore(State s) {
+  const bool portable = s.neighbors.offset.empty() && s.neighbors.partner.empty();
   p_ = std::move(s.particles);
   nbr_ = std::move(s.neighbors);
   walls_ = std::move(s.walls);
@@ -1010,21 +1443,57 @@ void DemSolver<Dim>::restore(State s) {
   removed_count_ = s.removed_count;
   removed_mass_ = s.removed_mass;
   feed_ = s.feed;
-  // A state from before the feed: the next id follows the largest present.
+  // A state from before the feed: the next id follows the largest present (all particles: before a distributed
+  // solver keeps its own).
   for (std::int64_t id : p_.id) feed_.next_id = std::max(feed_.next_id, id + 1);
   wall_roll_ = std::move(s.wall_roll);
-  need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
-  // The carry-over reads each partner's id from the store, so every slot must name a particle (a checkpoint's are
-  // checked when it is read).
-  for (const std::uint32_t j : nbr_.partner) {
-    if (j >= p_.size()) throw std::invalid_argument("DemSolver::restore: a neighbour entry names no particle");
+  n_owned_ = p_.size();
+  for (auto& b : build_) {
+    if (b.size() != n_owned_) b.clear();
+  }
+  for (int a = 0; a < Dim; ++a) {
+    if (build_[static_cast<std::size_t>(a)].empty()) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   }
   upper_offset_.clear();  // linked again at the next force evaluation
   last_valid_ = false;
+  ++generation_;
+  if (portable) {
+    // The springs by partner id; the list is built before the next force evaluation, without counting it (the
+    // rebuild trigger keeps the saved schedule: the positions of the last counted build are part of the state).
+    held_ = std::move(s.held);
+    if (held_.particles() != n_owned_) held_.clear(n_owned_, config_.contact.needs_rolling_history());
+    need_rebuild_ = s.need_rebuild;
+    list_springs_ = false;
+    list_stale_ = true;
+  } else {
+    need_rebuild_ = s.need_rebuild || nbr_.offset.size() != p_.size() + 1;
+    list_springs_ = true;
+    list_stale_ = false;
+    held_.clear(n_owned_, config_.contact.needs_rolling_history());
+    // The carry-over reads each partner's id from the store, so every slot must name a particle (a checkpoint's
+    // are checked when it is read).
+    for (const std::uint32_t j : nbr_.partner) {
+      if (j >= p_.size()) throw std::invalid_argument("DemSolver::restore: a neighbour entry names no particle");
+    }
+  }
   sized_ = p_.has_own_sizes(config_.species);
   double d_max = p_.max_diameter();
   for (const Species& sp : config_.species) d_max = std::max(d_max, sp.d_max());
   cell_size_ = d_max + config_.skin;
+  if (domain_) {
+    if (!portable) throw std::invalid_argument("DemSolver::restore: a distributed solver takes a portable state");
+    // The blocks dealt by the restored particles' counts (every rank holds all of them here), then each rank keeps
+    // its own: a state written on any number of ranks continues on this one.
+    BlockLayout<Dim>& layout = domain_->layout();
+    std::vector<double> weight(static_cast<std::size_t>(layout.blocks()), 0.0);
+    for (std::size_t i = 0; i < p_.size(); ++i) weight[static_cast<std::size_t>(layout.block_at(p_.pos(i)))] += 1.0;
+    layout.assign(weight, domain_->size());
+    std::vector<std::size_t> keep;
+    for (std::size_t i = 0; i < n_owned_; ++i) {
+      if (domain_->owner_of(p_.pos(i)) == domain_->rank()) keep.push_back(i);
+    }
+    select_owned(keep);
+  }
 }
 
 template class DemSolver<2>;

@@ -8,13 +8,19 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "dem/contact_law.hpp"
 #include "dem/dem_config.hpp"
+#include "dem/held_springs.hpp"
 #include "dem/neighbor_list.hpp"
+#include "dem/particle_domain.hpp"
 #include "dem/particle_store.hpp"
 #include "dem/wall_springs.hpp"
+#include "parallel/comm.hpp"
 
 namespace fluidbed {
 
@@ -25,8 +31,19 @@ enum class Wall : int { Left = 0, Right = 1, Bottom = 2, Top = 3, Back = 4, Fron
 struct DemStepInfo {
   double max_overlap = 0.0;  ///< m
   bool rebuilt = false;
-  std::size_t removed = 0;   ///< particles that left through an outflow side in this step
+  std::size_t removed = 0;   ///< particles that left through an outflow side in this step (all ranks)
   std::size_t inserted = 0;  ///< particles added by the feed (DemConfig::insertion) after this step
+};
+
+/// What the decomposition of a distributed run costs, for docs/parallel.md's model: counts of this rank.
+struct DemParallelStats {
+  std::size_t owned = 0;
+  std::size_t ghosts = 0;           ///< copies of other ranks' particles held now
+  std::size_t ghost_sends = 0;      ///< particles this rank sends to others each step
+  int partners = 0;                 ///< ranks it exchanges ghosts with
+  std::uint64_t migrated = 0;       ///< particles that arrived from other ranks since the start
+  std::uint64_t rebalances = 0;     ///< times the blocks were dealt again
+  double imbalance = 1.0;           ///< largest over mean rank cost at the last check
 };
 
 template <int Dim>
@@ -38,6 +55,32 @@ class DemSolver {
   /// The particles are put in the canonical storage order (ascending id) first: the run then depends only on the
   /// particles, not on the order they were handed over in. Ids must be unique. Contact history starts released.
   DemSolver(DemConfig config, Store particles);
+
+  /// Split the run over the ranks of `comm` (docs/parallel.md): the grid of `cells` cells of size h from `origin`
+  /// (the gas grid, or any grid over the box) is cut into blocks at least one ghost reach wide, dealt along the
+  /// Hilbert curve by their particle counts; each rank keeps the particles of its blocks, and holds ghosts of the
+  /// others' within the contact reach and within `kernel_reach` per axis (the coupling's deposition kernel, 0
+  /// without gas), both plus a skin. Every rank must hold the same particles here (or the same restored state).
+  /// Blocks are dealt again when the largest rank cost exceeds `rebalance_threshold` times the mean (at a counted
+  /// list rebuild; the results do not change). On one rank the solver stays as it is.
+  void distribute(const Comm& comm, const Index<Dim>& cells, const Vec<Dim>& h, const Vec<Dim>& origin,
+                  const Vec<Dim>& kernel_reach, double rebalance_threshold = 1.2);
+  bool distributed() const { return domain_.has_value(); }
+  const Comm& comm() const { return domain_ ? domain_->comm() : serial_comm(); }
+  /// The block layout of a distributed run (null on one rank).
+  const BlockLayout<Dim>* layout() const { return domain_ ? &domain_->layout() : nullptr; }
+  /// Particles this rank owns: slots [0, owned()) of particles(); the slots after are ghosts, copies of other
+  /// ranks' particles (none on one rank).
+  std::size_t owned() const { return n_owned_; }
+  /// Particles over all ranks (collective in a distributed run).
+  std::uint64_t total_particles() const;
+  /// Every rank's owned particles in ascending id, on rank `root` (empty elsewhere) or, with root = -1, on every
+  /// rank. Collective.
+  Store all_particles(int root) const;
+  /// Counts of this rank's decomposition (zeros on one rank).
+  DemParallelStats parallel_stats() const;
+  /// Changes whenever the store's slots change (a rebuild, a removal, a feed): a cache of per-slot data keys on it.
+  std::uint64_t store_generation() const { return generation_; }
 
   /// Advance by one time step of config().dt.
   DemStepInfo step();
@@ -65,8 +108,11 @@ class DemSolver {
   /// steps continue the sequence of whole steps.
   void land_time(double t) { time_ = t; }
 
-  /// Translational plus rotational kinetic energy, J (fixed summation order).
+  /// Translational plus rotational kinetic energy, J, summed exactly (the same bits for any order and split of the
+  /// particles; collective in a distributed run).
   double kinetic_energy() const;
+  /// Total mass of the particles, kg (exact, collective as kinetic_energy).
+  double total_mass() const;
   /// Largest overlap of the last force evaluation, m.
   double max_overlap() const { return max_overlap_; }
   /// Largest overlap of the last force evaluation relative to its own contact: the smaller diameter of the pair,
@@ -111,8 +157,15 @@ class DemSolver {
     double removed_mass = 0.0;
     FeedState feed{};
     std::vector<Spin<Dim>> wall_roll;  ///< rolling springs against the walls (rolling-spring laws only)
+    /// The pair springs by partner id, when `neighbors` is empty (a portable state: any storage order, any
+    /// number of ranks); the list is then built anew before the next force evaluation.
+    HeldSprings<Dim> held{};
   };
   State state() const;
+  /// The state of every particle (all ranks gathered on rank 0, ascending id), its springs by partner id and no
+  /// neighbour list: what a checkpoint keeps, restorable on any number of ranks. Collective; the other ranks get
+  /// a state without particles.
+  State portable_state() const;
   /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
   struct StateView {
     const Store& particles;
@@ -137,10 +190,19 @@ class DemSolver {
   }
   /// Whether some particle's size differs from its species' diameter (a size distribution, or a file's sizes).
   bool has_own_sizes() const { return sized_; }
+  /// Restores a state(): with its neighbour list it continues as saved; a portable state (no list) on any number
+  /// of ranks, each keeping the particles of its blocks (after distribute()).
   void restore(State s);
   const List& neighbors() const { return nbr_; }
   /// The tangential springs against the plane walls.
   const WallSprings<Dim>& wall_springs() const { return walls_; }
+
+  /// Builds the neighbour list and, distributed, the ghosts now when they are due (a fresh solver, a restored
+  /// state): what a deposition before the first step needs on several ranks. Changes no result.
+  void prepare() {
+    // Not counted: the Verlet trigger's rebuild, when due, still comes at the next step, as on one rank.
+    if (domain_ && (list_stale_ || need_rebuild_ || nbr_.offset.size() != p_.size() + 1)) rebuild(false);
+  }
 
   /// Ask for a neighbour-list rebuild before the next force evaluation (e.g. after particles were moved).
   void invalidate_neighbors() { need_rebuild_ = true; }
@@ -156,17 +218,40 @@ class DemSolver {
   /// The pointwise contact functions and the loops of compute_forces_of, over the pointers it hoists once.
   template <class Law, bool Mixed, bool Periodic, bool Sized>
   struct ForcePass;
-  void rebuild();
+  /// A new neighbour list (and, distributed, migration and ghosts). Counted: the Verlet trigger's (the positions of
+  /// the build are kept and the count rises); not counted: the same list for other reasons (a restore, a removal
+  /// on several ranks), which changes no result and leaves the trigger's schedule alone.
+  void rebuild(bool counted);
+  /// The springs of the owned particles' list entries into held_ (by partner id).
+  void gather_held_springs();
+  /// held_'s springs into the entries of the same partners in the new list.
+  void carry_held_springs();
+  /// Keep the owned particles `order` names (in that order), with everything that is theirs; ghosts are dropped.
+  void select_owned(const std::vector<std::size_t>& order);
+  /// Distributed: the particles whose block belongs to another rank go there, with their springs.
+  void migrate();
+  /// Distributed: deal the blocks again when the ranks' costs are out of balance.
+  void rebalance_if_needed();
+  /// Distributed: ghosts follow their owners; the flags and largest overlaps of the step reduced over ranks.
+  void finish_step_distributed(int& moved_far, int& bad, int& escaped);
+  /// One owned particle with what is its own (springs, wall springs, build position), for migration and gathers.
+  void pack_owned(Bytes& b, std::size_t i) const;
+  void unpack_owned(Unpacker& u);
   void link_mirrors();
   /// Drop the particles whose centre is beyond an outflow side, keeping the order of the others, their neighbour
   /// entries and contact springs; counts them and their mass.
   std::size_t remove_escaped();
+  std::size_t remove_escaped_distributed();
   /// The feed: add the particles due by the current time (DemConfig::insertion), each at the first of its random
   /// draws that overlaps no particle; those not placed within their tries wait for the next step.
   std::size_t insert_due();
+  /// Distributed: every rank's particles within reach of the feed's region (positions and radii), on every rank.
+  void gather_near_region(std::vector<Vec<Dim>>& x, std::vector<double>& r) const;
   static constexpr std::uint64_t kSortEvery = 16;
   /// The step found a particle outside the domain or not finite: fail naming the one with the smallest id.
   void check_particles() const;
+  /// The message check_particles would give for this rank's particles, with the offending id (none: nullopt).
+  std::optional<std::pair<std::int64_t, std::string>> particle_failure() const;
   /// Inside the domain (beyond an outflow side counts as inside: it is removed) with a finite state. The bounds
   /// are copied out of the config so that the step's loop keeps them in registers.
   struct DomainTest {
@@ -220,14 +305,18 @@ class DemSolver {
   bool sized_ = false;  ///< some particle's size differs from its species' diameter
   List nbr_;
   std::array<std::vector<double>, Dim> build_;
-  // The held springs of the previous list during a rebuild: CSR by old storage slot, the partner's id, the springs
-  // (kept between rebuilds to reuse their memory). 32-bit offsets: the list's entries fit (link_mirrors checks).
-  std::vector<std::uint32_t> held_offset_;
-  std::vector<std::int64_t> held_partner_id_;
-  std::vector<Vec<Dim>> held_history_;
-  std::vector<Spin<Dim>> held_rolling_;
-  /// Copy the entries of nbr_ with a stretched spring (or rolling spring, if `rolling`) into held_*.
-  void gather_held_springs(bool rolling);
+  /// The owned particles' springs by partner id, in store order: gathered from the list when it is rebuilt, or
+  /// restored from a portable state (list_springs_ false until the list is built).
+  HeldSprings<Dim> held_;
+  bool list_springs_ = false;  ///< nbr_ holds the current springs (else held_ does)
+  bool list_stale_ = true;     ///< nbr_ must be built anew before the next force evaluation (not counted)
+  std::size_t n_owned_ = 0;
+  std::optional<ParticleDomain<Dim>> domain_;
+  GhostPlan plan_;
+  double rebalance_threshold_ = 1.2;
+  std::uint64_t generation_ = 0;
+  std::uint64_t migrated_ = 0, rebalances_ = 0;
+  double imbalance_ = 1.0;
   /// Rolling spring of particle slot i against wall w at wall_roll_[2 Dim i + w], in the store's order (laws with
   /// a rolling spring only, else empty; kept here so that the paper's law does not carry it per particle).
   std::vector<Spin<Dim>> wall_roll_;

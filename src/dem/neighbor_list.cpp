@@ -189,7 +189,8 @@ std::size_t append_near(const ParticleStore<Dim>& p, const CellBins<Dim>& b, std
     d_lo[a] = (c[a] == 0) ? 0 : -1;
     d_hi[a] = (c[a] == b.n[a] - 1) ? 0 : 1;
   }
-  const double r = p.radius[i] + skin;
+  // (r_i + r_j) + skin, the same sum seen from either partner: a pair is in both lists or in neither.
+  const double ri = p.radius[i];
   const auto self = static_cast<std::uint32_t>(i);
   auto row = [&](std::array<int, Dim> rc) {
     rc[0] = c[0] + d_lo[0];
@@ -211,7 +212,7 @@ std::size_t append_near(const ParticleStore<Dim>& p, const CellBins<Dim>& b, std
         const double dz = zs[k] - x[2];
         d2 += dz * dz;
       }
-      const double reach = r + rs[k];
+      const double reach = (ri + rs[k]) + skin;
       dst[used] = slots[k];
       used += static_cast<std::size_t>((d2 < reach * reach) & (slots[k] != self));
     }
@@ -249,6 +250,39 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
                          NeighborScratch& scratch, const PeriodicBox<Dim>& periodic) {
+  build_neighbor_list(p, p.size(), cell_size, skin, out, scratch, periodic);
+}
+
+namespace {
+/// Each particle's entries in ascending id of the partner: the order its contact forces are summed in, the same on
+/// any storage order and any split of the particles among ranks.
+template <int Dim>
+void sort_entries_by_partner_id(const ParticleStore<Dim>& p, NeighborList<Dim>& out) {
+  const std::size_t n = out.offset.size() - 1;
+  const std::int64_t* id = p.id.data();
+  std::uint32_t* partner = out.partner.data();
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    // Insertion sort: a few to a few tens of entries, mostly in cell order already.
+    for (std::size_t k = out.offset[i] + 1; k < out.offset[i + 1]; ++k) {
+      const std::uint32_t j = partner[k];
+      const std::int64_t key = id[j];
+      std::size_t q = k;
+      while (q > out.offset[i] && id[partner[q - 1]] > key) {
+        partner[q] = partner[q - 1];
+        --q;
+      }
+      partner[q] = j;
+    }
+  }
+}
+}  // namespace
+
+template <int Dim>
+void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double cell_size, double skin,
+                         NeighborList<Dim>& out, NeighborScratch& scratch, const PeriodicBox<Dim>& periodic) {
   const std::size_t n = p.size();
   CellBins<Dim> b;
   if (periodic.any()) {
@@ -264,17 +298,19 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
   const double per_particle = last > 0 && out.offset.size() == n + 1 ? 1.25 * static_cast<double>(last) / static_cast<double>(n)
                                                                       : (Dim == 2 ? 4.0 : 8.0);
   out.offset.assign(n + 1, 0);
-  // One search pass: each thread fills its own buffer for a contiguous block of particles, and the blocks are
-  // joined in block order, so the list is the same for any number of threads.
+  // One search pass over the owned particles (all of them on one rank): each thread fills its own buffer for a
+  // contiguous block of particles, and the blocks are joined in block order, so the list is the same for any
+  // number of threads. Ghosts (slots from `owned` on) are not searched: they take the mirror entries of their
+  // owned partners below, and pairs of two ghosts are left to the ranks that own them.
   const int max_threads = omp_get_max_threads();
   std::vector<std::vector<std::uint32_t>>& found = scratch.found;
   if (found.size() < static_cast<std::size_t>(max_threads)) found.resize(static_cast<std::size_t>(max_threads));
-  std::vector<std::size_t> block(static_cast<std::size_t>(max_threads) + 1, n);
+  std::vector<std::size_t> block(static_cast<std::size_t>(max_threads) + 1, owned);
   block[0] = 0;
 #pragma omp parallel num_threads(max_threads)
   {
     const auto [t, nt] = team_slot();
-    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    const std::size_t lo = owned * t / nt, hi = owned * (t + 1) / nt;
     block[t + 1] = hi;
     std::vector<std::uint32_t>& mine = found[t];
     const auto room = static_cast<std::size_t>(per_particle * static_cast<double>(hi - lo)) + 64;
@@ -286,6 +322,17 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
       out.offset[i + 1] = static_cast<std::uint32_t>(used - before);  // at most one bin row's particles
     }
     mine.resize(used);
+  }
+  // A ghost's entries: its owned partners, in their slot order.
+  std::vector<std::size_t> ghost_count(n - owned, 0);
+  if (owned < n) {
+    for (std::size_t t = 0; t < static_cast<std::size_t>(max_threads); ++t) {
+      if (block[t] >= block[t + 1]) continue;
+      for (std::uint32_t j : found[t]) {
+        if (j >= owned) ++ghost_count[j - owned];
+      }
+    }
+    for (std::size_t g = 0; g < n - owned; ++g) out.offset[owned + g + 1] = static_cast<std::uint32_t>(ghost_count[g]);
   }
   // The prefix sum in 64 bits: a list whose entries do not fit the 32-bit offsets and links is refused.
   std::size_t total = 0;
@@ -302,6 +349,16 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
   for (std::size_t t = 0; t < static_cast<std::size_t>(max_threads); ++t) {
     if (block[t] < block[t + 1]) std::copy(found[t].begin(), found[t].end(), out.partner.begin() + static_cast<std::ptrdiff_t>(out.offset[block[t]]));
   }
+  if (owned < n) {
+    std::vector<std::size_t> fill(out.offset.begin() + static_cast<std::ptrdiff_t>(owned), out.offset.end() - 1);
+    for (std::size_t i = 0; i < owned; ++i) {
+      for (std::size_t k = out.offset[i]; k < out.offset[i + 1]; ++k) {
+        const std::uint32_t j = out.partner[k];
+        if (j >= owned) out.partner[fill[j - owned]++] = static_cast<std::uint32_t>(i);
+      }
+    }
+  }
+  sort_entries_by_partner_id(p, out);
 }
 
 template <int Dim>
@@ -334,6 +391,10 @@ template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts
 template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<3>(const ParticleStore<3>&, double);
 template void build_neighbor_list<2>(const ParticleStore<2>&, double, double, NeighborList<2>&, NeighborScratch&,
                                      const PeriodicBox<2>&);
+template void build_neighbor_list<2>(const ParticleStore<2>&, std::size_t, double, double, NeighborList<2>&,
+                                     NeighborScratch&, const PeriodicBox<2>&);
+template void build_neighbor_list<3>(const ParticleStore<3>&, std::size_t, double, double, NeighborList<3>&,
+                                     NeighborScratch&, const PeriodicBox<3>&);
 template void build_neighbor_list<3>(const ParticleStore<3>&, double, double, NeighborList<3>&, NeighborScratch&,
                                      const PeriodicBox<3>&);
 template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<2>(const ParticleStore<2>&, double,

@@ -39,8 +39,9 @@ struct NeighborScratch {
 template <int Dim>
 std::vector<std::size_t> sort_by_cell(const ParticleStore<Dim>& p, double cell_size);
 
-/// Build the full list of pairs with centre distance < r_i + r_j + skin. Particles must be sorted by
-/// `sort_by_cell` with the same cell size (>= max diameter + skin). Deterministic order; springs zero.
+/// Build the full list of pairs with centre distance < (r_i + r_j) + skin. Each particle's entries are in
+/// ascending id of the partner (the order its forces are summed in); springs zero. The cell size must be at
+/// least the largest diameter + skin.
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out);
 /// The same, reusing the buffers of `scratch` (the result does not depend on what they held).
@@ -54,6 +55,13 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
                          NeighborScratch& scratch, const PeriodicBox<Dim>& periodic);
+
+/// The same for a store whose slots from `owned` on are ghosts (copies of other ranks' particles): only the owned
+/// particles are searched, each ghost gets the mirror entries of its owned partners, and pairs of two ghosts are
+/// left out. Every particle's entries are in ascending id of the partner.
+template <int Dim>
+void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double cell_size, double skin,
+                         NeighborList<Dim>& out, NeighborScratch& scratch, const PeriodicBox<Dim>& periodic);
 
 /// Brute-force O(N^2) set of touching pairs (i < j by id), for tests.
 template <int Dim>

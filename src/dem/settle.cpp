@@ -9,7 +9,8 @@ template <int Dim>
 SettleResult settle_bed(DemSolver<Dim>& dem, double energy_per_particle, double max_time) {
   SettleResult r;
   ParticleStore<Dim>& p = dem.particles();
-  const double n = std::max<double>(1.0, static_cast<double>(p.size()));
+  // Over every rank (the energy is summed over all of them, exactly, so the verdict is the same on each).
+  const double n = std::max<double>(1.0, static_cast<double>(dem.total_particles()));
   const double dt = dem.config().dt;
   const auto check_every = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(0.01 / dt)));
   const auto max_steps = static_cast<std::uint64_t>(std::ceil(max_time / dt));

@@ -55,11 +55,10 @@ std::string wall_spring_name(int w, int c) {
   return std::string("dem/wall_xi_") + kSide[w] + "_" + kAxis[c];
 }
 
-// Writes from the solver's own arrays; what is converted (the list's slots and springs, the sizes) is converted one
-// HDF5 chunk at a time, so a checkpoint needs no array-sized temporary on top of the solver (docs/performance.md,
-// sections 4 and 21).
+// Writes a portable state (DemSolver::portable_state: every particle in ascending id, its springs by partner id);
+// what is converted is converted one HDF5 chunk at a time.
 template <int Dim>
-void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
+void save_dem(Hdf5File& f, const typename DemSolver<Dim>::State& s, bool own_sizes) {
     static constexpr const char* kAxis[3] = {"x", "y", "z"};
     const ParticleStore<Dim>& p = s.particles;
     f.create_group("dem");
@@ -78,22 +77,22 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
       }
     }
     // Particles of their own sizes keep them (the species' diameters restore every other bed, as they always have).
-    if (s.own_sizes) {
+    if (own_sizes) {
       f.write("dem/diameter", p.size(), [&p](std::size_t first, std::size_t n, double* d) {
         for (std::size_t i = first; i < first + n; ++i) *d++ = 2.0 * p.radius[i];
       });
     }
     for (std::size_t a = 0; a < s.build.size(); ++a) f.write(std::string("dem/") + kAxis[a] + "_build", s.build[a]);
-    const auto& nb = s.neighbors;
-    f.write("dem/nbr_offset", nb.offset.size(), [&nb](std::size_t first, std::size_t n, std::int64_t* d) {
-      for (std::size_t k = first; k < first + n; ++k) *d++ = static_cast<std::int64_t>(nb.offset[k]);
+    // The pair springs each particle holds, by its partner's id (CSR over the particles): no storage slot is
+    // written, so the state restarts on any number of ranks.
+    const HeldSprings<Dim>& h = s.held;
+    f.write("dem/held_offset", h.offset.size(), [&h](std::size_t first, std::size_t n, std::int64_t* d) {
+      for (std::size_t k = first; k < first + n; ++k) *d++ = static_cast<std::int64_t>(h.offset[k]);
     });
-    f.write("dem/nbr_partner", nb.partner.size(), [&nb](std::size_t first, std::size_t n, std::int64_t* d) {
-      for (std::size_t k = first; k < first + n; ++k) *d++ = static_cast<std::int64_t>(nb.partner[k]);
-    });
+    f.write("dem/held_partner_id", h.partner_id);
     for (int a = 0; a < Dim; ++a) {
-      f.write(std::string("dem/nbr_xi_") + kAxis[a], nb.history.size(), [&nb, a](std::size_t first, std::size_t n, double* d) {
-        for (std::size_t k = first; k < first + n; ++k) *d++ = nb.history[k][a];
+      f.write(std::string("dem/held_xi_") + kAxis[a], h.xi.size(), [&h, a](std::size_t first, std::size_t n, double* d) {
+        for (std::size_t k = first; k < first + n; ++k) *d++ = h.xi[k][a];
       });
     }
     // One spin component of a rolling spring (a scalar in 2D).
@@ -106,14 +105,14 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::StateView& s) {
       }
     };
     // Rolling springs (laws with one): one array per spin component, absent when the law has none.
-    if (!nb.rolling.empty()) {
+    if (h.keeps_rolling()) {
       for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        f.write(fmt::format("dem/nbr_roll_{}", c), nb.rolling.size(), [&](std::size_t first, std::size_t n, double* d) {
-          for (std::size_t k = first; k < first + n; ++k) *d++ = spin_component(nb.rolling[k], c);
+        f.write(fmt::format("dem/held_roll_{}", c), h.roll.size(), [&](std::size_t first, std::size_t n, double* d) {
+          for (std::size_t k = first; k < first + n; ++k) *d++ = spin_component(h.roll[k], c);
         });
       }
     }
-    // Rolling springs against the walls, 2 Dim per particle in storage order, likewise absent without them.
+    // Rolling springs against the walls, 2 Dim per particle, likewise absent without them.
     if (!s.wall_roll.empty()) {
       for (int c = 0; c < kSpinComponents<Dim>; ++c) {
         f.write(fmt::format("dem/wall_roll_{}", c), s.wall_roll.size(), [&](std::size_t first, std::size_t n, double* d) {
@@ -215,70 +214,97 @@ void load_dem_wall_springs(const Hdf5File& f, typename DemSolver<Dim>::State& s,
   }
 }
 
-// The neighbour list with its tangential springs and the positions at its last build.
+// The positions of the last counted list build, and the pair springs by partner id: as written (dem/held_*), or
+// from the neighbour list of a checkpoint written before the springs were kept by id (dem/nbr_*: storage slots).
 template <int Dim>
-void load_dem_neighbors(const Hdf5File& f, typename DemSolver<Dim>::State& s, std::size_t n) {
+void load_dem_springs(const Hdf5File& f, const CaseConfig& config_, typename DemSolver<Dim>::State& s, std::size_t n) {
   static constexpr const char* kAxis[3] = {"x", "y", "z"};
   for (std::size_t a = 0; a < s.build.size(); ++a) s.build[a] = read_per_particle(f, std::string(kAxis[a]) + "_build", n);
+  const bool rolling_law = config_.dem.contact.needs_rolling_history();
+  HeldSprings<Dim>& h = s.held;
+  h.clear(0, rolling_law);
+  auto bad = [&] { throw_input_error(fmt::format("{}: the neighbour list or contact history is inconsistent", f.path().string())); };
+  auto set_spin = [](Spin<Dim>& r, int c, double v) {
+    if constexpr (Dim == 2) {
+      (void)c;
+      r = v;
+    } else {
+      r[c] = v;
+    }
+  };
+  if (f.has("dem/held_offset")) {
+    const auto offset = f.read_int64("dem/held_offset");
+    const auto partner = f.read_int64("dem/held_partner_id");
+    std::array<std::vector<double>, Dim> xi;
+    for (int a = 0; a < Dim; ++a) xi[static_cast<std::size_t>(a)] = f.read_double(std::string("dem/held_xi_") + kAxis[a]);
+    std::array<std::vector<double>, kSpinComponents<Dim>> roll;
+    const bool has_roll = f.has("dem/held_roll_0");
+    for (int c = 0; has_roll && c < kSpinComponents<Dim>; ++c) roll[static_cast<std::size_t>(c)] = f.read_double(fmt::format("dem/held_roll_{}", c));
+    if (offset.size() != n + 1 || offset.front() != 0 || static_cast<std::size_t>(offset.back()) != partner.size()) bad();
+    for (const auto& x : xi) if (x.size() != partner.size()) bad();
+    for (int c = 0; has_roll && c < kSpinComponents<Dim>; ++c) if (roll[static_cast<std::size_t>(c)].size() != partner.size()) bad();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (offset[i + 1] < offset[i]) bad();
+      h.add_particle();
+      for (auto q = static_cast<std::size_t>(offset[i]); q < static_cast<std::size_t>(offset[i + 1]); ++q) {
+        Vec<Dim> x;
+        for (int a = 0; a < Dim; ++a) x[a] = xi[static_cast<std::size_t>(a)][q];
+        Spin<Dim> r{};
+        for (int c = 0; has_roll && c < kSpinComponents<Dim>; ++c) set_spin(r, c, roll[static_cast<std::size_t>(c)][q]);
+        h.add(partner[q], x, r);
+      }
+    }
+    return;
+  }
   const auto offset = f.read_int64("dem/nbr_offset");
   const auto partner = f.read_int64("dem/nbr_partner");
   std::array<std::vector<double>, Dim> hist;
   for (int a = 0; a < Dim; ++a) hist[static_cast<std::size_t>(a)] = f.read_double(std::string("dem/nbr_xi_") + kAxis[a]);
-  bool consistent = offset.size() == n + 1 && offset.front() == 0 &&
-                    static_cast<std::size_t>(offset.back()) == partner.size() &&
-                    partner.size() <= std::numeric_limits<std::uint32_t>::max();
-  for (const auto& h : hist) consistent = consistent && h.size() == partner.size();
-  if (!consistent) {
-    throw_input_error(fmt::format("{}: the neighbour list or contact history is inconsistent", f.path().string()));
-  }
+  const bool has_roll = f.has("dem/nbr_roll_0");
+  std::array<std::vector<double>, kSpinComponents<Dim>> roll;
+  for (int c = 0; has_roll && c < kSpinComponents<Dim>; ++c) roll[static_cast<std::size_t>(c)] = f.read_double(fmt::format("dem/nbr_roll_{}", c));
+  bool consistent = offset.size() == n + 1 && offset.front() == 0 && static_cast<std::size_t>(offset.back()) == partner.size();
+  for (const auto& x : hist) consistent = consistent && x.size() == partner.size();
+  for (int c = 0; has_roll && c < kSpinComponents<Dim>; ++c) consistent = consistent && roll[static_cast<std::size_t>(c)].size() == partner.size();
+  if (!consistent) bad();
+  const std::vector<std::int64_t>& id = s.particles.id;
   for (std::size_t i = 0; i < n; ++i) {
     if (offset[i + 1] < offset[i]) throw_input_error(fmt::format("{}: bad neighbour offsets", f.path().string()));
-  }
-  s.neighbors.offset.assign(offset.begin(), offset.end());
-  s.neighbors.partner.resize(partner.size());
-  s.neighbors.history.resize(partner.size());
-  for (std::size_t k = 0; k < partner.size(); ++k) {
-    if (partner[k] < 0 || static_cast<std::size_t>(partner[k]) >= n) {
-      throw_input_error(fmt::format("{}: neighbour index out of range", f.path().string()));
+    h.add_particle();
+    for (auto k = static_cast<std::size_t>(offset[i]); k < static_cast<std::size_t>(offset[i + 1]); ++k) {
+      if (partner[k] < 0 || static_cast<std::size_t>(partner[k]) >= n) {
+        throw_input_error(fmt::format("{}: neighbour index out of range", f.path().string()));
+      }
+      Vec<Dim> x;
+      for (int a = 0; a < Dim; ++a) x[a] = hist[static_cast<std::size_t>(a)][k];
+      Spin<Dim> r{};
+      for (int c = 0; has_roll && c < kSpinComponents<Dim>; ++c) set_spin(r, c, roll[static_cast<std::size_t>(c)][k]);
+      bool held = !HeldSprings<Dim>::plus_zero(x);
+      if constexpr (Dim == 2) {
+        held = held || !HeldSprings<Dim>::plus_zero(r);
+      } else {
+        held = held || !HeldSprings<Dim>::plus_zero(r);
+      }
+      if (held) h.add(id[static_cast<std::size_t>(partner[k])], x, rolling_law ? r : Spin<Dim>{});
     }
-    s.neighbors.partner[k] = static_cast<std::uint32_t>(partner[k]);
-    for (int a = 0; a < Dim; ++a) s.neighbors.history[k][a] = hist[static_cast<std::size_t>(a)][k];
   }
 }
 
-// The rolling springs (rolling laws only), of the walls and of the pairs, one array per spin component.
+// The rolling springs against the walls (rolling laws only), one array per spin component.
 template <int Dim>
 void load_dem_rolling(const Hdf5File& f, typename DemSolver<Dim>::State& s, std::size_t n) {
-  const std::size_t pairs = s.neighbors.partner.size();
-  if (f.has("dem/wall_roll_0")) {
-    s.wall_roll.resize(2 * Dim * n);
-    for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-      const std::vector<double> h = f.read_double(fmt::format("dem/wall_roll_{}", c));
-      if (h.size() != s.wall_roll.size()) {
-        throw_input_error(fmt::format("{}: the rolling wall springs are inconsistent", f.path().string()));
-      }
-      for (std::size_t k = 0; k < h.size(); ++k) {
-        if constexpr (Dim == 2) {
-          s.wall_roll[k] = h[k];
-        } else {
-          s.wall_roll[k][c] = h[k];
-        }
-      }
+  if (!f.has("dem/wall_roll_0")) return;
+  s.wall_roll.resize(2 * Dim * n);
+  for (int c = 0; c < kSpinComponents<Dim>; ++c) {
+    const std::vector<double> h = f.read_double(fmt::format("dem/wall_roll_{}", c));
+    if (h.size() != s.wall_roll.size()) {
+      throw_input_error(fmt::format("{}: the rolling wall springs are inconsistent", f.path().string()));
     }
-  }
-  if (f.has("dem/nbr_roll_0")) {
-    s.neighbors.rolling.resize(pairs);
-    for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-      const std::vector<double> h = f.read_double(fmt::format("dem/nbr_roll_{}", c));
-      if (h.size() != pairs) {
-        throw_input_error(fmt::format("{}: the rolling contact history is inconsistent", f.path().string()));
-      }
-      for (std::size_t k = 0; k < h.size(); ++k) {
-        if constexpr (Dim == 2) {
-          s.neighbors.rolling[k] = h[k];
-        } else {
-          s.neighbors.rolling[k][c] = h[k];
-        }
+    for (std::size_t k = 0; k < h.size(); ++k) {
+      if constexpr (Dim == 2) {
+        s.wall_roll[k] = h[k];
+      } else {
+        s.wall_roll[k][c] = h[k];
       }
     }
   }
@@ -315,7 +341,7 @@ typename DemSolver<Dim>::State load_dem(const Hdf5File& f, const CaseConfig& con
   load_dem_particles<Dim>(f, config_, s);
   const std::size_t n = s.particles.size();
   load_dem_wall_springs<Dim>(f, s, n);
-  load_dem_neighbors<Dim>(f, s, n);
+  load_dem_springs<Dim>(f, config_, s, n);
   load_dem_rolling<Dim>(f, s, n);
   load_dem_clock<Dim>(f, s);
   return s;
@@ -332,13 +358,33 @@ Grid<Dim> gas_grid(const CaseConfig& c) {
 template <int Dim>
 class DemModel final : public ModelRun {
  public:
-  DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log)
+  DemModel(const CaseConfig& c, const std::string& out_dir, bool fresh, spdlog::logger& log, const Comm& comm)
       : config_(c),
-        sim_(DemSolver<Dim>(c.dem, fresh ? initial_particles(c, out_dir, log) : ParticleStore<Dim>{}),
+        comm_(&comm),
+        sim_(make_solver(c, fresh ? initial_particles(c, out_dir, log, comm) : ParticleStore<Dim>{}, comm),
              c.gas_enabled ? std::optional<GasSolver<Dim>>(GasSolver<Dim>(gas_grid<Dim>(c), c.gas)) : std::nullopt,
              c.coupling),
         log_(&log) {
     if (fresh) sim_.initialize();
+    if (comm.size() > 1) log.info("{}", parallel_summary());
+  }
+
+  /// The case's DEM solver, split over the ranks of comm (blocks of the gas grid, or of the [grid] cells of a case
+  /// without gas; ghosts over the deposition kernel's cells when there is gas).
+  static DemSolver<Dim> make_solver(const CaseConfig& c, ParticleStore<Dim> particles, const Comm& comm) {
+    DemSolver<Dim> s(c.dem, std::move(particles));
+    if (comm.size() > 1) {
+      const Grid<Dim> g = gas_grid<Dim>(c);
+      Index<Dim> cells{};
+      Vec<Dim> kernel{};
+      for (int a = 0; a < Dim; ++a) {
+        cells[a] = g.n(a);
+        // Multilinear weights reach half a cell beyond a cell's centre band; the counting kernel only the cell.
+        kernel[a] = !c.gas_enabled ? 0.0 : (c.coupling.voidage == VoidageMethod::Centre ? 1e-9 * g.h[a] : 0.5 * g.h[a]);
+      }
+      s.distribute(comm, cells, g.h, g.origin, kernel, c.parallel.rebalance_threshold);
+    }
+    return s;
   }
 
   double time() const override { return sim_.time(); }
@@ -403,8 +449,8 @@ class DemModel final : public ModelRun {
   }
   std::vector<std::optional<double>> monitor_values() override {
     const ParticleStore<Dim>& p = sim_.dem().particles();
-    double mass = 0.0;
-    for (double m : p.mass) mass += m;
+    // Sums over the particles exactly, over every rank (collective).
+    const double mass = sim_.dem().total_mass();
     std::vector<std::optional<double>> v{sim_.dem().kinetic_energy(), std::nullopt, sim_.dem().max_overlap(),
                                          std::nullopt, mass, std::nullopt, std::nullopt, std::nullopt,
                                          std::nullopt, std::nullopt, static_cast<double>(sim_.dem().rebuild_count()),
@@ -434,8 +480,11 @@ class DemModel final : public ModelRun {
       v[7] = sim_.min_voidage();
       v[8] = sim_.total_fluid_force().y;
       v[9] = sim_.total_gas_reaction().y;
-      const LaceyResult l =
-          lacey_index<Dim>(p, config_.particles.layers / 2, cell_geometry(sim_.gas().grid()), MixingConfig{});
+      LaceyCounts<Dim> counts = lacey_counts<Dim>(p, sim_.dem().owned(), config_.particles.layers / 2,
+                                                  cell_geometry(sim_.gas().grid()), MixingConfig{});
+      comm_->sum(std::span<std::int64_t>(counts.count));
+      comm_->sum(std::span<std::int64_t>(counts.coloured));
+      const LaceyResult l = lacey_from_counts(counts);
       if (l.valid) v[11] = l.index;
     }
     if (config_.dem.insertion.enabled()) {
@@ -465,13 +514,26 @@ class DemModel final : public ModelRun {
     return f;
   }
   std::optional<ParticleArrays> particles() const override {
-    ParticleArrays a = particle_arrays(sim_.dem().particles());
-    a.own_sizes = sim_.dem().has_own_sizes();
+    if (!sim_.dem().distributed()) {
+      ParticleArrays a = particle_arrays(sim_.dem().particles());
+      a.own_sizes = sim_.dem().has_own_sizes();
+      return a;
+    }
+    // Every rank's particles on rank 0 (collective); the other ranks see none.
+    gathered_ = sim_.dem().all_particles(0);
+    if (comm_->rank() != 0) return std::nullopt;
+    ParticleArrays a = particle_arrays(gathered_);
+    a.own_sizes = gathered_.has_own_sizes(config_.dem.species);
     return a;
   }
 
-  void save(Hdf5File& f) const override {
-    save_dem<Dim>(f, sim_.dem().view());
+  void save(Hdf5File* file) const override {
+    // The state of every particle, gathered on rank 0 in ascending id with its springs by partner id: the same file
+    // on any number of ranks, restorable on any number (collective; rank 0 writes).
+    const typename DemSolver<Dim>::State st = sim_.dem().portable_state();
+    if (file == nullptr) return;
+    Hdf5File& f = *file;
+    save_dem<Dim>(f, st, st.particles.has_own_sizes(config_.dem.species));
     f.set_attribute("dem", "gas_steps", static_cast<std::int64_t>(sim_.gas_steps()));
     if (sim_.has_gas()) {
       const GasFields<Dim>& g = sim_.gas().fields();
@@ -506,20 +568,45 @@ class DemModel final : public ModelRun {
   }
 
   CostInfo cost() const override {
-    return {sim_.dem().particles().size(), sim_.has_gas() ? config_.grid.cells() : 0, sim_.dem().step_count()};
+    return {sim_.dem().total_particles(), sim_.has_gas() ? config_.grid.cells() : 0, sim_.dem().step_count()};
+  }
+  std::string parallel_summary() const override {
+    const BlockLayout<Dim>* layout = sim_.dem().layout();
+    if (layout == nullptr) return {};
+    const DemParallelStats st = sim_.dem().parallel_stats();
+    // Largest and smallest over the ranks (a maximum of the negated value), and totals.
+    double v[4] = {static_cast<double>(st.owned), -static_cast<double>(st.owned), static_cast<double>(st.partners),
+                   st.imbalance};
+    comm_->max(std::span<double>(v));
+    std::int64_t t[2] = {static_cast<std::int64_t>(st.owned), static_cast<std::int64_t>(st.ghosts)};
+    comm_->sum(std::span<std::int64_t>(t));
+    std::string cells;
+    for (int a = 0; a < Dim; ++a) {
+      cells += (a ? " x " : "") + std::to_string(layout->cells()[a] / layout->counts()[a]);
+    }
+    return fmt::format("decomposition: {} blocks of {}+ cells over {} ranks along the Hilbert curve; particles per "
+                       "rank {:.0f}-{:.0f}, ghosts {:.3f} per owned particle, up to {:.0f} partner ranks; blocks dealt "
+                       "again {} times (largest/mean rank cost {:.3f}, threshold {})",
+                       layout->blocks(), cells, comm_->size(), -v[1], v[0],
+                       t[0] > 0 ? static_cast<double>(t[1]) / static_cast<double>(t[0]) : 0.0, v[2], st.rebalances,
+                       v[3], config_.parallel.rebalance_threshold);
   }
   std::string describe() const override {
+    const std::uint64_t n = sim_.dem().total_particles();
     if (!sim_.has_gas()) {
-      return fmt::format("DEM, {} particles, dt = {:g} s, no gas", sim_.dem().particles().size(), sim_.dem().config().dt);
+      return fmt::format("DEM, {} particles, dt = {:g} s, no gas", n, sim_.dem().config().dt);
     }
     return fmt::format("CFD-DEM{}, {} particles, dt = {:g} s, gas {} x {}{} cells every {} DEM step{}",
-                       Dim == 3 ? " in 3D" : "", sim_.dem().particles().size(), sim_.dem().config().dt,
+                       Dim == 3 ? " in 3D" : "", n, sim_.dem().config().dt,
                        config_.grid.nx, config_.grid.ny, Dim == 3 ? fmt::format(" x {}", config_.grid.nz) : "",
                        config_.coupling.dem_substeps, config_.coupling.dem_substeps == 1 ? "" : "s");
   }
 
  private:
-  static ParticleStore<Dim> initial_particles(const CaseConfig& c, const std::string& out_dir, spdlog::logger& log) {
+  /// Every rank builds the same particles (read, placed, or settled together), each keeping its own once the
+  /// solver is distributed; files are written by rank 0.
+  static ParticleStore<Dim> initial_particles(const CaseConfig& c, const std::string& out_dir, spdlog::logger& log,
+                                              const Comm& comm) {
     namespace fs = std::filesystem;
     auto resolve = [&](const std::string& f) { return case_relative_path(c.source_path, f); };
     ParticleStore<Dim> p;
@@ -552,7 +639,10 @@ class DemModel final : public ModelRun {
         vacuum.walls.left = vacuum.walls.right = vacuum.walls.bottom = vacuum.walls.back = vacuum.walls.front = true;
         vacuum.walls.side_outflow = {};
         vacuum.insertion = InsertionConfig{};
-        DemSolver<Dim> settler(vacuum, std::move(p));
+        CaseConfig settle_case = c;
+        settle_case.dem = vacuum;
+        settle_case.gas_enabled = false;
+        DemSolver<Dim> settler = make_solver(settle_case, std::move(p), comm);
         const auto t0 = std::chrono::steady_clock::now();
         SettleResult r;
         try {
@@ -562,14 +652,14 @@ class DemModel final : public ModelRun {
           throw_simulation_error(fmt::format("while settling the bed in vacuum before t = 0 (settle.*): {}", e.what()));
         }
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        p = settler.particles();
+        p = settler.distributed() ? settler.all_particles(-1) : std::move(settler.particles());
         log.info("settled in vacuum for {:.3f} s ({} steps, {:.1f} s wall): kinetic energy {:.3g} J per particle{}",
                  r.time, r.steps, wall, r.kinetic_energy_per_particle,
                  r.converged ? "" : " (max_time reached before the threshold)");
         ParticleArrays settled = particle_arrays(p);
         settled.own_sizes = p.has_own_sizes(c.dem.species);
-        write_particles_csv(fs::path(out_dir) / "settled.csv", settled);
-        if (!c.settle.cache.empty()) {
+        if (comm.rank() == 0) write_particles_csv(fs::path(out_dir) / "settled.csv", settled);
+        if (!c.settle.cache.empty() && comm.rank() == 0) {
           fs::create_directories(cache.parent_path());
           write_particles_csv(cache, settled);
           write_file_atomic(settled_bed_record_path(cache), settled_bed_record(c));
@@ -585,17 +675,22 @@ class DemModel final : public ModelRun {
   }
 
   /// Where the deepest contact (relative to its own diameter) is, for the overlap diagnosis: the particle pair
-  /// (from the neighbour list) or the particle and wall. Runs only on the failure path.
+  /// (from the neighbour list) or the particle and wall; the deepest over every rank (collective). Runs only on the
+  /// failure path.
   std::string deepest_contact() const {
+    double worst = -1.0;
+    const std::string where = deepest_contact_here(worst);
+    return comm_->first_failure(where, -worst).value_or(where);
+  }
+  std::string deepest_contact_here(double& worst) const {
     const ParticleStore<Dim>& p = sim_.dem().particles();
     const NeighborList<Dim>& nbr = sim_.dem().neighbors();
     auto at = [&](std::size_t i) {
       return Dim == 2 ? fmt::format("({:.6g}, {:.6g})", p.x[i], p.y[i])
                       : fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x[i], p.y[i], p.coord(Dim - 1)[i]);
     };
-    double worst = -1.0;
     std::string where;
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t i = 0; i < sim_.dem().owned(); ++i) {
       for (std::size_t k = nbr.offset[i]; k < nbr.offset[i + 1]; ++k) {
         const std::size_t j = nbr.partner[k];
         const double ov = (p.radius[i] + p.radius[j] - norm(p.pos(j) - p.pos(i))) / (2.0 * std::min(p.radius[i], p.radius[j]));
@@ -627,8 +722,7 @@ class DemModel final : public ModelRun {
   /// Fraction of the bed's initial mass that has left through an outflow top.
   double lost_fraction() const {
     const double lost = sim_.dem().removed_mass();
-    double left = 0.0;
-    for (double m : sim_.dem().particles().mass) left += m;
+    const double left = sim_.dem().total_mass();
     return lost > 0.0 ? lost / (lost + left) : 0.0;
   }
   /// How much of the bed has left: 0 nothing, then above 0, 1%, 10%, 50% of its mass.
@@ -649,7 +743,9 @@ class DemModel final : public ModelRun {
 
   static constexpr const char* kFaceName[3] = {"u", "v", "w"};  ///< checkpoint names of the face velocities
   CaseConfig config_;
+  const Comm* comm_;
   CfdDemSimulation<Dim> sim_;
+  mutable ParticleStore<Dim> gathered_;  ///< distributed: every rank's particles on rank 0, for particles()
   spdlog::logger* log_;
   std::vector<double> p_view_;  ///< the gas pressure without its ghosts, as the writers and observers take it
   int loss_level_ = 0;
@@ -660,9 +756,9 @@ class DemModel final : public ModelRun {
 }  // namespace
 
 std::unique_ptr<ModelRun> make_dem_model(const CaseConfig& config, const std::string& out_dir, bool fresh,
-                                         spdlog::logger& log) {
-  if (config.domain.dimension == 3) return std::make_unique<DemModel<3>>(config, out_dir, fresh, log);
-  return std::make_unique<DemModel<2>>(config, out_dir, fresh, log);
+                                         spdlog::logger& log, const Comm& comm) {
+  if (config.domain.dimension == 3) return std::make_unique<DemModel<3>>(config, out_dir, fresh, log, comm);
+  return std::make_unique<DemModel<2>>(config, out_dir, fresh, log, comm);
 }
 
 }  // namespace fluidbed

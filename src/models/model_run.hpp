@@ -77,10 +77,14 @@ class ModelRun {
   /// The particles as plain arrays (either dimension), valid until the next advance(); empty for a model without
   /// particles.
   virtual std::optional<ParticleArrays> particles() const { return std::nullopt; }
-  virtual void save(Hdf5File& file) const = 0;
+  /// Writes the model's state into `file` (rank 0 of a distributed run; null on the other ranks, which take part in
+  /// gathering it: collective).
+  virtual void save(Hdf5File* file) const = 0;
   virtual void load(const Hdf5File& file) = 0;
   virtual CostInfo cost() const = 0;
   virtual std::string describe() const = 0;
+  /// On several ranks, how the work is split (a line for the log; collective); empty on one rank.
+  virtual std::string parallel_summary() const { return {}; }
 };
 
 }  // namespace fluidbed

@@ -84,7 +84,9 @@ class TfmModel final : public ModelRun {
     return f;
   }
 
-  void save(Hdf5File& f) const override {
+  void save(Hdf5File* file) const override {
+    if (file == nullptr) return;
+    Hdf5File& f = *file;
     f.create_group("tfm");
     for (const tfm::NamedArray& a : solver_.save_state()) {
       f.write("tfm/" + a.name, a.values);

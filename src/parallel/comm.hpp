@@ -1,16 +1,69 @@
 #pragma once
-// What the solvers ask of the processes they run on: global reductions and the exchange of ghost layers between
-// sub-domains. The serial implementation owns the whole domain, so a halo exchange has no neighbour to talk to
-// (the physical boundary conditions fill every ghost cell) and a reduction is the value itself; the MPI
+// What the solvers ask of the processes they run on: global reductions, the exchange of ghost layers between
+// sub-domains, and the movement of packed records (particles, their contact history) between ranks. The serial
+// implementation owns the whole domain, so a halo exchange has no neighbour to talk to (the physical boundary
+// conditions fill every ghost cell), a reduction is the value itself and an exchange is a copy to itself; the MPI
 // implementation (mpi_comm.hpp) replaces it without touching the solvers, which already call it at the points where
 // ranks meet. A sum that must not depend on the number of ranks is accumulated exactly (ExactSum) on each rank and
 // reduced exactly: sum(const ExactSum&).
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
 #include <span>
+#include <string>
+#include <type_traits>
+#include <vector>
 
 #include "core/field.hpp"
 #include "parallel/exact_sum.hpp"
 
 namespace fluidbed {
+
+/// A packed message: records of plain values, appended and read back in the same order (pack, Unpacker).
+using Bytes = std::vector<std::byte>;
+
+/// Appends the bytes of plain values (trivially copyable) to a message.
+template <class T>
+void pack(Bytes& b, const T& v) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const std::size_t at = b.size();
+  b.resize(at + sizeof(T));
+  std::memcpy(b.data() + at, &v, sizeof(T));
+}
+template <class T>
+void pack_span(Bytes& b, std::span<const T> v) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  pack(b, static_cast<std::uint64_t>(v.size()));
+  const std::size_t at = b.size();
+  b.resize(at + v.size_bytes());
+  if (!v.empty()) std::memcpy(b.data() + at, v.data(), v.size_bytes());
+}
+
+/// Reads a message back in the order it was packed.
+class Unpacker {
+ public:
+  explicit Unpacker(std::span<const std::byte> b) : b_(b) {}
+  template <class T>
+  T get() {
+    T v;
+    std::memcpy(&v, take(sizeof(T)), sizeof(T));
+    return v;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    const auto n = static_cast<std::size_t>(get<std::uint64_t>());
+    std::vector<T> v(n);
+    if (n > 0) std::memcpy(v.data(), take(n * sizeof(T)), n * sizeof(T));
+    return v;
+  }
+  bool done() const { return at_ == b_.size(); }
+
+ private:
+  const std::byte* take(std::size_t n);
+  std::span<const std::byte> b_;
+  std::size_t at_ = 0;
+};
 
 class Comm {
  public:
@@ -23,12 +76,47 @@ class Comm {
   virtual double min(double local) const = 0;
   /// Element-wise sum over ranks, in place.
   virtual void sum(std::span<double> values) const = 0;
+  /// Element-wise maximum over ranks, in place (a maximum is exact: no order of ranks changes it).
+  virtual void max(std::span<double> values) const = 0;
+  /// Element-wise sum of integers over ranks, in place (exact).
+  virtual void sum(std::span<std::int64_t> values) const = 0;
   /// The exact sum over ranks of every rank's exact partial sum, rounded once: the same bits for any number of
   /// ranks and any split of the terms among them.
   virtual double sum(const ExactSum& local) const = 0;
   /// Fill the ghost cells of f that lie inside the domain from the ranks that own them.
   virtual void exchange_halo(Field<2>& f) const = 0;
   virtual void exchange_halo(Field<3>& f) const = 0;
+
+  /// Every rank's bytes, in rank order, on every rank.
+  virtual std::vector<Bytes> allgather(const Bytes& local) const = 0;
+  /// Every rank's bytes, in rank order, on rank `root` (an empty list on the others).
+  virtual std::vector<Bytes> gather(const Bytes& local, int root) const = 0;
+  /// Rank root's bytes on every rank.
+  virtual void broadcast(Bytes& data, int root) const = 0;
+  /// An irregular exchange: send[r] goes to rank r (send has size() entries, most of them empty); returns what
+  /// every rank sent to this one (received[r] from rank r).
+  virtual std::vector<Bytes> exchange(const std::vector<Bytes>& send) const = 0;
+  /// A regular exchange with known partners: send[k] goes to ranks[k] and recv[k], sized by the caller to what
+  /// ranks[k] sends, is filled from it (both sides know the sizes, as after a ghost set-up).
+  virtual void exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
+                             std::vector<std::vector<double>>& recv) const = 0;
+  /// Wait for every rank.
+  virtual void barrier() const = 0;
+  /// Whether every rank calls this within `timeout_s` of the first (on a channel of its own, so that ranks waiting
+  /// in another collective do not match it): how a rank that has met a failure learns whether the others have met
+  /// it too, or are waiting for it. One rank: true at once.
+  virtual bool all_arrive_within(double timeout_s) const = 0;
+  /// Ends every rank of the run at once with this exit code (a failure one rank cannot share through a
+  /// collective: it would leave the others waiting).
+  [[noreturn]] virtual void abort(int code) const = 0;
+
+  /// The collective verdict on a failure that some ranks may have met: nullopt when no rank failed, else the
+  /// message of the failing rank with the smallest key (ties: the lowest rank), the same on every rank. A failure
+  /// found by a rule on the state (a particle with the smallest id) keys on it, so that the message does not
+  /// depend on how the domain was split.
+  std::optional<std::string> first_failure(const std::optional<std::string>& local, double key = 0.0) const;
+  /// Bytes of every rank, in rank order, as one message on every rank (allgather, concatenated).
+  Bytes allgather_concat(const Bytes& local) const;
 };
 
 /// One process: no neighbour, a reduction is the value itself (not final: a test may count the exchanges).
@@ -40,9 +128,23 @@ class SerialComm : public Comm {
   double max(double local) const override { return local; }
   double min(double local) const override { return local; }
   void sum(std::span<double>) const override {}
+  void max(std::span<double>) const override {}
+  void sum(std::span<std::int64_t>) const override {}
   double sum(const ExactSum& local) const override { return local.value(); }
   void exchange_halo(Field<2>&) const override {}
   void exchange_halo(Field<3>&) const override {}
+  std::vector<Bytes> allgather(const Bytes& local) const override { return {local}; }
+  std::vector<Bytes> gather(const Bytes& local, int) const override { return {local}; }
+  void broadcast(Bytes&, int) const override {}
+  std::vector<Bytes> exchange(const std::vector<Bytes>& send) const override { return send; }
+  void exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
+                     std::vector<std::vector<double>>& recv) const override {
+    // Only rank 0 exists: what goes to it comes back.
+    for (std::size_t k = 0; k < ranks.size(); ++k) recv[k] = send[k];
+  }
+  void barrier() const override {}
+  bool all_arrive_within(double) const override { return true; }
+  [[noreturn]] void abort(int code) const override { std::_Exit(code); }
 };
 
 /// The communicator of a run on one process.

@@ -6,7 +6,11 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <thread>
 #include <cstdint>
+#include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +20,7 @@ namespace fluidbed {
 
 struct MpiComm::Impl {
   MPI_Comm comm = MPI_COMM_NULL;
+  MPI_Comm control = MPI_COMM_NULL;  // failure verdicts only (all_arrive_within)
   bool own_mpi = false;
   int rank = 0;
   int size = 1;
@@ -37,7 +42,7 @@ void for_each_outside(const IndexBox<Dim>& region, const IndexBox<Dim>& own, F&&
 }
 
 template <int Dim>
-void exchange(MPI_Comm comm, int me, int ranks, Field<Dim>& f) {
+void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f) {
   if (ranks == 1) return;
   // Every rank's box of this field (the same kind of field, the same ghost width, on every rank).
   std::array<int, 2 * Dim> mine{};
@@ -98,6 +103,7 @@ MpiComm::MpiComm() : impl_(std::make_unique<Impl>()) {
     impl_->own_mpi = true;
   }
   check(MPI_Comm_dup(MPI_COMM_WORLD, &impl_->comm), "duplicate of the world communicator");
+  check(MPI_Comm_dup(MPI_COMM_WORLD, &impl_->control), "duplicate of the world communicator");
   MPI_Comm_rank(impl_->comm, &impl_->rank);
   MPI_Comm_size(impl_->comm, &impl_->size);
 }
@@ -107,6 +113,7 @@ MpiComm::~MpiComm() {
   MPI_Finalized(&finalised);
   if (finalised) return;
   MPI_Comm_free(&impl_->comm);
+  MPI_Comm_free(&impl_->control);
   if (impl_->own_mpi) MPI_Finalize();
 }
 
@@ -151,8 +158,162 @@ void MpiComm::sum(std::span<double> values) const {
   }
 }
 
-void MpiComm::exchange_halo(Field<2>& f) const { exchange<2>(impl_->comm, impl_->rank, impl_->size, f); }
-void MpiComm::exchange_halo(Field<3>& f) const { exchange<3>(impl_->comm, impl_->rank, impl_->size, f); }
+void MpiComm::max(std::span<double> values) const {
+  std::vector<double> out(values.size());
+  check(MPI_Allreduce(values.data(), out.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX, impl_->comm),
+        "element-wise maximum");
+  std::copy(out.begin(), out.end(), values.begin());
+}
+
+void MpiComm::sum(std::span<std::int64_t> values) const {
+  std::vector<std::int64_t> out(values.size());
+  check(MPI_Allreduce(values.data(), out.data(), static_cast<int>(values.size()), MPI_INT64_T, MPI_SUM, impl_->comm),
+        "integer sum");
+  std::copy(out.begin(), out.end(), values.begin());
+}
+
+namespace {
+int count_of(std::size_t n) {
+  if (n > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw_simulation_error("MPI: a message of more than 2^31 - 1 bytes");
+  }
+  return static_cast<int>(n);
+}
+}  // namespace
+
+std::vector<Bytes> MpiComm::allgather(const Bytes& local) const {
+  const int p = impl_->size;
+  const auto mine = static_cast<std::int64_t>(local.size());
+  std::vector<std::int64_t> sizes(static_cast<std::size_t>(p));
+  check(MPI_Allgather(&mine, 1, MPI_INT64_T, sizes.data(), 1, MPI_INT64_T, impl_->comm), "allgather of sizes");
+  std::vector<int> counts(static_cast<std::size_t>(p)), displs(static_cast<std::size_t>(p));
+  std::size_t total = 0;
+  for (int q = 0; q < p; ++q) {
+    counts[static_cast<std::size_t>(q)] = count_of(static_cast<std::size_t>(sizes[static_cast<std::size_t>(q)]));
+    displs[static_cast<std::size_t>(q)] = count_of(total);
+    total += static_cast<std::size_t>(sizes[static_cast<std::size_t>(q)]);
+  }
+  Bytes all(total);
+  check(MPI_Allgatherv(local.data(), count_of(local.size()), MPI_BYTE, all.data(), counts.data(), displs.data(),
+                       MPI_BYTE, impl_->comm),
+        "allgather");
+  std::vector<Bytes> out(static_cast<std::size_t>(p));
+  for (int q = 0; q < p; ++q) {
+    const auto b = all.begin() + displs[static_cast<std::size_t>(q)];
+    out[static_cast<std::size_t>(q)].assign(b, b + counts[static_cast<std::size_t>(q)]);
+  }
+  return out;
+}
+
+std::vector<Bytes> MpiComm::gather(const Bytes& local, int root) const {
+  const int p = impl_->size;
+  const bool me = impl_->rank == root;
+  const auto mine = static_cast<std::int64_t>(local.size());
+  std::vector<std::int64_t> sizes(me ? static_cast<std::size_t>(p) : 0);
+  check(MPI_Gather(&mine, 1, MPI_INT64_T, sizes.data(), 1, MPI_INT64_T, root, impl_->comm), "gather of sizes");
+  std::vector<int> counts(sizes.size()), displs(sizes.size());
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < sizes.size(); ++q) {
+    counts[q] = count_of(static_cast<std::size_t>(sizes[q]));
+    displs[q] = count_of(total);
+    total += static_cast<std::size_t>(sizes[q]);
+  }
+  Bytes all(total);
+  check(MPI_Gatherv(local.data(), count_of(local.size()), MPI_BYTE, all.data(), counts.data(), displs.data(),
+                    MPI_BYTE, root, impl_->comm),
+        "gather");
+  std::vector<Bytes> out(sizes.size());
+  for (std::size_t q = 0; q < sizes.size(); ++q) {
+    const auto b = all.begin() + displs[q];
+    out[q].assign(b, b + counts[q]);
+  }
+  return out;
+}
+
+void MpiComm::broadcast(Bytes& data, int root) const {
+  auto n = static_cast<std::int64_t>(data.size());
+  check(MPI_Bcast(&n, 1, MPI_INT64_T, root, impl_->comm), "broadcast of a size");
+  data.resize(static_cast<std::size_t>(n));
+  check(MPI_Bcast(data.data(), count_of(data.size()), MPI_BYTE, root, impl_->comm), "broadcast");
+}
+
+std::vector<Bytes> MpiComm::exchange(const std::vector<Bytes>& send) const {
+  const int p = impl_->size;
+  if (send.size() != static_cast<std::size_t>(p)) throw_simulation_error("MpiComm::exchange: one message per rank");
+  std::vector<std::int64_t> out_sizes(static_cast<std::size_t>(p)), in_sizes(static_cast<std::size_t>(p));
+  for (int q = 0; q < p; ++q) out_sizes[static_cast<std::size_t>(q)] = static_cast<std::int64_t>(send[static_cast<std::size_t>(q)].size());
+  check(MPI_Alltoall(out_sizes.data(), 1, MPI_INT64_T, in_sizes.data(), 1, MPI_INT64_T, impl_->comm),
+        "exchange of sizes");
+  std::vector<Bytes> in(static_cast<std::size_t>(p));
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * static_cast<std::size_t>(p));
+  for (int q = 0; q < p; ++q) {
+    const auto k = static_cast<std::size_t>(q);
+    if (q == impl_->rank) {
+      in[k] = send[k];
+      continue;
+    }
+    if (in_sizes[k] > 0) {
+      in[k].resize(static_cast<std::size_t>(in_sizes[k]));
+      requests.emplace_back();
+      check(MPI_Irecv(in[k].data(), count_of(in[k].size()), MPI_BYTE, q, 1, impl_->comm, &requests.back()),
+            "receive of an exchange");
+    }
+    if (!send[k].empty()) {
+      requests.emplace_back();
+      check(MPI_Isend(send[k].data(), count_of(send[k].size()), MPI_BYTE, q, 1, impl_->comm, &requests.back()),
+            "send of an exchange");
+    }
+  }
+  check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "exchange");
+  return in;
+}
+
+void MpiComm::exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
+                            std::vector<std::vector<double>>& recv) const {
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * ranks.size());
+  for (std::size_t k = 0; k < ranks.size(); ++k) {
+    if (ranks[k] == impl_->rank) {
+      recv[k] = send[k];
+      continue;
+    }
+    if (!recv[k].empty()) {
+      requests.emplace_back();
+      check(MPI_Irecv(recv[k].data(), count_of(recv[k].size()), MPI_DOUBLE, ranks[k], 2, impl_->comm, &requests.back()),
+            "receive of a neighbour exchange");
+    }
+    if (!send[k].empty()) {
+      requests.emplace_back();
+      check(MPI_Isend(send[k].data(), count_of(send[k].size()), MPI_DOUBLE, ranks[k], 2, impl_->comm, &requests.back()),
+            "send of a neighbour exchange");
+    }
+  }
+  check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "neighbour exchange");
+}
+
+void MpiComm::barrier() const { check(MPI_Barrier(impl_->comm), "barrier"); }
+
+bool MpiComm::all_arrive_within(double timeout_s) const {
+  MPI_Request r;
+  check(MPI_Ibarrier(impl_->control, &r), "barrier of a verdict");
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  int done = 0;
+  while (true) {
+    check(MPI_Test(&r, &done, MPI_STATUS_IGNORE), "barrier of a verdict");
+    if (done) return true;
+    if (std::chrono::steady_clock::now() > until) return false;  // the request is left: the run ends with abort()
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+void MpiComm::abort(int code) const {
+  MPI_Abort(impl_->comm, code);
+  std::abort();
+}
+
+void MpiComm::exchange_halo(Field<2>& f) const { exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f); }
+void MpiComm::exchange_halo(Field<3>& f) const { exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f); }
 
 }  // namespace fluidbed
 

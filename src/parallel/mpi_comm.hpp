@@ -30,9 +30,20 @@ class MpiComm final : public Comm {
   double max(double local) const override;
   double min(double local) const override;
   void sum(std::span<double> values) const override;
+  void max(std::span<double> values) const override;
+  void sum(std::span<std::int64_t> values) const override;
   double sum(const ExactSum& local) const override;
   void exchange_halo(Field<2>& f) const override;
   void exchange_halo(Field<3>& f) const override;
+  std::vector<Bytes> allgather(const Bytes& local) const override;
+  std::vector<Bytes> gather(const Bytes& local, int root) const override;
+  void broadcast(Bytes& data, int root) const override;
+  std::vector<Bytes> exchange(const std::vector<Bytes>& send) const override;
+  void exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
+                     std::vector<std::vector<double>>& recv) const override;
+  void barrier() const override;
+  bool all_arrive_within(double timeout_s) const override;
+  [[noreturn]] void abort(int code) const override;
 
  private:
   struct Impl;

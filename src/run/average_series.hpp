@@ -32,6 +32,8 @@ class AverageSeries {
   /// The sums and the sampling schedule into group "averages" of `f`.
   void save(Hdf5File& f) const;
 
+  /// Whether observe(t, dt, ...) takes a sample (and so reads the particles).
+  bool samples_at(double t, double dt) const { return !closed_ && due(t, dt); }
   bool restored() const { return restored_; }
   std::int64_t samples() const;
   /// The files it writes.

@@ -70,7 +70,8 @@ std::map<std::string, std::string> leaves(const std::string& text, const std::st
 bool changes_simulation(const std::string& key) {
   static const char* const run_only[] = {"case.name", "case.description", "case.end_time", "case.max_wall_time",
                                          "dem.max_overlap_fraction"};
-  static const char* const sections[] = {"output.", "bubble.", "settle.", "particles.", "averages."};
+  // parallel.*: how the run is split over ranks, which changes no result (docs/parallel.md).
+  static const char* const sections[] = {"output.", "bubble.", "settle.", "particles.", "averages.", "parallel."};
   for (const char* k : run_only) {
     if (key == k) return false;
   }

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/null_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 #include <sys/file.h>
@@ -83,6 +84,11 @@ class Progress {
   int next_percent_;
   double last_draw_ = -1.0;
 };
+
+/// The log of a rank other than 0: nothing (rank 0 writes the run's one log).
+std::shared_ptr<spdlog::logger> make_silent_logger() {
+  return std::make_shared<spdlog::logger>("fluidbed", std::make_shared<spdlog::sinks::null_sink_mt>());
+}
 
 std::shared_ptr<spdlog::logger> make_logger(const fs::path& out, bool quiet, bool append) {
   auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>((out / "log.txt").string(), !append);
@@ -290,19 +296,25 @@ class FolderLock {
 class Run {
  public:
   Run(const LoadedCase& loaded, const RunOptions& options)
-      : loaded_(loaded), options_(options), cfg_(loaded.config), restart_(!options.restart.empty()) {
+      : loaded_(loaded),
+        options_(options),
+        comm_(options.comm ? *options.comm : serial_comm()),
+        root_(comm_.rank() == 0),
+        cfg_(loaded.config),
+        restart_(!options.restart.empty()) {
     if (options_.max_wall_time) cfg_.run.max_wall_time = *options_.max_wall_time;
     if (options_.end_time) cfg_.run.end_time = *options_.end_time;
     out_ = options_.out_dir.empty() ? fs::path("out") / cfg_.name : fs::path(options_.out_dir);
   }
 
   int execute() {
-    const FolderLock lock(out_);
+    std::optional<FolderLock> lock;
+    on_root([&] { lock.emplace(out_); });
     if (restart_) choose_checkpoint();  // before anything in the folder changes: a refused restart leaves it as it was
     prepare_folder();
     try {
       // The resolved case (with command-line overrides) makes any run repeatable.
-      write_file_atomic(out_ / "case.toml", loaded_.resolved_toml);
+      on_root([&] { write_file_atomic(out_ / "case.toml", loaded_.resolved_toml); });
       build_model();
       restore_state();
       open_series();
@@ -317,8 +329,23 @@ class Run {
  private:
   // ---- stages ------------------------------------------------------------------------------------------------
 
-  /// The checkpoint to continue from (`latest`: the newest valid one), verified and checked against the case.
+  /// The checkpoint to continue from (`latest`: the newest valid one), verified and checked against the case by
+  /// rank 0; every rank then reads it.
   void choose_checkpoint() {
+    on_root([&] { choose_checkpoint_here(); });
+    Bytes path;
+    if (root_) {
+      const std::string p = restart_path_.string();
+      path.assign(reinterpret_cast<const std::byte*>(p.data()), reinterpret_cast<const std::byte*>(p.data()) + p.size());
+    }
+    comm_.broadcast(path, 0);
+    if (!root_) {
+      restart_path_ = std::string(reinterpret_cast<const char*>(path.data()), path.size());
+      restart_file_.emplace(Hdf5File::open(restart_path_));
+    }
+  }
+
+  void choose_checkpoint_here() {
     if (options_.restart == "latest") {
       const LatestCheckpoint latest = find_latest_checkpoint(out_ / "checkpoints");
       skipped_ = latest.skipped;
@@ -372,8 +399,30 @@ class Run {
     }
   }
 
-  /// Folders, the log and case.toml. A new run does not replace the results of an earlier one unless asked.
+  /// Folders, the log and case.toml (rank 0; the other ranks log nothing). A new run does not replace the results
+  /// of an earlier one unless asked.
   void prepare_folder() {
+    on_root([&] { prepare_folder_here(); });
+    if (!root_) log_ptr_ = make_silent_logger();
+    threads_ = threads_per_rank();
+    omp_set_num_threads(threads_);
+    if (comm_.size() > 1) {
+      log().info("{} ranks (MPI) x {} thread{} each", comm_.size(), threads_, threads_ == 1 ? "" : "s");
+    }
+  }
+
+  /// --threads per rank; by default the cores of the machine shared among the ranks it runs (one rank: OpenMP's
+  /// default, every core).
+  int threads_per_rank() const {
+    if (options_.threads > 0) return options_.threads;
+    if (comm_.size() == 1) return omp_get_max_threads();
+    const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+    if (local == nullptr) local = std::getenv("MPI_LOCALNRANKS");
+    const int here = local ? std::max(1, std::atoi(local)) : comm_.size();
+    return std::max(1, omp_get_num_procs() / here);
+  }
+
+  void prepare_folder_here() {
     ensure_directory(out_);
     std::vector<std::string> replaced;
     if (!restart_) {
@@ -390,8 +439,6 @@ class Run {
     }
     for (const char* sub : kResultFolders) ensure_directory(out_ / sub);
     log_ptr_ = make_logger(out_, options_.quiet, restart_);
-    if (options_.threads > 0) omp_set_num_threads(options_.threads);
-    threads_ = omp_get_max_threads();
     log().info("fluidbed run {} -> {}{}", cfg_.source_path, out_.string(),
                restart_ ? " (restart from " + restart_path_.string() + ")" : "");
     for (const std::string& n : cfg_.notes) log().info("note: {}", n);  // what `check` prints: derived defaults
@@ -410,9 +457,14 @@ class Run {
   void build_model() {
     try {
       if (cfg_.model == Model::Tfm) {
+        if (comm_.size() > 1) {
+          throw_input_error(fmt::format("{}: the two-fluid model runs on one rank in this version (started on {} "
+                                        "ranks); run it without mpirun, with --threads N", cfg_.source_path,
+                                        comm_.size()));
+        }
         model_ = make_tfm_model(cfg_);
       } else {
-        model_ = make_dem_model(cfg_, out_.string(), !restart_, log());
+        model_ = make_dem_model(cfg_, out_.string(), !restart_, log(), comm_);
       }
     } catch (const Error& e) {
       // The initial gas solve runs here: its failure belongs in log.txt like any other.
@@ -443,6 +495,11 @@ class Run {
     } else {
       checkpoints_.next = 1;  // none at t = 0
     }
+    if (root_) restore_observers();
+  }
+
+  /// The observers (rank 0 only: the fields they read are whole on every rank).
+  void restore_observers() {
     const FieldView fv = model_->fields();
     // The cell tracers follow the solids field of either dimension.
     const bool moved = fv.has_grid() && fv.has_solids_velocity();
@@ -473,9 +530,24 @@ class Run {
     }
   }
 
-  /// monitor.csv, bubble.csv and the .pvd collections: new, or cut at the restart time and continued.
+  /// monitor.csv, bubble.csv and the .pvd collections: new, or cut at the restart time and continued (rank 0).
   void open_series() {
     t_start_ = model_->time();
+    const std::string description = model_->describe();  // collective: every rank
+    if (root_) open_series_here();
+    log().info("{}; {} thread{}{}; t = {:.6g} s to {:.6g} s", description, threads_, threads_ == 1 ? "" : "s",
+               comm_.size() > 1 ? fmt::format(" per rank, {} ranks", comm_.size()) : "", t_start_, cfg_.run.end_time);
+    if (threads_ > 1) {
+      const char* note = std::getenv("FLUIDBED_WAIT_NOTE");
+      const char* policy = std::getenv("OMP_WAIT_POLICY");
+      const char* spin = std::getenv("GOMP_SPINCOUNT");
+      log().info("OpenMP waiting: {}", note ? std::string(note)
+                                            : fmt::format("OMP_WAIT_POLICY = {}, GOMP_SPINCOUNT = {} (as given)",
+                                                          policy ? policy : "unset", spin ? spin : "unset"));
+    }
+  }
+
+  void open_series_here() {
     // Rows stamped k * interval may lie a rounding above the model time they were written at.
     const double t_cut = t_start_ + kStampTolerance * std::max({cfg_.output.interval, cfg_.output.monitor_interval, 0.0});
     std::vector<std::string> monitor_cols{"time_s"};
@@ -526,31 +598,25 @@ class Run {
     fields_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "fields.pvd", t_cut) : PvdCollection(out_ / "fields.pvd"));
     particles_pvd_.emplace(restart_ ? PvdCollection::resume(out_ / "particles.pvd", t_cut)
                                     : PvdCollection(out_ / "particles.pvd"));
-    log().info("{}; {} thread{}; t = {:.6g} s to {:.6g} s", model_->describe(), threads_, threads_ == 1 ? "" : "s",
-               t_start_, cfg_.run.end_time);
-    if (threads_ > 1) {
-      const char* note = std::getenv("FLUIDBED_WAIT_NOTE");
-      const char* policy = std::getenv("OMP_WAIT_POLICY");
-      const char* spin = std::getenv("GOMP_SPINCOUNT");
-      log().info("OpenMP waiting: {}", note ? std::string(note)
-                                            : fmt::format("OMP_WAIT_POLICY = {}, GOMP_SPINCOUNT = {} (as given)",
-                                                          policy ? policy : "unset", spin ? spin : "unset"));
-    }
   }
 
   void step_until_end() {
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
+    // Open MPI's mpirun forwards SIGUSR1 to every rank (SIGINT and SIGTERM it turns into a kill after a second):
+    // the way to stop a run on several ranks from its launcher, with a checkpoint (docs/parallel.md).
+    std::signal(SIGUSR1, on_signal);
     pending_signal.store(0);
     t0_ = std::chrono::steady_clock::now();
-    Progress progress(options_.quiet, t_start_, cfg_.run.end_time);
+    Progress progress(options_.quiet || !root_, t_start_, cfg_.run.end_time);
     dt_ = model_->macro_dt();
     model_steps_before_ = model_->cost().time_steps;  // DEM steps (several per gas step) or TFM steps
     try {
-      if (!restart_) observe(model_->time());
+      if (!restart_) observe(model_->time(), step_flags(model_->time()).averages_due);
       while (!landed(model_->time())) {
         const double t_before = model_->time();
         model_->advance(cfg_.run.end_time);
+        inject_fault();
         ++steps_here_;
         const double t = model_->time();
         if (!(t > t_before)) {
@@ -561,9 +627,10 @@ class Run {
           const FieldView fv = model_->fields();
           if (fv.has_solids_velocity()) advance_tracers(*tracers_, fv, model_->last_step());
         }
-        observe(t);
+        const StepFlags flags = step_flags(t);
+        observe(t, flags.averages_due);
         if (checkpoints_.due(t, dt_) && !landed(t)) periodic_checkpoint(t);
-        if (stop_requested()) break;
+        if (stop_requested(flags)) break;
         progress.update(t, steps_here_, wall(), log());
       }
     } catch (const WriteError&) {
@@ -571,12 +638,48 @@ class Run {
       throw;
     } catch (const Error& e) {
       progress.finish();
-      if (e.kind() == ErrorKind::SimulationFailed) save_failed_state(e);
+      if (e.kind() == ErrorKind::SimulationFailed) {
+        // Every rank stops with the same diagnosis when the failure was found together (a collective test or the
+        // same test on the same data); a failure of this rank alone ends the run from main().
+        if (!comm_.all_arrive_within(failure_verdict_seconds())) throw;
+        save_failed_state(e);
+      }
       throw;
     }
     progress.finish();
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
+    std::signal(SIGUSR1, SIG_DFL);
+  }
+
+  /// What every rank decides after a step, taken together (one reduction on several ranks): a stop asked for by a
+  /// signal to any rank, by the stop file or the wall-time limit (read by rank 0), and whether the time averages
+  /// sample now (their observer is rank 0's; the particles they read are gathered from all).
+  struct StepFlags {
+    bool signal = false, stop_file = false, wall_limit = false, averages_due = false;
+  };
+  StepFlags step_flags(double t) {
+    double v[4] = {pending_signal.load() != 0 ? 1.0 : 0.0, 0.0, 0.0, 0.0};
+    if (root_) {
+      v[1] = steps_here_ % 64 == 0 && fs::exists(out_ / "STOP") ? 1.0 : 0.0;
+      v[2] = cfg_.run.max_wall_time > 0.0 && wall() > cfg_.run.max_wall_time ? 1.0 : 0.0;
+      v[3] = averages_ && averages_->samples_at(t, dt_) ? 1.0 : 0.0;
+    }
+    if (comm_.size() > 1) comm_.max(std::span<double>(v));
+    return {v[0] != 0.0, v[1] != 0.0, v[2] != 0.0, v[3] != 0.0};
+  }
+
+  /// A test of the failure paths on several ranks (tests/cli/mpi_faults.sh): FLUIDBED_FAULT="throw RANK STEP"
+  /// makes rank RANK alone fail at its step STEP, as a failure no other rank can see would.
+  void inject_fault() {
+    static const char* fault = std::getenv("FLUIDBED_FAULT");
+    if (fault == nullptr) return;
+    int rank = -1;
+    unsigned long long step = 0;
+    if (std::sscanf(fault, "throw %d %llu", &rank, &step) == 2 && rank == comm_.rank() && steps_here_ + 1 == step) {
+      throw_simulation_error(fmt::format("t = {:.6g} s: a failure injected on rank {} (FLUIDBED_FAULT)",
+                                         model_->time(), rank));
+    }
   }
 
   int finish() {
@@ -585,13 +688,18 @@ class Run {
     if (averages_) averages_->finish();  // a window the run ends inside is written as it stands
     const fs::path final_path = write_checkpoint(stop_reason_.empty() ? "final" : checkpoint_tag(model_->time()), wall_total);
     last_checkpoint_ = final_path;
-    const CostInfo cost = model_->cost();
+    const CostInfo cost = model_->cost();  // collective
+    const std::string split = model_->parallel_summary();  // collective
+    if (!split.empty()) log().info("{}", split);
     const double simulated = model_->time();
-    write_file_atomic(out_ / "cost.json",
-                      fmt::format("{{\"particles\": {}, \"cells\": {}, \"time_steps\": {}, \"wall_s\": {:.6g}, "
-                                  "\"simulated_s\": {:.9g}, \"threads\": {}, \"wall_per_simulated_s\": {:.6g}}}\n",
-                                  cost.particles, cost.cells, cost.time_steps, wall_total, simulated, threads_,
-                                  simulated > 0 ? wall_total / simulated : 0.0));
+    on_root([&] {
+      write_file_atomic(out_ / "cost.json",
+                        fmt::format("{{\"particles\": {}, \"cells\": {}, \"time_steps\": {}, \"wall_s\": {:.6g}, "
+                                    "\"simulated_s\": {:.9g}, \"threads\": {}, \"ranks\": {}, "
+                                    "\"wall_per_simulated_s\": {:.6g}}}\n",
+                                    cost.particles, cost.cells, cost.time_steps, wall_total, simulated, threads_,
+                                    comm_.size(), simulated > 0 ? wall_total / simulated : 0.0));
+    });
     const double particle_steps = static_cast<double>(cost.time_steps - model_steps_before_) * static_cast<double>(cost.particles);
     log().info("{} steps in {:.2f} s wall ({:.0f} steps/s{}); checkpoint {}", steps_here_, wall_here,
                steps_here_ / std::max(wall_here, 1e-9),
@@ -619,18 +727,23 @@ class Run {
 
   // ---- observers ---------------------------------------------------------------------------------------------
 
-  void observe(double t) {
+  /// The outputs due at time t. The model's calls are collective (every rank makes them, in this order); the
+  /// observers and writers are rank 0's.
+  void observe(double t, bool averages_due) {
     // Probes may sample every step (probes.interval = 0), so before the coarser outputs.
     if (probes_ && (probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_))) {
       probes_->sample(probe_rows_.interval == 0.0 ? t : probe_rows_.stamp(t), model_->fields());
       probe_rows_.advance(t, dt_);
     }
-    if (averages_) averages_->observe(t, dt_, model_->fields(), model_->particles());
+    if (averages_due || averages_) {
+      const std::optional<ParticleArrays> particles = averages_due ? model_->particles() : std::nullopt;
+      if (averages_) averages_->observe(t, dt_, model_->fields(), particles);
+    }
     if (monitors_.due(t, dt_)) {
       std::vector<std::optional<double>> row{monitors_.stamp(t)};
       for (auto& v : model_->monitor_values()) row.push_back(v);
       row.push_back(wall_before_ + wall());
-      monitor_->row(row);
+      if (monitor_) monitor_->row(row);
       monitors_.advance(t, dt_);
     }
     if (frames_.due(t, dt_)) {
@@ -658,7 +771,7 @@ class Run {
   void write_frame(double t) {
     const FieldView fv = model_->fields();
     const std::size_t index = static_cast<std::size_t>(frames_.next);
-    if (cfg_.output.fields && fv.has_grid()) {
+    if (root_ && cfg_.output.fields && fv.has_grid()) {
       const int axes = fv.dimension == 3 ? 3 : 2;
       std::vector<VtiComponents> arrays;
       if (fv.eps) arrays.push_back({"voidage", {fv.eps, nullptr, nullptr}, 1});
@@ -673,9 +786,10 @@ class Run {
     // Particle frames: every n-th frame (output.particle_interval = n * output.interval, checked by the loader),
     // numbered as the field frame of the same instant.
     const auto every = static_cast<std::size_t>(std::llround(cfg_.output.particle_interval / cfg_.output.interval));
+    const bool wanted = cfg_.output.particles || cfg_.output.particles_csv;
     const std::optional<ParticleArrays> p =
-        index % std::max<std::size_t>(every, 1) == 0 ? model_->particles() : std::nullopt;
-    if (p) {
+        wanted && index % std::max<std::size_t>(every, 1) == 0 ? model_->particles() : std::nullopt;
+    if (p && root_) {
       if (cfg_.output.particles) {
         const std::string rel = frame_file_name("particles", index, "vtu");
         write_vtu(out_ / rel, t, *p);
@@ -685,7 +799,7 @@ class Run {
         write_particles_csv(out_ / frame_file_name("particles", index, "csv"), *p, Sync::Atomic);
       }
     }
-    if (tracers_) {
+    if (tracers_ && root_) {
       write_file_atomic(out_ / frame_file_name("tracers", index, "csv"), std::visit([](const auto& t) { return tracer_csv(t); }, *tracers_), Sync::Atomic);
     }
   }
@@ -699,6 +813,7 @@ class Run {
     last_checkpoint_ = path;
     log().info("checkpoint {}", path.string());
     // Older ones go only now that the new one is complete on disk.
+    if (!root_) return;
     for (const fs::path& old : rotate_checkpoints(out_ / "checkpoints", path, cfg_.output.checkpoint_keep)) {
       log().info("removed the older checkpoint {} (output.checkpoint_keep = {})", old.string(), cfg_.output.checkpoint_keep);
     }
@@ -707,24 +822,59 @@ class Run {
   /// The whole state of the run: the model, the output schedules, the observers, and the case it belongs to
   /// (a restart refuses a case that changes the simulation).
   fs::path write_checkpoint(const std::string& tag, double wall_total) {
+    // One file whatever the number of ranks: the model gathers its state on rank 0, which writes it. A write that
+    // fails there fails on every rank, after the gather every rank takes part in.
     const fs::path path = out_ / "checkpoints" / fmt::format("{}.h5", tag);
-    Hdf5File f = Hdf5File::create(path);
-    f.set_attribute("/", "case_name", cfg_.name);
-    f.set_attribute("/", "model", model_key(cfg_.model));
-    f.set_attribute("/", "case_toml", loaded_.resolved_toml);
-    f.set_attribute("/", "time", model_->time());
-    f.set_attribute("/", "seed", static_cast<std::int64_t>(cfg_.seed));
-    f.set_attribute("/", "next_frame", frames_.next);
-    f.set_attribute("/", "next_monitor", monitors_.next);
-    f.set_attribute("/", "next_checkpoint", checkpoints_.next);
-    f.set_attribute("/", "next_probe", probe_rows_.next);
-    f.set_attribute("/", "wall_s", wall_total);
-    model_->save(f);
-    if (bubbles_) save_bubble_state(f, bubbles_->state());
-    if (population_) population_->save(f);
-    if (averages_) averages_->save(f);
-    if (tracers_) save_tracers(f, *tracers_);
-    f.commit();
+    std::optional<Hdf5File> f;
+    std::optional<WriteError> failed;
+    auto attempt = [&](auto&& step) {
+      if (!root_ || failed) return;
+      try {
+        step();
+      } catch (const WriteError& e) {
+        failed = e;
+        f.reset();
+      }
+    };
+    attempt([&] {
+      f.emplace(Hdf5File::create(path));
+      f->set_attribute("/", "case_name", cfg_.name);
+      f->set_attribute("/", "model", model_key(cfg_.model));
+      f->set_attribute("/", "case_toml", loaded_.resolved_toml);
+      f->set_attribute("/", "time", model_->time());
+      f->set_attribute("/", "seed", static_cast<std::int64_t>(cfg_.seed));
+      f->set_attribute("/", "next_frame", frames_.next);
+      f->set_attribute("/", "next_monitor", monitors_.next);
+      f->set_attribute("/", "next_checkpoint", checkpoints_.next);
+      f->set_attribute("/", "next_probe", probe_rows_.next);
+      f->set_attribute("/", "wall_s", wall_total);
+      f->set_attribute("/", "ranks", static_cast<std::int64_t>(comm_.size()));
+    });
+    model_->save(f ? &*f : nullptr);
+    attempt([&] {
+      if (bubbles_) save_bubble_state(*f, bubbles_->state());
+      if (population_) population_->save(*f);
+      if (averages_) averages_->save(*f);
+      if (tracers_) save_tracers(*f, *tracers_);
+      f->commit();
+    });
+    if (comm_.size() > 1) {
+      Bytes verdict;
+      if (failed) {
+        const std::string m = failed->what();
+        pack(verdict, failed->error_number());
+        verdict.insert(verdict.end(), reinterpret_cast<const std::byte*>(m.data()),
+                       reinterpret_cast<const std::byte*>(m.data()) + m.size());
+      }
+      comm_.broadcast(verdict, 0);
+      if (!verdict.empty() && !failed) {
+        Unpacker u(verdict);
+        const int err = u.get<int>();
+        failed.emplace(path, std::string(reinterpret_cast<const char*>(verdict.data()) + sizeof(int),
+                                         verdict.size() - sizeof(int)), err);
+      }
+    }
+    if (failed) throw *failed;
     return path;
   }
 
@@ -770,13 +920,18 @@ class Run {
     return t >= cfg_.run.end_time - tol;
   }
 
-  bool stop_requested() {
-    if (pending_signal.load() != 0) {
-      stop_reason_ = pending_signal.load() == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)";
-    } else if (steps_here_ % 64 == 0 && fs::exists(out_ / "STOP")) {
+  bool stop_requested(const StepFlags& flags) {
+    if (flags.signal) {
+      // The signal as this rank saw it, or a stop that another rank's signal asked for.
+      const int sig = pending_signal.load();
+      stop_reason_ = sig == SIGINT    ? "interrupted (SIGINT)"
+                     : sig == SIGTERM ? "terminated (SIGTERM)"
+                     : sig == SIGUSR1 ? "stop asked for (SIGUSR1)"
+                                      : "interrupted (a signal to another rank)";
+    } else if (flags.stop_file) {
       stop_reason_ = "stop file " + (out_ / "STOP").string() + " found";
-      fs::remove(out_ / "STOP");
-    } else if (cfg_.run.max_wall_time > 0.0 && wall() > cfg_.run.max_wall_time) {
+      if (root_) fs::remove(out_ / "STOP");
+    } else if (flags.wall_limit) {
       stop_reason_ = fmt::format("wall-time limit of {} s reached", cfg_.run.max_wall_time);
     }
     return !stop_reason_.empty();
@@ -785,7 +940,9 @@ class Run {
   /// The command that continues this run exactly: the same case file, folder, end time, overrides and
   /// options, from `checkpoint`.
   std::string continue_command(const fs::path& checkpoint) const {
-    std::string cmd = "fluidbed run " + shell_word(cfg_.source_path) + " --out " + shell_word(out_.string());
+    // On several ranks the same launcher line (any number of ranks continues the run: docs/parallel.md).
+    std::string cmd = (comm_.size() > 1 ? fmt::format("mpirun -n {} ", comm_.size()) : std::string()) + "fluidbed run " +
+                      shell_word(cfg_.source_path) + " --out " + shell_word(out_.string());
     if (options_.end_time) cmd += fmt::format(" --end-time {}", *options_.end_time);
     for (const std::string& s : options_.sets) cmd += " --set " + shell_word(s);
     for (const std::string& a : options_.allow_changed) cmd += " --allow-changed " + shell_word(a);
@@ -798,8 +955,45 @@ class Run {
   double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
   spdlog::logger& log() { return *log_ptr_; }
 
+  /// Runs f on rank 0; an error it raises is raised on every rank (the others wait for the verdict), so that a
+  /// refusal (a folder in use, results to keep, a bad checkpoint) ends every rank the same way.
+  template <class F>
+  void on_root(F&& f) {
+    if (comm_.size() == 1) {
+      f();
+      return;
+    }
+    Bytes verdict;
+    if (root_) {
+      try {
+        f();
+      } catch (const WriteError& e) {
+        pack(verdict, std::uint8_t{2});
+        pack(verdict, static_cast<int>(e.kind()));
+        append_text(verdict, e.what());
+      } catch (const Error& e) {
+        pack(verdict, std::uint8_t{1});
+        pack(verdict, static_cast<int>(e.kind()));
+        append_text(verdict, e.what());
+      }
+    }
+    comm_.broadcast(verdict, 0);
+    if (verdict.empty()) return;
+    Unpacker u(verdict);
+    const auto what = u.get<std::uint8_t>();
+    const auto kind = static_cast<ErrorKind>(u.get<int>());
+    const std::string msg(reinterpret_cast<const char*>(verdict.data()) + 1 + sizeof(int), verdict.size() - 1 - sizeof(int));
+    if (what == 2) throw WriteError(out_, msg);
+    throw Error(kind, msg);
+  }
+  static void append_text(Bytes& b, const std::string& s) {
+    b.insert(b.end(), reinterpret_cast<const std::byte*>(s.data()), reinterpret_cast<const std::byte*>(s.data()) + s.size());
+  }
+
   const LoadedCase& loaded_;
   const RunOptions& options_;
+  const Comm& comm_;
+  bool root_;
   CaseConfig cfg_;
   bool restart_;
   fs::path out_;
@@ -829,5 +1023,11 @@ class Run {
 }  // namespace
 
 int run_case(const LoadedCase& loaded, const RunOptions& options) { return Run(loaded, options).execute(); }
+
+double failure_verdict_seconds() {
+  const char* v = std::getenv("FLUIDBED_FAILURE_WAIT");
+  const double s = v ? std::atof(v) : 0.0;
+  return s > 0.0 ? s : 30.0;
+}
 
 }  // namespace fluidbed

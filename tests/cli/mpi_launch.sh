@@ -1,22 +1,34 @@
 #!/usr/bin/env bash
-# fluidbed started by an MPI launcher on several processes: refused once, with exit 2, before any output, since this
-# version runs a case on one process (each copy would write the same folder). One process under the launcher runs.
+# fluidbed started by an MPI launcher: `run` splits a CFD-DEM case over the processes (one log, one progress, rank 0
+# writes the folder); what cannot run on several ranks in this version is refused once, with exit 2, before any
+# output: an ensemble (its members are processes of their own) and the two-fluid model (issue 30). One process
+# under the launcher runs as without it.
 source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/reliability.bash"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 check "mpiexec is installed (make deps)" command -v mpiexec
-case_file="$ROOT/cases/tfm3d/slab.toml"
-expect 2 "started as 2 processes by an MPI launcher" "two ranks are refused" \
-  mpiexec -n 2 --oversubscribe "$FLUIDBED" run "$case_file" --end-time 0.002 --out "$WORK/two" --quiet
-check "refused before writing anything" test ! -e "$WORK/two"
-out=$(mpiexec -n 2 --oversubscribe "$FLUIDBED" run "$case_file" --out "$WORK/two" 2>&1)
-check "the refusal is said once" test "$(grep -c 'started as 2 processes' <<<"$out")" -eq 1
+dem_case="$ROOT/tests/oracle/dem3d.toml"
+tfm_case="$ROOT/cases/tfm3d/slab.toml"
+expect 0 "" "two ranks run a CFD-DEM case" \
+  mpiexec -n 2 --oversubscribe "$FLUIDBED" run "$dem_case" --end-time 0.004 --out "$WORK/two" --quiet
+check "one log, written by rank 0: the start is logged once" test "$(grep -c 'fluidbed run ' "$WORK/two/log.txt")" -eq 1
+check "the log says the ranks" grep -q "2 ranks (MPI) x 1 thread each" "$WORK/two/log.txt"
+check "and writes its monitor" test -s "$WORK/two/monitor.csv"
+out=$(mpiexec -n 2 --oversubscribe "$FLUIDBED" run "$dem_case" --end-time 0.004 --out "$WORK/chatty" 2>&1)
+check "the terminal shows the run's lines once" test "$(grep -c '^done: t = ' <<<"$out")" -eq 1
+expect 2 "two-fluid model runs on one rank" "the TFM on two ranks is refused" \
+  mpiexec -n 2 --oversubscribe "$FLUIDBED" run "$tfm_case" --end-time 0.002 --out "$WORK/tfm" --quiet
+out=$(mpiexec -n 2 --oversubscribe "$FLUIDBED" run "$tfm_case" --end-time 0.002 --out "$WORK/tfm2" --quiet 2>&1)
+check "the refusal is said once" test "$(grep -c 'runs on one rank' <<<"$out")" -eq 1
 expect 2 "started as 3 processes" "an ensemble on three ranks is refused" \
-  mpiexec -n 3 --oversubscribe "$FLUIDBED" ensemble "$case_file" -n 2 --out "$WORK/ens"
+  mpiexec -n 3 --oversubscribe "$FLUIDBED" ensemble "$tfm_case" -n 2 --out "$WORK/ens"
+check "refused before writing anything" test ! -e "$WORK/ens"
 expect 0 "" "one rank under the launcher runs" \
-  mpiexec -n 1 "$FLUIDBED" run "$case_file" --end-time 0.002 --out "$WORK/one" --quiet
+  mpiexec -n 1 "$FLUIDBED" run "$tfm_case" --end-time 0.002 --out "$WORK/one" --quiet
 check "and writes its monitor" test -s "$WORK/one/monitor.csv"
-# The environment a launcher sets is what is read (Slurm's srun sets these).
-expect 2 "started as 4 processes" "srun's four tasks are refused" \
-  env SLURM_STEP_NUM_TASKS=4 SLURM_PROCID=0 "$FLUIDBED" run "$case_file" --out "$WORK/srun"
+# A bad case is said once with its exit code, on any number of ranks.
+expect 2 "unknown key" "a bad key on three ranks: exit 2" \
+  mpiexec -n 3 --oversubscribe "$FLUIDBED" run "$dem_case" --set dem.no_such_key=1 --out "$WORK/bad" --quiet
+out=$(mpiexec -n 3 --oversubscribe "$FLUIDBED" run "$dem_case" --set dem.no_such_key=1 --out "$WORK/bad" --quiet 2>&1)
+check "the bad key is said once" test "$(grep -c 'no_such_key' <<<"$out")" -eq 1
 finish

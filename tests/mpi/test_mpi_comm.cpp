@@ -15,14 +15,10 @@
 #include "parallel/decomposition.hpp"
 #include "parallel/exact_sum.hpp"
 #include "parallel/mpi_comm.hpp"
+#include "mpi_world.hpp"
 
 namespace fluidbed {
 namespace {
-
-const MpiComm& world() {
-  static const MpiComm comm;
-  return comm;
-}
 
 // The same 50,000 terms on every rank; rank r takes those k with k mod size == r, then the contiguous split.
 std::vector<double> all_terms() {
@@ -104,18 +100,80 @@ TEST(MpiComm, HaloExchangeFillsEveryGhostInsideTheDomain) {
   check_exchange<3>({8, 12, 6}, 2, 2);
 }
 
+TEST(MpiComm, MessagesReachTheirRanks) {
+  const Comm& c = world();
+  const int p = c.size(), me = c.rank();
+  // allgather and gather: every rank's bytes in rank order.
+  Bytes mine;
+  for (int k = 0; k <= me; ++k) pack(mine, static_cast<std::int64_t>(100 * me + k));
+  const std::vector<Bytes> all = c.allgather(mine);
+  ASSERT_EQ(all.size(), static_cast<std::size_t>(p));
+  for (int r = 0; r < p; ++r) {
+    Unpacker u(all[static_cast<std::size_t>(r)]);
+    for (int k = 0; k <= r; ++k) EXPECT_EQ(u.get<std::int64_t>(), 100 * r + k);
+    EXPECT_TRUE(u.done());
+  }
+  const std::vector<Bytes> at_root = c.gather(mine, 0);
+  EXPECT_EQ(at_root.size(), me == 0 ? static_cast<std::size_t>(p) : 0u);
+  if (me == 0) {
+    EXPECT_EQ(at_root, all);
+  }
+  // broadcast: the root's bytes everywhere.
+  Bytes b;
+  if (me == p - 1) pack(b, 3.25);
+  c.broadcast(b, p - 1);
+  EXPECT_EQ(Unpacker(b).get<double>(), 3.25);
+  // An irregular exchange: rank r sends r + 1 values to each rank q > r, nothing to the others.
+  std::vector<Bytes> out(static_cast<std::size_t>(p));
+  for (int q = me + 1; q < p; ++q) {
+    for (int k = 0; k <= me; ++k) pack(out[static_cast<std::size_t>(q)], 1000.0 * me + q + k);
+  }
+  const std::vector<Bytes> in = c.exchange(out);
+  for (int r = 0; r < p; ++r) {
+    const Bytes& got = in[static_cast<std::size_t>(r)];
+    if (r >= me) {
+      EXPECT_TRUE(got.empty()) << "from " << r;
+      continue;
+    }
+    Unpacker u(got);
+    for (int k = 0; k <= r; ++k) EXPECT_EQ(u.get<double>(), 1000.0 * r + me + k);
+  }
+  // A regular exchange with the neighbours on a ring, sizes known to both sides.
+  if (p > 1) {
+    const int next = (me + 1) % p, prev = (me + p - 1) % p;
+    std::vector<int> ranks{next};
+    if (prev != next) ranks.push_back(prev);
+    std::vector<std::vector<double>> send(ranks.size()), recv(ranks.size());
+    for (std::size_t k = 0; k < ranks.size(); ++k) {
+      send[k] = {static_cast<double>(me), static_cast<double>(ranks[k])};
+      recv[k].resize(2);
+    }
+    c.exchange_with(ranks, send, recv);
+    for (std::size_t k = 0; k < ranks.size(); ++k) {
+      EXPECT_EQ(recv[k][0], ranks[k]);
+      EXPECT_EQ(recv[k][1], me);
+    }
+  }
+}
+
+TEST(MpiComm, AFailureIsSaidOnceWithTheSmallestKey) {
+  const Comm& c = world();
+  // No rank failed.
+  EXPECT_FALSE(c.first_failure(std::nullopt, 0.0).has_value());
+  // Every odd rank fails, keyed by 10 - rank: the highest odd rank's message everywhere.
+  const bool fails = c.rank() % 2 == 1;
+  const auto m = c.first_failure(fails ? std::optional<std::string>("rank " + std::to_string(c.rank())) : std::nullopt,
+                                 10.0 - c.rank());
+  if (c.size() == 1) {
+    EXPECT_FALSE(m.has_value());
+  } else {
+    const int want = c.size() % 2 == 0 ? c.size() - 1 : c.size() - 2;
+    ASSERT_TRUE(m.has_value());
+    EXPECT_EQ(*m, "rank " + std::to_string(want));
+  }
+  // Every rank arrives at a verdict: all of them within the time.
+  EXPECT_TRUE(c.all_arrive_within(30.0));
+}
+
 }  // namespace
 }  // namespace fluidbed
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  const fluidbed::Comm& c = fluidbed::world();
-  if (c.rank() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  int failed = RUN_ALL_TESTS();
-  // Every rank's verdict: a failure on any rank fails the run.
-  failed = c.max(failed) > 0 ? 1 : 0;
-  return failed;
-}

@@ -104,11 +104,12 @@ inline GasConfig bed_gas() {
   return g;
 }
 
-inline CfdDemSimulation<2> bed_simulation(const GasConfig& gas, double wall_friction = 0.3) {
+inline CfdDemSimulation<2> bed_simulation(const GasConfig& gas, double wall_friction = 0.3, bool lid = false) {
   const SettledBed& bed = settled_bed();
   CouplingConfig cc;  // bilinear voidage, depth = one diameter, one DEM step per gas step
   DemConfig dem = bed.dem;
   dem.wall[0].friction = wall_friction;
+  dem.walls.top = lid;
   return CfdDemSimulation<2>(DemSolver<2>(dem, bed.particles), GasSolver<2>(bed_grid(), gas), cc);
 }
 

@@ -52,8 +52,10 @@ TEST(MinimumFluidisation, PressureDropLevelsOffAtBedWeight) {
     t += hold[k];
   }
   // Frictionless side walls, so that they cannot carry the bed's weight (a narrow monodisperse bed otherwise
-  // arches between them).
-  CfdDemSimulation<2> sim = bed_simulation(gas, 0.0);
+  // arches between them). A lid at the top of the gas column: at 1.6 U_Ergun a slug bursting at the surface now and
+  // then throws a particle that high (which slug does is chaotic, a matter of round-off); the lid's push, if any,
+  // is part of the walls' force in the closure below.
+  CfdDemSimulation<2> sim = bed_simulation(gas, 0.0, true);
   sim.initialize();
   const double area = kWidth * sp.diameter;
   const ParticleStore<2>& p = sim.dem().particles();

@@ -1,0 +1,187 @@
+#pragma once
+// A DEM split over ranks (docs/parallel.md): each rank owns the particles whose centres lie in its blocks
+// (parallel/block_layout.hpp) and holds copies, ghosts, of the other ranks' particles within reach of its blocks:
+// the contact reach (largest diameter + skin) and the coupling kernel's reach. Ghosts are set up when the neighbour
+// list is built and follow their owners every step (forward()); particles change owner only then (migration), taking
+// with them what is theirs: the attributes of the store and, packed by the solver, their springs.
+//
+// The records are the store's own arrays (ParticleStore::for_each_array), so adding an attribute to the store adds
+// it to migration and ghosts alike.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/periodic.hpp"
+#include "core/vec.hpp"
+#include "dem/particle_store.hpp"
+#include "parallel/block_layout.hpp"
+#include "parallel/comm.hpp"
+
+namespace fluidbed {
+
+/// Appends particle i of p (every attribute) to a message.
+template <int Dim>
+void pack_particle(Bytes& b, const ParticleStore<Dim>& p, std::size_t i) {
+  p.for_each_array([&](const std::string&, const auto& a, ArrayRole) { pack(b, a[i]); });
+}
+/// Appends the next particle of a message to p.
+template <int Dim>
+void unpack_particle(Unpacker& u, ParticleStore<Dim>& p) {
+  p.for_each_array([&](const std::string&, auto& a, ArrayRole) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    a.push_back(u.get<T>());
+  });
+}
+
+/// Who sends which owned particles to whom as ghosts, and where the ghosts received are stored.
+struct GhostPlan {
+  std::vector<int> ranks;                          ///< partners, ascending
+  std::vector<std::vector<std::uint32_t>> send;    ///< per partner: owned slots sent, in order
+  std::vector<std::size_t> recv_first, recv_count; ///< per partner: the ghost slots its particles fill
+  std::vector<std::vector<double>> send_buf, recv_buf;
+  std::size_t ghosts() const {
+    std::size_t n = 0;
+    for (std::size_t c : recv_count) n += c;
+    return n;
+  }
+  std::size_t sent() const {
+    std::size_t n = 0;
+    for (const auto& s : send) n += s.size();
+    return n;
+  }
+};
+
+template <int Dim>
+class ParticleDomain {
+ public:
+  ParticleDomain(const Comm& comm, BlockLayout<Dim> layout, const PeriodicBox<Dim>& periodic)
+      : comm_(&comm), layout_(std::move(layout)), periodic_(periodic) {}
+
+  const Comm& comm() const { return *comm_; }
+  int rank() const { return comm_->rank(); }
+  int size() const { return comm_->size(); }
+  BlockLayout<Dim>& layout() { return layout_; }
+  const BlockLayout<Dim>& layout() const { return layout_; }
+
+  /// Reaches of a ghost: a particle is another rank's ghost when it lies within `contact` (Euclidean) of one of
+  /// that rank's blocks, or within kernel[a] of it along every axis a (the coupling kernel's cells).
+  void set_reach(double contact, const Vec<Dim>& kernel) {
+    contact_ = contact;
+    kernel_ = kernel;
+  }
+  double contact_reach() const { return contact_; }
+  const Vec<Dim>& kernel_reach() const { return kernel_; }
+  /// The widest reach along axis a: a block must be at least this wide for the 3^Dim blocks around a particle's
+  /// own to hold every rank that needs it.
+  double reach(int a) const { return std::max(contact_, kernel_[a]); }
+
+  int owner_of(const Vec<Dim>& x) const { return layout_.owner(layout_.block_at(x)); }
+
+  /// The ranks other than this one that need a particle at x as a ghost, ascending, into `out` (cleared first).
+  void ghost_ranks(const Vec<Dim>& x, std::vector<int>& out) const {
+    out.clear();
+    const int b = layout_.block_at(x);
+    const int me = rank();
+    Index<Dim> off{};
+    for (int a = 0; a < Dim; ++a) off[a] = -1;
+    while (true) {
+      Index<Dim> shift{};
+      const int nb = layout_.neighbour(b, off, shift);
+      if (nb >= 0) {
+        const int r = layout_.owner(nb);
+        if (r != me && std::find(out.begin(), out.end(), r) == out.end() && near(x, nb, shift)) out.push_back(r);
+      }
+      int a = 0;
+      while (a < Dim && off[a] == 1) off[a++] = -1;
+      if (a == Dim) break;
+      ++off[a];
+    }
+    std::sort(out.begin(), out.end());
+  }
+
+  /// Ghost positions, velocities and spins from their owners (after every step), by the plan of the last set-up.
+  void forward(ParticleStore<Dim>& p, GhostPlan& plan) const {
+    constexpr int NS = kSpinComponents<Dim>;
+    constexpr std::size_t stride = 2 * Dim + NS;
+    const std::size_t nr = plan.ranks.size();
+    plan.send_buf.resize(nr);
+    plan.recv_buf.resize(nr);
+    for (std::size_t k = 0; k < nr; ++k) {
+      std::vector<double>& out = plan.send_buf[k];
+      out.resize(plan.send[k].size() * stride);
+      double* o = out.data();
+      for (const std::uint32_t i : plan.send[k]) {
+        for (int a = 0; a < Dim; ++a) *o++ = p.coord(a)[i];
+        for (int a = 0; a < Dim; ++a) *o++ = p.velocity(a)[i];
+        for (int c = 0; c < NS; ++c) *o++ = p.spin_component(c)[i];
+      }
+      plan.recv_buf[k].resize(plan.recv_count[k] * stride);
+    }
+    comm_->exchange_with(plan.ranks, plan.send_buf, plan.recv_buf);
+    for (std::size_t k = 0; k < nr; ++k) {
+      const double* in = plan.recv_buf[k].data();
+      for (std::size_t g = plan.recv_first[k]; g < plan.recv_first[k] + plan.recv_count[k]; ++g) {
+        for (int a = 0; a < Dim; ++a) p.coord(a)[g] = *in++;
+        for (int a = 0; a < Dim; ++a) p.velocity(a)[g] = *in++;
+        for (int c = 0; c < NS; ++c) p.spin_component(c)[g] = *in++;
+      }
+    }
+  }
+
+  /// Sets up the ghosts of the owned particles p[0, owned): sends each to the ranks that need it (whole records)
+  /// and appends the ones received, partner by partner in rank order; returns the plan that forward() follows.
+  GhostPlan exchange_ghosts(ParticleStore<Dim>& p, std::size_t owned) const {
+    const int n_ranks = size();
+    std::vector<std::vector<std::uint32_t>> to(static_cast<std::size_t>(n_ranks));
+    std::vector<int> ranks;
+    for (std::size_t i = 0; i < owned; ++i) {
+      ghost_ranks(p.pos(i), ranks);
+      for (int r : ranks) to[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(i));
+    }
+    std::vector<Bytes> out(static_cast<std::size_t>(n_ranks));
+    for (int r = 0; r < n_ranks; ++r) {
+      for (std::uint32_t i : to[static_cast<std::size_t>(r)]) pack_particle(out[static_cast<std::size_t>(r)], p, i);
+    }
+    const std::vector<Bytes> in = comm_->exchange(out);
+    GhostPlan plan;
+    for (int r = 0; r < n_ranks; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      if (r == rank() || (to[k].empty() && in[k].empty())) continue;
+      plan.ranks.push_back(r);
+      plan.send.push_back(std::move(to[k]));
+      plan.recv_first.push_back(p.size());
+      Unpacker u(in[k]);
+      std::size_t got = 0;
+      while (!u.done()) {
+        unpack_particle(u, p);
+        ++got;
+      }
+      plan.recv_count.push_back(got);
+    }
+    return plan;
+  }
+
+ private:
+  /// Point x within reach of block nb (its image shifted by `shift` periods).
+  bool near(const Vec<Dim>& x, int nb, const Index<Dim>& shift) const {
+    const Vec<Dim> lo = layout_.lo(nb), hi = layout_.hi(nb);
+    double d2 = 0.0;
+    bool in_kernel = true;
+    for (int a = 0; a < Dim; ++a) {
+      const double s = shift[a] * layout_.length(a);
+      const double d = std::max({lo[a] + s - x[a], x[a] - (hi[a] + s), 0.0});
+      d2 += d * d;
+      in_kernel = in_kernel && d <= kernel_[a];
+    }
+    return d2 <= contact_ * contact_ || in_kernel;
+  }
+
+  const Comm* comm_;
+  BlockLayout<Dim> layout_;
+  PeriodicBox<Dim> periodic_;
+  double contact_ = 0.0;
+  Vec<Dim> kernel_{};
+};
+
+}  // namespace fluidbed
