@@ -38,11 +38,7 @@ void CfdDemSimulation<Dim>::clip_voidage() {
 
 template <int Dim>
 std::span<const std::uint32_t> CfdDemSimulation<Dim>::id_order() {
-  if (id_order_generation_ != dem_.store_generation() || id_order_.size() != dem_.particles().size()) {
-    slots_by_id(dem_.particles(), id_order_);
-    id_order_generation_ = dem_.store_generation();
-  }
-  return id_order_;
+  return dem_.canonical_order();
 }
 
 template <int Dim>
@@ -143,7 +139,9 @@ void CfdDemSimulation<Dim>::update_particle_forces() {
     sum_d2 = Field<Dim>(g.owned, 0);
     CellEntries e;
     e.build(weights_, id_order(), sum_d3.data().size());
-    for (std::size_t c = 0; c < e.cells(); ++c) {
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::ptrdiff_t cc = 0; cc < static_cast<std::ptrdiff_t>(e.cells()); ++cc) {
+      const auto c = static_cast<std::size_t>(cc);
       double s3 = 0.0, s2 = 0.0;
       for (std::size_t q = e.begin(c); q < e.end(c); ++q) {
         const double d = 2.0 * p.radius[e.slot(q)];

@@ -66,7 +66,7 @@ class CfdDemSimulation {
   double largest_diameter() const;
   void deposit();
   void update_particle_forces();
-  /// The slots of the DEM store in ascending id (kept until the store changes).
+  /// The slots of the DEM store in the canonical order of the per-cell sums (DemSolver::canonical_order).
   std::span<const std::uint32_t> id_order();
   /// Distributed: every rank's own cells (those of its blocks) of these fields to every rank, so that each holds
   /// the whole grid (the gas is solved on every rank, the same way).
@@ -83,8 +83,6 @@ class CfdDemSimulation {
   std::vector<CellWeights<Dim>> weights_;  ///< kernel weights of the particles at the last deposit
   std::vector<CellWeights<Dim>> interp_weights_;  ///< multilinear weights for the gather when the deposition counts
   Deposition<Dim> deposition_;
-  std::vector<std::uint32_t> id_order_;
-  std::uint64_t id_order_generation_ = ~0ull;
   GasStepReport report_{};
   std::uint64_t gas_steps_ = 0;
 };

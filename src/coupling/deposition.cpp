@@ -7,22 +7,13 @@
 namespace fluidbed {
 
 template <int Dim>
-void slots_by_id(const ParticleStore<Dim>& p, std::vector<std::uint32_t>& out) {
-  out.resize(p.size());
-  for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<std::uint32_t>(k);
-  const std::int64_t* id = p.id.data();
-  if (std::is_sorted(out.begin(), out.end(), [id](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; })) return;
-  std::sort(out.begin(), out.end(), [id](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; });
-}
-
-template <int Dim>
 void CellEntries::build(const std::vector<CellWeights<Dim>>& weights, std::span<const std::uint32_t> id_order,
                         std::size_t cells) {
   const std::size_t n = id_order.size();
   const auto chunks = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   if (chunk_count_.size() != chunks) chunk_count_.assign(chunks, {});
   // Pass 1, per chunk of the id order: the shares each chunk gives each cell.
-#pragma omp parallel for schedule(static, 1)
+#pragma omp parallel for schedule(static)
   for (std::ptrdiff_t cc = 0; cc < static_cast<std::ptrdiff_t>(chunks); ++cc) {
     const auto c = static_cast<std::size_t>(cc);
     std::vector<std::size_t>& count = chunk_count_[c];
@@ -47,7 +38,7 @@ void CellEntries::build(const std::vector<CellWeights<Dim>>& weights, std::span<
   slot_.resize(at);
   w_.resize(at);
   // Pass 2, per chunk: each share into its place.
-#pragma omp parallel for schedule(static, 1)
+#pragma omp parallel for schedule(static)
   for (std::ptrdiff_t cc = 0; cc < static_cast<std::ptrdiff_t>(chunks); ++cc) {
     const auto c = static_cast<std::size_t>(cc);
     std::vector<std::size_t>& next = chunk_count_[c];
@@ -66,7 +57,7 @@ void CellEntries::build(const std::vector<CellWeights<Dim>>& weights, std::span<
 template <int Dim>
 void Deposition<Dim>::deposit(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights,
                               const Grid<Dim>& g, double depth, const DepositedFields<Dim>& out) {
-  slots_by_id(p, order_);
+  order_ = p.slots_in_id_order();
   deposit(p, weights, g, depth, out, order_);
 }
 
@@ -83,28 +74,24 @@ void Deposition<Dim>::deposit(const ParticleStore<Dim>& p, const std::vector<Cel
   }
   if (out.beta->box() != eps.box()) *out.beta = Field<Dim>(g.owned, 0);
   const std::size_t ncell = eps.data().size();
+  // Each cell's shares in order (a counting sort over the particles in that order, in chunks: the weights are read
+  // in sequence, by the threads that wrote them), then per cell (any thread; dynamic chunks, since the bed fills
+  // some cells and leaves the freeboard's empty) the sums and the cell values.
   entries_.build(weights, id_order, ncell);
-  const std::size_t n = p.size();
-  vp_.resize(n);
-  const double* r = p.radius.data();
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < static_cast<std::ptrdiff_t>(n); ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    vp_[i] = 4.0 / 3.0 * std::numbers::pi * r[i] * r[i] * r[i];
-  }
-  // Per cell (any thread): its shares in id order, then the cell values.
   const double vcell = deposition_volume(g, depth);
+  const double* r = p.radius.data();
   const double* kp = p.drag_k.data();
   std::array<const double*, Dim> v{};
   for (int a = 0; a < Dim; ++a) v[static_cast<std::size_t>(a)] = p.velocity(a).data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t cc = 0; cc < static_cast<std::ptrdiff_t>(ncell); ++cc) {
     const auto c = static_cast<std::size_t>(cc);
     // Solids volume, volume-weighted velocity sums, K, K-weighted velocity sums.
     std::array<double, 2 + 2 * Dim> s{};
     for (std::size_t e = entries_.begin(c); e < entries_.end(c); ++e) {
       const std::size_t i = entries_.slot(e);
-      const double wv = entries_.weight(e) * vp_[i];
+      const double vp = 4.0 / 3.0 * std::numbers::pi * r[i] * r[i] * r[i];
+      const double wv = entries_.weight(e) * vp;
       const double wk = entries_.weight(e) * kp[i];
       s[0] += wv;
       s[1 + Dim] += wk;
@@ -125,8 +112,6 @@ void Deposition<Dim>::deposit(const ParticleStore<Dim>& p, const std::vector<Cel
   }
 }
 
-template void slots_by_id<2>(const ParticleStore<2>&, std::vector<std::uint32_t>&);
-template void slots_by_id<3>(const ParticleStore<3>&, std::vector<std::uint32_t>&);
 template void CellEntries::build<2>(const std::vector<CellWeights<2>>&, std::span<const std::uint32_t>, std::size_t);
 template void CellEntries::build<3>(const std::vector<CellWeights<3>>&, std::span<const std::uint32_t>, std::size_t);
 template class Deposition<2>;

@@ -1,9 +1,10 @@
 #pragma once
 // Particle -> grid in one pass: solids volume, solids momentum and drag coefficient of every cell from the stored
-// kernel weights. Each cell sums its particles' shares in ascending particle id (CellEntries), so a cell's value
-// depends only on the particles that reach it: not on the thread count, not on how the particles are stored, and
-// not on how the domain is split over ranks (a rank computes its cells from its own particles and the ghosts of
-// its neighbours', in the same order as one rank holding them all).
+// kernel weights. Each cell sums its particles' shares in a canonical order of the particles (DemSolver's
+// canonical_order: ascending order key and id), so a cell's value depends only on the particles that reach it: not
+// on the thread count, not on how the particles are stored, and not on how the domain is split over ranks (a rank
+// computes its cells from its own particles and the ghosts of its neighbours', in the same order as one rank
+// holding them all).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -26,18 +27,15 @@ struct DepositedFields {
   std::array<Field<Dim>, Dim>* us_gas = nullptr;  ///< K-weighted mean particle velocity (us where no drag)
 };
 
-/// The slots of a store in ascending id (ties cannot occur: ids are unique).
-template <int Dim>
-void slots_by_id(const ParticleStore<Dim>& p, std::vector<std::uint32_t>& out);
-
-/// Every cell's shares (particle slot, kernel weight), in ascending particle id and, for one particle, in the order
-/// of its weights: the order of every per-cell sum over particles. Built by a counting sort over the particles in id
-/// order, in chunks whose results are laid out chunk after chunk per cell, so the order is the same for any number
-/// of chunks (threads).
+/// Every cell's shares (particle slot, kernel weight), in a given order of the particles (the canonical one:
+/// DemSolver::canonical_order) and, for one particle, in the order of its weights: the order of every per-cell sum
+/// over particles. Built by a counting sort over the particles in that order, in chunks whose results are laid out
+/// chunk after chunk per cell, so the order is the same for any number of chunks (threads). weights[i] are slot
+/// i's (storage order).
 class CellEntries {
  public:
   template <int Dim>
-  void build(const std::vector<CellWeights<Dim>>& weights, std::span<const std::uint32_t> id_order, std::size_t cells);
+  void build(const std::vector<CellWeights<Dim>>& weights, std::span<const std::uint32_t> order, std::size_t cells);
   std::size_t cells() const { return start_.empty() ? 0 : start_.size() - 1; }
   std::size_t begin(std::size_t c) const { return start_[c]; }
   std::size_t end(std::size_t c) const { return start_[c + 1]; }
@@ -60,16 +58,13 @@ class Deposition {
   /// particle reaches gets the sums of the particles the store holds.
   void deposit(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights, const Grid<Dim>& grid,
                double depth, const DepositedFields<Dim>& out);
-  /// The same, with the slots in ascending id given (a caller that keeps them between depositions).
+  /// The same, each cell's sum in the order `order` gives the slots (the canonical order, which does not depend
+  /// on how the particles are split over ranks; the call above takes ascending id).
   void deposit(const ParticleStore<Dim>& p, const std::vector<CellWeights<Dim>>& weights, const Grid<Dim>& grid,
-               double depth, const DepositedFields<Dim>& out, std::span<const std::uint32_t> id_order);
-  /// The entries of the last deposition (for other sums in the same order, e.g. Beetstra's size moments).
-  const CellEntries& entries() const { return entries_; }
-
+               double depth, const DepositedFields<Dim>& out, std::span<const std::uint32_t> order);
  private:
   CellEntries entries_;
   std::vector<std::uint32_t> order_;
-  std::vector<double> vp_;
 };
 
 extern template class Deposition<2>;

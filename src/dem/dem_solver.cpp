@@ -1,6 +1,7 @@
 #include "dem/dem_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -94,6 +95,62 @@ bool is_zero(Vec<Dim> v) {
   for (int a = 0; a < Dim; ++a) z = z && v[a] == 0.0;
   return z;
 }
+// Particles of a state's arrays as a message: their store records attribute by attribute (pack_particles), then
+// each one's wall springs, rolling wall springs, build position and pair springs by partner id; and back,
+// appended. The message migration, gathers and checkpoints share.
+template <int Dim>
+void pack_records(Bytes& b, const ParticleStore<Dim>& p, const WallSprings<Dim>& walls,
+                  const std::vector<Spin<Dim>>& wall_roll, const std::array<std::vector<double>, Dim>& build,
+                  const HeldSprings<Dim>& held, std::span<const std::uint32_t> slots, std::size_t owned) {
+  pack_particles<Dim>(b, p, slots);
+  const bool roll = !wall_roll.empty();
+  pack(b, static_cast<std::uint8_t>(roll));
+  const bool has = held.particles() == owned;
+  for (const std::uint32_t i : slots) {
+    for (int w = 0; w < 2 * Dim; ++w) pack(b, walls.get(i, w));
+    if (roll) {
+      for (int w = 0; w < 2 * Dim; ++w) pack(b, wall_roll[i * 2 * Dim + static_cast<std::size_t>(w)]);
+    }
+    for (int a = 0; a < Dim; ++a) {
+      const std::vector<double>& bl = build[static_cast<std::size_t>(a)];
+      pack(b, bl.size() == owned ? bl[i] : p.coord(a)[i]);
+    }
+    const std::size_t q0 = has ? held.offset[i] : 0, q1 = has ? held.offset[i + 1] : 0;
+    pack(b, static_cast<std::uint64_t>(q1 - q0));
+    for (std::size_t q = q0; q < q1; ++q) {
+      pack(b, held.partner_id[q]);
+      pack(b, held.xi[q]);
+      pack(b, held.keeps_rolling() ? held.roll[q] : Spin<Dim>{});
+    }
+  }
+}
+
+template <int Dim>
+std::size_t unpack_records(Unpacker& u, ParticleStore<Dim>& p, WallSprings<Dim>& walls,
+                           std::vector<Spin<Dim>>& wall_roll, std::array<std::vector<double>, Dim>& build,
+                           HeldSprings<Dim>& held) {
+  const std::size_t first = p.size();
+  const std::size_t n = unpack_particles(u, p);
+  const bool roll = u.get<std::uint8_t>() != 0;
+  if (roll || !wall_roll.empty()) wall_roll.resize(2 * Dim * p.size(), Spin<Dim>{});
+  for (std::size_t i = first; i < first + n; ++i) {
+    walls.push_back();
+    for (int w = 0; w < 2 * Dim; ++w) walls.set(i, w, u.get<Vec<Dim>>());
+    if (roll) {
+      for (int w = 0; w < 2 * Dim; ++w) wall_roll[i * 2 * Dim + static_cast<std::size_t>(w)] = u.get<Spin<Dim>>();
+    }
+    for (int a = 0; a < Dim; ++a) build[static_cast<std::size_t>(a)].push_back(u.get<double>());
+    const auto m = static_cast<std::size_t>(u.get<std::uint64_t>());
+    held.add_particle();
+    for (std::size_t q = 0; q < m; ++q) {
+      const auto id = u.get<std::int64_t>();
+      const auto xi = u.get<Vec<Dim>>();
+      const auto r = u.get<Spin<Dim>>();
+      held.add(id, xi, r);
+    }
+  }
+  return n;
+}
 }  // namespace
 
 template <int Dim>
@@ -137,6 +194,8 @@ DemSolver<Dim>::DemSolver(DemConfig config, Store particles) : config_(std::move
     }
   }
   p_.sort_by_id();
+  // The order keys come from this solver's own sorting rebuilds: a store handed over starts from none (id order).
+  std::fill(p_.order_key.begin(), p_.order_key.end(), 0);
   for (std::size_t i = 1; i < p_.size(); ++i) {
     if (p_.id[i] == p_.id[i - 1]) {
       throw_input_error(fmt::format("particle id {} is given twice: every particle needs its own id", p_.id[i]));
@@ -209,12 +268,14 @@ std::uint64_t DemSolver<Dim>::total_particles() const {
 template <int Dim>
 typename DemSolver<Dim>::Store DemSolver<Dim>::all_particles(int root) const {
   Bytes mine;
-  for (std::size_t i = 0; i < n_owned_; ++i) pack_particle(mine, p_, i);
+  std::vector<std::uint32_t> slots(n_owned_);
+  for (std::size_t i = 0; i < n_owned_; ++i) slots[i] = static_cast<std::uint32_t>(i);
+  pack_particles<Dim>(mine, p_, slots);
   const std::vector<Bytes> all = root < 0 ? comm().allgather(mine) : comm().gather(mine, root);
   Store out;
   for (const Bytes& b : all) {
     Unpacker u(b);
-    while (!u.done()) unpack_particle(u, out);
+    while (!u.done()) unpack_particles(u, out);
   }
   out.sort_by_id();
   return out;
@@ -222,7 +283,7 @@ typename DemSolver<Dim>::Store DemSolver<Dim>::all_particles(int root) const {
 
 template <int Dim>
 DemParallelStats DemSolver<Dim>::parallel_stats() const {
-  DemParallelStats s;
+  DemParallelStats s = comm_stats_;
   s.owned = n_owned_;
   s.ghosts = p_.size() - n_owned_;
   s.ghost_sends = plan_.sent();
@@ -239,17 +300,18 @@ void DemSolver<Dim>::rebuild(bool counted) {
   // not a copy of the whole old list, so the rebuild needs little memory beyond the list itself.
   if (list_springs_) gather_held_springs();
   list_springs_ = false;
-  std::vector<std::size_t> keep(n_owned_);
-  for (std::size_t i = 0; i < n_owned_; ++i) keep[i] = i;
   if (domain_) {
-    select_owned(keep);  // the ghosts go; the new set comes after migration
+    drop_ghosts();  // the new set comes after migration
+    const auto t0 = std::chrono::steady_clock::now();
     if (counted) rebalance_if_needed();
     migrate();
+    comm_stats_.rebuild_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles drift
   // from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
   if (counted && rebuilds_ % kSortEvery == 0) {
-    select_owned(sort_by_cell(p_, cell_size_));
+    select_owned(assign_order_keys());
+    key_sorted_ = true;
   } else if (!domain_) {
     walls_.compact();  // springs back at +0 give up their records
   }
@@ -257,14 +319,28 @@ void DemSolver<Dim>::rebuild(bool counted) {
     for (int a = 0; a < Dim; ++a) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   }
   n_owned_ = p_.size();
-  if (domain_) plan_ = domain_->exchange_ghosts(p_, n_owned_);
-  build_neighbor_list(p_, n_owned_, cell_size_, config_.skin, nbr_, scratch_, periodic_);
+  if (domain_) {
+    const auto t0 = std::chrono::steady_clock::now();
+    plan_ = domain_->exchange_ghosts(p_, n_owned_);
+    comm_stats_.rebuild_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    comm_stats_.rebuild_bytes += plan_.sent() * ParticleStore<Dim>::bytes_per_particle();
+    comm_stats_.rebuild_messages += plan_.ranks.size();
+    ++generation_;  // new ghosts in new slots
+  }
+  // Each particle's partners in the canonical order (ascending order key and id), the order its forces are summed in:
+  // on one rank after a sorting rebuild the slots themselves, else their places in that order.
+  std::vector<std::uint32_t> rank;
+  if (domain_ || !key_sorted_) {
+    const std::span<const std::uint32_t> order = canonical_order();
+    rank.resize(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) rank[order[k]] = static_cast<std::uint32_t>(k);
+  }
+  build_neighbor_list(p_, n_owned_, cell_size_, config_.skin, nbr_, scratch_, periodic_, rank);
   if (config_.contact.needs_rolling_history()) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
   carry_held_springs();
   link_mirrors();
   list_springs_ = true;
   list_stale_ = false;
-  ++generation_;
   if (counted) {
     need_rebuild_ = false;
     ++rebuilds_;
@@ -274,25 +350,39 @@ void DemSolver<Dim>::rebuild(bool counted) {
 template <int Dim>
 void DemSolver<Dim>::gather_held_springs() {
   const std::size_t n = n_owned_;
-  const bool rolling = config_.contact.needs_rolling_history() && nbr_.rolling.size() == nbr_.history.size();
-  held_.clear(0, config_.contact.needs_rolling_history());
-  if (nbr_.offset.size() < n + 1) {
-    for (std::size_t i = 0; i < n; ++i) held_.add_particle();
-    return;
-  }
+  const bool rolling_law = config_.contact.needs_rolling_history();
+  const bool rolling = rolling_law && nbr_.rolling.size() == nbr_.history.size();
+  HeldSprings<Dim>& h = held_;
+  h.clear(n, rolling_law);
+  if (nbr_.offset.size() < n + 1) return;
   auto held = [&](std::size_t q) {
     if (!HeldSprings<Dim>::plus_zero(nbr_.history[q])) return true;
-    if (!rolling) return false;
-    if constexpr (Dim == 2) {
-      return !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
-    } else {
-      return !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
-    }
+    return rolling && !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
   };
-  for (std::size_t i = 0; i < n; ++i) {
-    held_.add_particle();
+  // Counted, then copied, both in parallel over the particles (the entries land in list order either way).
+  const auto sn = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t c = 0;
+    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) c += held(q) ? 1 : 0;
+    h.offset[i + 1] = c;
+  }
+  for (std::size_t i = 0; i < n; ++i) h.offset[i + 1] += h.offset[i];
+  const std::size_t m = h.offset[n];
+  h.partner_id.resize(m);
+  h.xi.resize(m);
+  h.roll.resize(rolling_law ? m : 0);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t c = h.offset[i];
     for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
-      if (held(q)) held_.add(p_.id[nbr_.partner[q]], nbr_.history[q], rolling ? nbr_.rolling[q] : Spin<Dim>{});
+      if (!held(q)) continue;
+      h.partner_id[c] = p_.id[nbr_.partner[q]];
+      h.xi[c] = nbr_.history[q];
+      if (rolling_law) h.roll[c] = rolling ? nbr_.rolling[q] : Spin<Dim>{};
+      ++c;
     }
   }
 }
@@ -318,6 +408,60 @@ void DemSolver<Dim>::carry_held_springs() {
       }
     }
   }
+}
+
+template <int Dim>
+std::vector<std::size_t> DemSolver<Dim>::assign_order_keys() {
+  // The lattice of the list's cells from the domain's origin (not the particles' bounding box): the same cell for a
+  // particle on every rank. A position beyond a side (an outflow) is clamped into the last cell.
+  const Vec<Dim> extent = config_.domain.template extent<Dim>();
+  Index<Dim> n{};
+  for (int a = 0; a < Dim; ++a) n[a] = std::max(1, static_cast<int>(std::ceil(extent[a] / cell_size_)));
+  std::size_t cells = 1;
+  for (int a = 0; a < Dim; ++a) cells *= static_cast<std::size_t>(n[a]);
+  const std::size_t m = n_owned_;
+  for (std::size_t i = 0; i < m; ++i) {
+    std::int64_t key = 0;
+    for (int a = Dim - 1; a >= 0; --a) {
+      const int c = std::clamp(static_cast<int>(std::floor(p_.coord(a)[i] / cell_size_)), 0, n[a] - 1);
+      key = key * n[a] + c;
+    }
+    p_.order_key[i] = key;
+  }
+  // Ascending id, then a stable counting sort by key: the order (key, id).
+  const std::vector<std::uint32_t> by_id = p_.slots_in_id_order();
+  std::vector<std::size_t> start(cells + 1, 0);
+  for (std::size_t i = 0; i < m; ++i) ++start[static_cast<std::size_t>(p_.order_key[i]) + 1];
+  for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  std::vector<std::size_t> order(m);
+  for (const std::uint32_t i : by_id) order[start[static_cast<std::size_t>(p_.order_key[i])]++] = i;
+  return order;
+}
+
+template <int Dim>
+std::span<const std::uint32_t> DemSolver<Dim>::canonical_order() const {
+  if (canonical_generation_ == generation_ && canonical_.size() == p_.size()) return canonical_;
+  canonical_.resize(p_.size());
+  for (std::size_t k = 0; k < canonical_.size(); ++k) canonical_[k] = static_cast<std::uint32_t>(k);
+  if (!(key_sorted_ && !domain_)) {
+    const std::int64_t* key = p_.order_key.data();
+    const std::int64_t* id = p_.id.data();
+    std::sort(canonical_.begin(), canonical_.end(), [key, id](std::uint32_t a, std::uint32_t b) {
+      return key[a] != key[b] ? key[a] < key[b] : id[a] < id[b];
+    });
+  }
+  canonical_generation_ = generation_;
+  return canonical_;
+}
+
+template <int Dim>
+void DemSolver<Dim>::drop_ghosts() {
+  // The ghosts are the store's last slots: cut, not copied.
+  p_.for_each_array([this](const std::string&, auto& a, ArrayRole) { a.resize(n_owned_); });
+  nbr_.offset.clear();  // the list named the ghosts' slots
+  upper_offset_.clear();
+  last_valid_ = false;
+  ++generation_;
 }
 
 template <int Dim>
@@ -355,13 +499,17 @@ void DemSolver<Dim>::migrate() {
     if (build_[static_cast<std::size_t>(a)].size() != n_owned_) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   }
   if (held_.particles() != n_owned_) held_.clear(n_owned_, config_.contact.needs_rolling_history());
+  std::vector<std::vector<std::uint32_t>> leaving(nr);
   for (std::size_t i = 0; i < n_owned_; ++i) {
     const int r = domain_->owner_of(p_.pos(i));
     if (r == me) {
       keep.push_back(i);
     } else {
-      pack_owned(out[static_cast<std::size_t>(r)], i);
+      leaving[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(i));
     }
+  }
+  for (std::size_t r = 0; r < nr; ++r) {
+    if (!leaving[r].empty()) pack_records<Dim>(out[r], p_, walls_, wall_roll_, build_, held_, leaving[r], n_owned_);
   }
   const std::vector<Bytes> in = domain_->comm().exchange(out);
   if (keep.size() != n_owned_) select_owned(keep);
@@ -369,8 +517,9 @@ void DemSolver<Dim>::migrate() {
     if (static_cast<int>(r) == me) continue;
     Unpacker u(in[r]);
     while (!u.done()) {
-      unpack_owned(u);
-      ++migrated_;
+      const std::size_t got = unpack_records<Dim>(u, p_, walls_, wall_roll_, build_, held_);
+      n_owned_ += got;
+      migrated_ += got;
     }
   }
   ++generation_;
@@ -977,11 +1126,23 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
 
 template <int Dim>
 void DemSolver<Dim>::finish_step_distributed(int& moved_far, int& bad, int& escaped) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   domain_->forward(p_, plan_);
+  const auto t1 = Clock::now();
   // One reduction a step: the rebuild trigger, a failure, an escape and the largest overlaps, over every rank.
   double v[5] = {static_cast<double>(moved_far), static_cast<double>(bad), static_cast<double>(escaped), max_overlap_,
                  max_overlap_fraction_};
   domain_->comm().max(std::span<double>(v));
+  const auto t2 = Clock::now();
+  DemParallelStats& c = comm_stats_;
+  ++c.steps;
+  c.forward_s += std::chrono::duration<double>(t1 - t0).count();
+  c.reduce_s += std::chrono::duration<double>(t2 - t1).count();
+  for (const std::vector<double>& b : plan_.send_buf) {
+    c.forward_bytes += b.size() * sizeof(double);
+    c.forward_messages += b.empty() ? 0 : 1;
+  }
   moved_far = v[0] != 0.0 ? 1 : 0;
   bad = v[1] != 0.0 ? 1 : 0;
   escaped = v[2] != 0.0 ? 1 : 0;
@@ -1154,6 +1315,7 @@ std::size_t DemSolver<Dim>::insert_due() {
       if (held_.particles() == n_owned_) held_.add_particle();
       ++n_owned_;
       ++generation_;
+      key_sorted_ = false;  // its key (0) is no larger than the others': sorted again at the next sorting rebuild
     }
     ++feed_.inserted;
     feed_.mass += sp.mass();
@@ -1166,9 +1328,7 @@ std::size_t DemSolver<Dim>::insert_due() {
     // deposition sees them on every rank (not counted: the counted rebuild comes at the next step, as on one rank).
     if (list_springs_) gather_held_springs();
     list_springs_ = false;
-    std::vector<std::size_t> keep(n_owned_);
-    for (std::size_t i = 0; i < n_owned_; ++i) keep[i] = i;
-    select_owned(keep);
+    drop_ghosts();
     for (std::size_t k = 0; k < mine.size(); ++k) {
       p_.add(mine[k].first, in.species, mine_species[k], mine[k].second, vel);
       if (!wall_roll_.empty()) wall_roll_.resize(wall_roll_.size() + 2 * Dim, Spin<Dim>{});
@@ -1296,74 +1456,6 @@ typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
   return st;
 }
 
-namespace {
-// One particle of a state's arrays as a message, with its wall springs, rolling wall springs, build position and
-// pair springs by partner id; and back, appended. The record migration, gathers and checkpoints share.
-template <int Dim>
-void pack_record(Bytes& b, const ParticleStore<Dim>& p, const WallSprings<Dim>& walls,
-                 const std::vector<Spin<Dim>>& wall_roll, const std::array<std::vector<double>, Dim>& build,
-                 const HeldSprings<Dim>& held, std::size_t i, std::size_t owned) {
-  pack_particle(b, p, i);
-  for (int w = 0; w < 2 * Dim; ++w) pack(b, walls.get(i, w));
-  const bool roll = !wall_roll.empty();
-  pack(b, static_cast<std::uint8_t>(roll));
-  if (roll) {
-    for (int w = 0; w < 2 * Dim; ++w) pack(b, wall_roll[i * 2 * Dim + static_cast<std::size_t>(w)]);
-  }
-  for (int a = 0; a < Dim; ++a) {
-    const std::vector<double>& bl = build[static_cast<std::size_t>(a)];
-    pack(b, bl.size() == owned ? bl[i] : p.coord(a)[i]);
-  }
-  const bool has = held.particles() == owned;
-  const std::size_t q0 = has ? held.offset[i] : 0, q1 = has ? held.offset[i + 1] : 0;
-  pack(b, static_cast<std::uint64_t>(q1 - q0));
-  for (std::size_t q = q0; q < q1; ++q) {
-    pack(b, held.partner_id[q]);
-    pack(b, held.xi[q]);
-    pack(b, held.keeps_rolling() ? held.roll[q] : Spin<Dim>{});
-  }
-}
-
-template <int Dim>
-void unpack_record(Unpacker& u, ParticleStore<Dim>& p, WallSprings<Dim>& walls, std::vector<Spin<Dim>>& wall_roll,
-                   std::array<std::vector<double>, Dim>& build, HeldSprings<Dim>& held) {
-  unpack_particle(u, p);
-  const std::size_t i = p.size() - 1;
-  walls.push_back();
-  for (int w = 0; w < 2 * Dim; ++w) walls.set(i, w, u.get<Vec<Dim>>());
-  const bool roll = u.get<std::uint8_t>() != 0;
-  if (roll || !wall_roll.empty()) wall_roll.resize(2 * Dim * (i + 1), Spin<Dim>{});
-  if (roll) {
-    for (int w = 0; w < 2 * Dim; ++w) wall_roll[i * 2 * Dim + static_cast<std::size_t>(w)] = u.get<Spin<Dim>>();
-  }
-  for (int a = 0; a < Dim; ++a) build[static_cast<std::size_t>(a)].push_back(u.get<double>());
-  const auto m = static_cast<std::size_t>(u.get<std::uint64_t>());
-  held.add_particle();
-  for (std::size_t q = 0; q < m; ++q) {
-    const auto id = u.get<std::int64_t>();
-    const auto xi = u.get<Vec<Dim>>();
-    const auto r = u.get<Spin<Dim>>();
-    held.add(id, xi, r);
-  }
-}
-}  // namespace
-
-template <int Dim>
-void DemSolver<Dim>::pack_owned(Bytes& b, std::size_t i) const {
-  pack_record<Dim>(b, p_, walls_, wall_roll_, build_, held_, i, n_owned_);
-}
-
-template <int Dim>
-void DemSolver<Dim>::unpack_owned(Unpacker& u) {
-  // Called with no ghosts in the store.
-  for (int a = 0; a < Dim; ++a) {
-    if (build_[static_cast<std::size_t>(a)].size() != p_.size()) build_[static_cast<std::size_t>(a)] = p_.coord(a);
-  }
-  if (held_.particles() != p_.size()) held_.clear(p_.size(), config_.contact.needs_rolling_history());
-  unpack_record<Dim>(u, p_, walls_, wall_roll_, build_, held_);
-  ++n_owned_;
-}
-
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
   // Every owned particle with its springs by partner id (from the list when it is current), gathered on rank 0.
@@ -1377,8 +1469,6 @@ typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
     self.held_ = std::move(saved);
     held = &held_now;
   }
-  Bytes mine;
-  for (std::size_t i = 0; i < n_owned_; ++i) pack_record<Dim>(mine, p_, walls_, wall_roll_, build_, *held, i, n_owned_);
   State st;
   st.time = time_;
   st.steps = steps_;
@@ -1390,11 +1480,28 @@ typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
   st.removed_mass = removed_mass_;
   st.feed = feed_;
   st.held.clear(0, config_.contact.needs_rolling_history());
-  const std::vector<Bytes> all = comm().gather(mine, 0);
-  if (all.empty()) return st;
-  for (const Bytes& b : all) {
-    Unpacker u(b);
-    while (!u.done()) unpack_record<Dim>(u, st.particles, st.walls, st.wall_roll, st.build, st.held);
+  if (!domain_) {
+    // One rank: the arrays themselves (no ghosts), without a message between.
+    st.particles = p_;
+    st.walls = walls_;
+    st.wall_roll = wall_roll_;
+    for (int a = 0; a < Dim; ++a) {
+      const std::vector<double>& b = build_[static_cast<std::size_t>(a)];
+      st.build[static_cast<std::size_t>(a)] = b.size() == n_owned_ ? b : p_.coord(a);
+    }
+    st.held = held->particles() == n_owned_ ? *held : HeldSprings<Dim>{};
+    if (st.held.particles() != n_owned_) st.held.clear(n_owned_, config_.contact.needs_rolling_history());
+  } else {
+    Bytes mine;
+    std::vector<std::uint32_t> slots(n_owned_);
+    for (std::size_t i = 0; i < n_owned_; ++i) slots[i] = static_cast<std::uint32_t>(i);
+    pack_records<Dim>(mine, p_, walls_, wall_roll_, build_, *held, slots, n_owned_);
+    const std::vector<Bytes> all = comm().gather(mine, 0);
+    if (all.empty()) return st;
+    for (const Bytes& b : all) {
+      Unpacker u(b);
+      while (!u.done()) unpack_records<Dim>(u, st.particles, st.walls, st.wall_roll, st.build, st.held);
+    }
   }
   // Ascending id: the same file whatever the storage order and the number of ranks.
   std::vector<std::size_t> order(st.particles.size());
@@ -1457,6 +1564,7 @@ void DemSolver<Dim>::restore(State s) {
   upper_offset_.clear();  // linked again at the next force evaluation
   last_valid_ = false;
   ++generation_;
+  key_sorted_ = false;  // a state in id order: the canonical order is sorted out when asked for
   if (portable) {
     // The springs by partner id; the list is built before the next force evaluation, without counting it (the
     // rebuild trigger keeps the saved schedule: the positions of the last counted build are part of the state).

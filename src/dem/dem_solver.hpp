@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +45,13 @@ struct DemParallelStats {
   std::uint64_t migrated = 0;       ///< particles that arrived from other ranks since the start
   std::uint64_t rebalances = 0;     ///< times the blocks were dealt again
   double imbalance = 1.0;           ///< largest over mean rank cost at the last check
+  // Communication since the start, this rank: the ghosts' positions every step (forward), the step's reduction,
+  // the exchanges of a list build (migration and ghost set-up). Seconds of wall time inside them (waiting for the
+  // slowest partner included), bytes sent, messages sent.
+  std::uint64_t steps = 0;
+  double forward_s = 0.0, reduce_s = 0.0, rebuild_s = 0.0;
+  std::uint64_t forward_bytes = 0, rebuild_bytes = 0;
+  std::uint64_t forward_messages = 0, rebuild_messages = 0;
 };
 
 template <int Dim>
@@ -81,6 +89,10 @@ class DemSolver {
   DemParallelStats parallel_stats() const;
   /// Changes whenever the store's slots change (a rebuild, a removal, a feed): a cache of per-slot data keys on it.
   std::uint64_t store_generation() const { return generation_; }
+  /// The slots of the store (owned and ghosts) in ascending (order key, id): the order every per-cell sum over
+  /// particles takes, the same on any split of the particles over ranks. On one rank it is the storage order itself
+  /// (the store is sorted so at the sorting rebuilds), so the sums stream through memory.
+  std::span<const std::uint32_t> canonical_order() const;
 
   /// Advance by one time step of config().dt.
   DemStepInfo step();
@@ -228,15 +240,17 @@ class DemSolver {
   void carry_held_springs();
   /// Keep the owned particles `order` names (in that order), with everything that is theirs; ghosts are dropped.
   void select_owned(const std::vector<std::size_t>& order);
+  /// Distributed: the ghosts leave the store (the owned slots stay as they are).
+  void drop_ghosts();
   /// Distributed: the particles whose block belongs to another rank go there, with their springs.
   void migrate();
   /// Distributed: deal the blocks again when the ranks' costs are out of balance.
   void rebalance_if_needed();
+  /// At a sorting rebuild: each owned particle's order key (its cell of a global lattice of the list's cell size)
+  /// and the order (key, id) the store takes.
+  std::vector<std::size_t> assign_order_keys();
   /// Distributed: ghosts follow their owners; the flags and largest overlaps of the step reduced over ranks.
   void finish_step_distributed(int& moved_far, int& bad, int& escaped);
-  /// One owned particle with what is its own (springs, wall springs, build position), for migration and gathers.
-  void pack_owned(Bytes& b, std::size_t i) const;
-  void unpack_owned(Unpacker& u);
   void link_mirrors();
   /// Drop the particles whose centre is beyond an outflow side, keeping the order of the others, their neighbour
   /// entries and contact springs; counts them and their mass.
@@ -315,8 +329,12 @@ class DemSolver {
   GhostPlan plan_;
   double rebalance_threshold_ = 1.2;
   std::uint64_t generation_ = 0;
+  bool key_sorted_ = true;  ///< the store is in ascending (order key, id) (one rank)
+  mutable std::vector<std::uint32_t> canonical_;
+  mutable std::uint64_t canonical_generation_ = ~0ull;
   std::uint64_t migrated_ = 0, rebalances_ = 0;
   double imbalance_ = 1.0;
+  DemParallelStats comm_stats_;  ///< the communication counters (the other fields are filled by parallel_stats())
   /// Rolling spring of particle slot i against wall w at wall_roll_[2 Dim i + w], in the store's order (laws with
   /// a rolling spring only, else empty; kept here so that the paper's law does not carry it per particle).
   std::vector<Spin<Dim>> wall_roll_;

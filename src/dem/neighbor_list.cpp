@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <omp.h>
+#include <span>
 #include <string>
 
 #include "core/error.hpp"
@@ -250,31 +251,60 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
                          NeighborScratch& scratch, const PeriodicBox<Dim>& periodic) {
-  build_neighbor_list(p, p.size(), cell_size, skin, out, scratch, periodic);
+  build_neighbor_list(p, p.size(), cell_size, skin, out, scratch, periodic, {});
 }
 
 namespace {
-/// Each particle's entries in ascending id of the partner: the order its contact forces are summed in, the same on
-/// any storage order and any split of the particles among ranks.
+/// Each particle's entries in the canonical order of the partners (rank[j]: partner j's place in it; empty: the
+/// slots are in that order): the order its contact forces are summed in, the same on any storage order and any
+/// split of the particles among ranks.
 template <int Dim>
-void sort_entries_by_partner_id(const ParticleStore<Dim>& p, NeighborList<Dim>& out) {
+void sort_entries_by_rank(NeighborList<Dim>& out, std::span<const std::uint32_t> rank) {
   const std::size_t n = out.offset.size() - 1;
-  const std::int64_t* id = p.id.data();
   std::uint32_t* partner = out.partner.data();
   const auto sn = static_cast<std::ptrdiff_t>(n);
+  if (rank.empty()) {
+    // Slots in canonical order: sort the slots themselves (no table to look up).
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    // Insertion sort: a few to a few tens of entries, mostly in cell order already.
-    for (std::size_t k = out.offset[i] + 1; k < out.offset[i + 1]; ++k) {
-      const std::uint32_t j = partner[k];
-      const std::int64_t key = id[j];
-      std::size_t q = k;
-      while (q > out.offset[i] && id[partner[q - 1]] > key) {
-        partner[q] = partner[q - 1];
-        --q;
+    for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      std::uint32_t* e = partner + out.offset[i];
+      const std::size_t m = out.offset[i + 1] - out.offset[i];
+      for (std::size_t q = 1; q < m; ++q) {
+        const std::uint32_t x = e[q];
+        std::size_t r = q;
+        while (r > 0 && e[r - 1] > x) {
+          e[r] = e[r - 1];
+          --r;
+        }
+        e[r] = x;
       }
-      partner[q] = j;
+    }
+    return;
+  }
+  const std::uint32_t* id = rank.data();
+#pragma omp parallel
+  {
+    // The partners' ranks read once per entry into a buffer of (rank, slot) pairs, sorted there by insertion: a few
+    // to a few tens of entries per particle.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> buf;
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const std::size_t k0 = out.offset[i], m = out.offset[i + 1] - k0;
+      if (m < 2) continue;
+      buf.resize(m);
+      for (std::size_t q = 0; q < m; ++q) buf[q] = {id[partner[k0 + q]], partner[k0 + q]};
+      for (std::size_t q = 1; q < m; ++q) {
+        const auto e = buf[q];
+        std::size_t r = q;
+        while (r > 0 && buf[r - 1].first > e.first) {
+          buf[r] = buf[r - 1];
+          --r;
+        }
+        buf[r] = e;
+      }
+      for (std::size_t q = 0; q < m; ++q) partner[k0 + q] = buf[q].second;
     }
   }
 }
@@ -282,7 +312,8 @@ void sort_entries_by_partner_id(const ParticleStore<Dim>& p, NeighborList<Dim>& 
 
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double cell_size, double skin,
-                         NeighborList<Dim>& out, NeighborScratch& scratch, const PeriodicBox<Dim>& periodic) {
+                         NeighborList<Dim>& out, NeighborScratch& scratch, const PeriodicBox<Dim>& periodic,
+                         std::span<const std::uint32_t> rank) {
   const std::size_t n = p.size();
   CellBins<Dim> b;
   if (periodic.any()) {
@@ -358,7 +389,7 @@ void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double 
       }
     }
   }
-  sort_entries_by_partner_id(p, out);
+  sort_entries_by_rank(out, rank);
 }
 
 template <int Dim>
@@ -392,9 +423,9 @@ template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts
 template void build_neighbor_list<2>(const ParticleStore<2>&, double, double, NeighborList<2>&, NeighborScratch&,
                                      const PeriodicBox<2>&);
 template void build_neighbor_list<2>(const ParticleStore<2>&, std::size_t, double, double, NeighborList<2>&,
-                                     NeighborScratch&, const PeriodicBox<2>&);
+                                     NeighborScratch&, const PeriodicBox<2>&, std::span<const std::uint32_t>);
 template void build_neighbor_list<3>(const ParticleStore<3>&, std::size_t, double, double, NeighborList<3>&,
-                                     NeighborScratch&, const PeriodicBox<3>&);
+                                     NeighborScratch&, const PeriodicBox<3>&, std::span<const std::uint32_t>);
 template void build_neighbor_list<3>(const ParticleStore<3>&, double, double, NeighborList<3>&, NeighborScratch&,
                                      const PeriodicBox<3>&);
 template std::vector<std::pair<std::int64_t, std::int64_t>> brute_force_contacts<2>(const ParticleStore<2>&, double,

@@ -4,6 +4,7 @@
 // particle and the result does not depend on how particles are split among threads.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -39,9 +40,8 @@ struct NeighborScratch {
 template <int Dim>
 std::vector<std::size_t> sort_by_cell(const ParticleStore<Dim>& p, double cell_size);
 
-/// Build the full list of pairs with centre distance < (r_i + r_j) + skin. Each particle's entries are in
-/// ascending id of the partner (the order its forces are summed in); springs zero. The cell size must be at
-/// least the largest diameter + skin.
+/// Build the full list of pairs with centre distance < (r_i + r_j) + skin, each particle's entries in ascending
+/// slot of the partner; springs zero. The cell size must be at least the largest diameter + skin.
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out);
 /// The same, reusing the buffers of `scratch` (the result does not depend on what they held).
@@ -58,10 +58,12 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 
 /// The same for a store whose slots from `owned` on are ghosts (copies of other ranks' particles): only the owned
 /// particles are searched, each ghost gets the mirror entries of its owned partners, and pairs of two ghosts are
-/// left out. Every particle's entries are in ascending id of the partner.
+/// left out. Every particle's entries are in ascending rank[partner] (the partners' places in the canonical order,
+/// DemSolver::canonical_order), or in ascending slot when `rank` is empty (slots in that order).
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double cell_size, double skin,
-                         NeighborList<Dim>& out, NeighborScratch& scratch, const PeriodicBox<Dim>& periodic);
+                         NeighborList<Dim>& out, NeighborScratch& scratch, const PeriodicBox<Dim>& periodic,
+                         std::span<const std::uint32_t> rank);
 
 /// Brute-force O(N^2) set of touching pairs (i < j by id), for tests.
 template <int Dim>

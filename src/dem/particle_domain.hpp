@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
+#include <span>
 #include <vector>
 
 #include "core/periodic.hpp"
@@ -20,18 +22,29 @@
 
 namespace fluidbed {
 
-/// Appends particle i of p (every attribute) to a message.
+/// Appends particles `slots` of p (every attribute) to a message: their count, then attribute after attribute.
 template <int Dim>
-void pack_particle(Bytes& b, const ParticleStore<Dim>& p, std::size_t i) {
-  p.for_each_array([&](const std::string&, const auto& a, ArrayRole) { pack(b, a[i]); });
+void pack_particles(Bytes& b, const ParticleStore<Dim>& p, std::span<const std::uint32_t> slots) {
+  pack(b, static_cast<std::uint64_t>(slots.size()));
+  p.for_each_array([&](const std::string&, const auto& a, ArrayRole) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    const std::size_t at = b.size();
+    b.resize(at + slots.size() * sizeof(T));
+    T* out = reinterpret_cast<T*>(b.data() + at);  // memcpy per value: the message need not be aligned
+    for (std::size_t k = 0; k < slots.size(); ++k) std::memcpy(out + k, &a[slots[k]], sizeof(T));
+  });
 }
-/// Appends the next particle of a message to p.
+/// Appends the particles of such a message to p; returns how many.
 template <int Dim>
-void unpack_particle(Unpacker& u, ParticleStore<Dim>& p) {
+std::size_t unpack_particles(Unpacker& u, ParticleStore<Dim>& p) {
+  const auto n = static_cast<std::size_t>(u.get<std::uint64_t>());
   p.for_each_array([&](const std::string&, auto& a, ArrayRole) {
     using T = typename std::decay_t<decltype(a)>::value_type;
-    a.push_back(u.get<T>());
+    const std::size_t at = a.size();
+    a.resize(at + n);
+    if (n > 0) std::memcpy(a.data() + at, u.take(n * sizeof(T)), n * sizeof(T));
   });
+  return n;
 }
 
 /// Who sends which owned particles to whom as ghosts, and where the ghosts received are stored.
@@ -141,7 +154,7 @@ class ParticleDomain {
     }
     std::vector<Bytes> out(static_cast<std::size_t>(n_ranks));
     for (int r = 0; r < n_ranks; ++r) {
-      for (std::uint32_t i : to[static_cast<std::size_t>(r)]) pack_particle(out[static_cast<std::size_t>(r)], p, i);
+      if (!to[static_cast<std::size_t>(r)].empty()) pack_particles<Dim>(out[static_cast<std::size_t>(r)], p, to[static_cast<std::size_t>(r)]);
     }
     const std::vector<Bytes> in = comm_->exchange(out);
     GhostPlan plan;
@@ -153,10 +166,7 @@ class ParticleDomain {
       plan.recv_first.push_back(p.size());
       Unpacker u(in[k]);
       std::size_t got = 0;
-      while (!u.done()) {
-        unpack_particle(u, p);
-        ++got;
-      }
+      while (!u.done()) got += unpack_particles(u, p);
       plan.recv_count.push_back(got);
     }
     return plan;

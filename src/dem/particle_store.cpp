@@ -44,6 +44,27 @@ void ParticleStore<Dim>::sort_by_id() {
   permute(order);
 }
 
+template <int Dim>
+std::vector<std::uint32_t> ParticleStore<Dim>::slots_in_id_order() const {
+  std::vector<std::uint32_t> out(size());
+  if (size() == 0) return out;
+  const auto [lo, hi] = std::minmax_element(id.begin(), id.end());
+  const auto span = static_cast<std::uint64_t>(*hi - *lo) + 1;
+  if (span <= 4 * static_cast<std::uint64_t>(size()) + 64) {
+    constexpr std::uint32_t kNone = 0xffffffffu;
+    std::vector<std::uint32_t> at(span, kNone);
+    for (std::size_t i = 0; i < size(); ++i) at[static_cast<std::size_t>(id[i] - *lo)] = static_cast<std::uint32_t>(i);
+    std::size_t k = 0;
+    for (const std::uint32_t i : at) {
+      if (i != kNone) out[k++] = i;
+    }
+    return out;
+  }
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = static_cast<std::uint32_t>(k);
+  std::sort(out.begin(), out.end(), [this](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; });
+  return out;
+}
+
 template struct ParticleStore<2>;
 template struct ParticleStore<3>;
 

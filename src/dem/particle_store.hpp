@@ -119,6 +119,10 @@ struct ParticleStore : ParticleAxes<Dim> {
   std::vector<std::int64_t> id;
   std::vector<std::int32_t> species;
   std::vector<std::int32_t> layer;  ///< initial horizontal layer (colouring of the paper's Fig. 4a)
+  /// The cell of a global lattice the particle was in at the last sorting rebuild of the neighbour list: with the
+  /// id, its place in the order every per-cell sum over particles takes (DemSolver::canonical_order), which is the
+  /// storage order after such a rebuild, and the same on every rank.
+  std::vector<std::int64_t> order_key;
   std::vector<double> radius;       ///< m
   std::vector<double> mass;         ///< kg
   std::vector<double> inv_mass;     ///< 1/kg
@@ -152,6 +156,7 @@ struct ParticleStore : ParticleAxes<Dim> {
     f(std::string("id"), id, ArrayRole::State);
     f(std::string("species"), species, ArrayRole::State);
     f(std::string("layer"), layer, ArrayRole::State);
+    f(std::string("order_key"), order_key, ArrayRole::State);
     for (int a = 0; a < Dim; ++a) f(std::string(kAxis[a]), coord(a), ArrayRole::State);
     for (int a = 0; a < Dim; ++a) f(std::string("v") + kAxis[a], velocity(a), ArrayRole::State);
     for (int c = 0; c < kSpinComponents<Dim>; ++c) f(std::string(this->kSpinName[c]), spin_component(c), ArrayRole::State);
@@ -256,6 +261,8 @@ struct ParticleStore : ParticleAxes<Dim> {
   /// Ascending id: the canonical storage order a solver starts from, so that a run depends on the particles and
   /// not on how they were stored when handed over (settled in memory, read from a CSV in any row order).
   void sort_by_id();
+  /// The slots in ascending id (one pass when the ids are dense, as a bed numbered from 0 and its feed are).
+  std::vector<std::uint32_t> slots_in_id_order() const;
   void clear() {
     for_each_array([](const std::string&, auto& a, ArrayRole) { a.clear(); });
   }

@@ -167,6 +167,14 @@ void load_dem_particles(const Hdf5File& f, const CaseConfig& config_, typename D
     }
     p.add(id[i], species[i], config_.dem.species[static_cast<std::size_t>(species[i])], {}, {}, {}, layer[i]);
   }
+  // The order keys (DemSolver::canonical_order); a checkpoint from before them restarts from none.
+  if (f.has("dem/order_key")) {
+    const auto key = f.read_int64("dem/order_key");
+    if (key.size() != id.size()) {
+      throw_input_error(fmt::format("{}: dem/order_key has {} values for {} particles", f.path().string(), key.size(), id.size()));
+    }
+    p.order_key.assign(key.begin(), key.end());
+  }
   if (f.has("dem/diameter")) {
     std::vector<double> d = f.read_double("dem/diameter");
     if (d.size() != id.size()) {
@@ -575,21 +583,29 @@ class DemModel final : public ModelRun {
     if (layout == nullptr) return {};
     const DemParallelStats st = sim_.dem().parallel_stats();
     // Largest and smallest over the ranks (a maximum of the negated value), and totals.
-    double v[4] = {static_cast<double>(st.owned), -static_cast<double>(st.owned), static_cast<double>(st.partners),
-                   st.imbalance};
+    double v[8] = {static_cast<double>(st.owned), -static_cast<double>(st.owned), static_cast<double>(st.partners),
+                   st.imbalance, st.forward_s, st.reduce_s, st.rebuild_s,
+                   st.steps > 0 ? static_cast<double>(st.forward_messages) / static_cast<double>(st.steps) : 0.0};
     comm_->max(std::span<double>(v));
-    std::int64_t t[2] = {static_cast<std::int64_t>(st.owned), static_cast<std::int64_t>(st.ghosts)};
+    std::int64_t t[4] = {static_cast<std::int64_t>(st.owned), static_cast<std::int64_t>(st.ghosts),
+                         static_cast<std::int64_t>(st.forward_bytes), static_cast<std::int64_t>(st.rebuild_bytes)};
     comm_->sum(std::span<std::int64_t>(t));
     std::string cells;
     for (int a = 0; a < Dim; ++a) {
       cells += (a ? " x " : "") + std::to_string(layout->cells()[a] / layout->counts()[a]);
     }
+    const double steps = std::max<double>(1.0, static_cast<double>(st.steps));
+    const double ranks = comm_->size();
     return fmt::format("decomposition: {} blocks of {}+ cells over {} ranks along the Hilbert curve; particles per "
                        "rank {:.0f}-{:.0f}, ghosts {:.3f} per owned particle, up to {:.0f} partner ranks; blocks dealt "
-                       "again {} times (largest/mean rank cost {:.3f}, threshold {})",
+                       "again {} times (largest/mean rank cost {:.3f}, threshold {}); communication over {} steps, "
+                       "per rank: {:.1f} kB in {:.1f} messages a step to the ghosts, {:.1f} kB a step in list builds; "
+                       "the slowest rank spent {:.3f} s forwarding ghosts, {:.3f} s in the step's reduction, {:.3f} s "
+                       "in list-build exchanges",
                        layout->blocks(), cells, comm_->size(), -v[1], v[0],
                        t[0] > 0 ? static_cast<double>(t[1]) / static_cast<double>(t[0]) : 0.0, v[2], st.rebalances,
-                       v[3], config_.parallel.rebalance_threshold);
+                       v[3], config_.parallel.rebalance_threshold, st.steps, t[2] / ranks / steps / 1e3, v[7],
+                       t[3] / ranks / steps / 1e3, v[4], v[5], v[6]);
   }
   std::string describe() const override {
     const std::uint64_t n = sim_.dem().total_particles();

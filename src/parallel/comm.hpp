@@ -58,9 +58,10 @@ class Unpacker {
     return v;
   }
   bool done() const { return at_ == b_.size(); }
+  /// The next n bytes, as they are (a block of values packed at once).
+  const std::byte* take(std::size_t n);
 
  private:
-  const std::byte* take(std::size_t n);
   std::span<const std::byte> b_;
   std::size_t at_ = 0;
 };
