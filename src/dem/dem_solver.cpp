@@ -1,6 +1,7 @@
 #include "dem/dem_solver.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -301,6 +302,7 @@ void DemSolver<Dim>::rebuild(bool counted) {
   if (list_springs_) gather_held_springs();
   list_springs_ = false;
   if (domain_) {
+    if (counted) measure_costs();  // from the list about to go
     drop_ghosts();  // the new set comes after migration
     const auto t0 = std::chrono::steady_clock::now();
     if (counted) rebalance_if_needed();
@@ -438,17 +440,59 @@ std::vector<std::size_t> DemSolver<Dim>::assign_order_keys() {
   return order;
 }
 
+namespace {
+/// Slots 0..n-1 in ascending (key, id) (ids unique): as one integer key * span + (id - lowest id) where that fits in
+/// 64 bits (always, below about 4e9 particles times lattice cells), sorted by its digits (least significant first,
+/// 11 bits each, over the bits in use: a few linear passes rather than n log n comparisons); otherwise compared.
+std::vector<std::uint32_t> slots_by_key_and_id(std::span<const std::int64_t> key, std::span<const std::int64_t> id) {
+  const std::size_t n = key.size();
+  std::vector<std::uint32_t> slot(n);
+  for (std::size_t k = 0; k < n; ++k) slot[k] = static_cast<std::uint32_t>(k);
+  if (n < 2) return slot;
+  const auto [klo, khi] = std::minmax_element(key.begin(), key.end());
+  const auto [ilo, ihi] = std::minmax_element(id.begin(), id.end());
+  const auto id_span = static_cast<std::uint64_t>(*ihi - *ilo) + 1;
+  const auto key_span = static_cast<std::uint64_t>(*khi - *klo) + 1;
+  if (key_span > std::numeric_limits<std::uint64_t>::max() / id_span) {
+    std::sort(slot.begin(), slot.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return key[a] != key[b] ? key[a] < key[b] : id[a] < id[b];
+    });
+    return slot;
+  }
+  std::vector<std::uint64_t> v(n), v2(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    v[k] = static_cast<std::uint64_t>(key[k] - *klo) * id_span + static_cast<std::uint64_t>(id[k] - *ilo);
+  }
+  const int bits = std::bit_width(key_span * id_span - 1);
+  constexpr int kDigit = 11;
+  std::vector<std::uint32_t> slot2(n);
+  std::vector<std::size_t> count(std::size_t{1} << kDigit);
+  for (int shift = 0; shift < bits; shift += kDigit) {
+    std::fill(count.begin(), count.end(), 0);
+    const std::uint64_t mask = (std::uint64_t{1} << kDigit) - 1;
+    for (std::size_t k = 0; k < n; ++k) ++count[(v[k] >> shift) & mask];
+    std::size_t at = 0;
+    for (std::size_t& c : count) at += std::exchange(c, at);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t e = count[(v[k] >> shift) & mask]++;
+      v2[e] = v[k];
+      slot2[e] = slot[k];
+    }
+    v.swap(v2);
+    slot.swap(slot2);
+  }
+  return slot;
+}
+}  // namespace
+
 template <int Dim>
 std::span<const std::uint32_t> DemSolver<Dim>::canonical_order() const {
   if (canonical_generation_ == generation_ && canonical_.size() == p_.size()) return canonical_;
-  canonical_.resize(p_.size());
-  for (std::size_t k = 0; k < canonical_.size(); ++k) canonical_[k] = static_cast<std::uint32_t>(k);
-  if (!(key_sorted_ && !domain_)) {
-    const std::int64_t* key = p_.order_key.data();
-    const std::int64_t* id = p_.id.data();
-    std::sort(canonical_.begin(), canonical_.end(), [key, id](std::uint32_t a, std::uint32_t b) {
-      return key[a] != key[b] ? key[a] < key[b] : id[a] < id[b];
-    });
+  if (key_sorted_ && !domain_) {
+    canonical_.resize(p_.size());
+    for (std::size_t k = 0; k < canonical_.size(); ++k) canonical_[k] = static_cast<std::uint32_t>(k);
+  } else {
+    canonical_ = slots_by_key_and_id(p_.order_key, p_.id);
   }
   canonical_generation_ = generation_;
   return canonical_;
@@ -526,28 +570,55 @@ void DemSolver<Dim>::migrate() {
 }
 
 template <int Dim>
+void DemSolver<Dim>::measure_costs() {
+  // A particle's share of its rank's work, in units of a particle without partners (its update and list search,
+  // about 50 ns): 0.1 per list entry (the distance tests) and 0.8 per contact (the law, about 40 ns), from the
+  // settling runs of docs/performance.md, section 18. It apportions a rank's measured time among its blocks.
+  cost_.assign(n_owned_, 1.0);
+  if (nbr_.offset.size() < n_owned_ + 1 || entry_contact_.size() != nbr_.entries()) return;
+  const auto sn = static_cast<std::ptrdiff_t>(n_owned_);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t contacts = 0;
+    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) contacts += entry_contact_[k] != 0 ? 1 : 0;
+    const auto entries = static_cast<double>(nbr_.offset[i + 1] - nbr_.offset[i]);
+    cost_[i] = 1.0 + 0.1 * entries + 0.8 * static_cast<double>(contacts);
+  }
+}
+
+template <int Dim>
 void DemSolver<Dim>::rebalance_if_needed() {
-  // The cost of a rank: its particles and their list entries (the force and list work) and its blocks' cells (the
-  // deposition); counts, not timings, so every rank reaches the same verdict and the same deal.
+  // The verdict on the ranks' measured compute time since the last check (their waits for each other left out), as
+  // LAMMPS's balancing by time does: no count model knows what a contact law, a cache or a shared core costs. A
+  // rank's time is shared among its blocks by the particles' counted costs. Every rank reaches the same verdict and
+  // the same deal from the same reduced figures; the deal changes no result (docs/parallel.md), only the speed.
   const Comm& c = domain_->comm();
   const BlockLayout<Dim>& layout = domain_->layout();
   const auto nr = static_cast<std::size_t>(c.size());
-  auto cost_of = [&](std::size_t i) {
-    const double entries = nbr_.offset.size() > i + 1 ? static_cast<double>(nbr_.offset[i + 1] - nbr_.offset[i]) : 0.0;
-    return 1.0 + 0.25 * entries;
-  };
-  std::vector<double> mine(nr, 0.0);
-  for (std::size_t i = 0; i < n_owned_; ++i) mine[static_cast<std::size_t>(c.rank())] += cost_of(i);
-  c.max(std::span<double>(mine));  // each rank's own total, one entry each
-  imbalance_ = imbalance(mine);
+  const auto me = static_cast<std::size_t>(c.rank());
+  double counted = 0.0;
+  for (std::size_t i = 0; i < n_owned_; ++i) counted += i < cost_.size() ? cost_[i] : 1.0;
+  std::vector<double> figures(2 * nr, 0.0);  // per rank: seconds busy, counted cost
+  figures[me] = busy_s_;
+  figures[nr + me] = counted;
+  c.max(std::span<double>(figures));  // each rank's own entries, the others zero
+  busy_s_ = 0.0;
+  const std::vector<double> busy(figures.begin(), figures.begin() + static_cast<std::ptrdiff_t>(nr));
+  const std::vector<double> cost(figures.begin() + static_cast<std::ptrdiff_t>(nr), figures.end());
+  // Without time measured yet (the first build, after a restore) or with an idle rank, the counts decide alone.
+  const bool timed = std::all_of(busy.begin(), busy.end(), [](double t) { return t > 0.0; });
+  imbalance_ = imbalance(timed ? busy : cost);
   if (imbalance_ <= rebalance_threshold_) return;
+  const double per_cost = timed && counted > 0.0 ? busy[me] / counted : 1.0;
   std::vector<double> weight(static_cast<std::size_t>(layout.blocks()), 0.0);
-  for (std::size_t i = 0; i < n_owned_; ++i) weight[static_cast<std::size_t>(layout.block_at(p_.pos(i)))] += cost_of(i);
+  for (std::size_t i = 0; i < n_owned_; ++i) {
+    weight[static_cast<std::size_t>(layout.block_at(p_.pos(i)))] += (i < cost_.size() ? cost_[i] : 1.0) * per_cost;
+  }
   c.max(std::span<double>(weight));  // a block's particles are all on its owner: the maximum is its weight
   const std::vector<int> before = layout.owners();
   domain_->layout().assign(weight, c.size());
   if (layout.owners() != before) ++rebalances_;
-  imbalance_ = imbalance(layout.rank_weights(weight, c.size()));
 }
 
 template <int Dim>
@@ -1048,6 +1119,10 @@ DemStepInfo DemSolver<Dim>::step(double h) {
 template <int Dim>
 DemStepInfo DemSolver<Dim>::advance(double dt) {
   DemStepInfo info;
+  if (domain_) {
+    step_start_ = std::chrono::steady_clock::now();
+    step_waits_ = comm_stats_.rebuild_s;
+  }
   if (need_rebuild_) {
     rebuild(true);
     info.rebuilt = true;
@@ -1128,6 +1203,9 @@ template <int Dim>
 void DemSolver<Dim>::finish_step_distributed(int& moved_far, int& bad, int& escaped) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
+  const double busy = std::chrono::duration<double>(t0 - step_start_).count() - (comm_stats_.rebuild_s - step_waits_);
+  busy_s_ += busy;
+  comm_stats_.busy_s += busy;
   domain_->forward(p_, plan_);
   const auto t1 = Clock::now();
   // One reduction a step: the rebuild trigger, a failure, an escape and the largest overlaps, over every rank.

@@ -6,6 +6,7 @@
 // spheres (spin vector); instantiated for Dim = 2 and 3.
 #include <array>
 #include <cmath>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -44,7 +45,8 @@ struct DemParallelStats {
   int partners = 0;                 ///< ranks it exchanges ghosts with
   std::uint64_t migrated = 0;       ///< particles that arrived from other ranks since the start
   std::uint64_t rebalances = 0;     ///< times the blocks were dealt again
-  double imbalance = 1.0;           ///< largest over mean rank cost at the last check
+  double imbalance = 1.0;           ///< largest over mean rank compute time at the last check
+  double busy_s = 0.0;              ///< this rank's DEM compute seconds since the start (waits left out)
   // Communication since the start, this rank: the ghosts' positions every step (forward), the step's reduction,
   // the exchanges of a list build (migration and ghost set-up). Seconds of wall time inside them (waiting for the
   // slowest partner included), bytes sent, messages sent.
@@ -246,6 +248,7 @@ class DemSolver {
   void migrate();
   /// Distributed: deal the blocks again when the ranks' costs are out of balance.
   void rebalance_if_needed();
+  void measure_costs();
   /// At a sorting rebuild: each owned particle's order key (its cell of a global lattice of the list's cell size)
   /// and the order (key, id) the store takes.
   std::vector<std::size_t> assign_order_keys();
@@ -334,6 +337,10 @@ class DemSolver {
   mutable std::uint64_t canonical_generation_ = ~0ull;
   std::uint64_t migrated_ = 0, rebalances_ = 0;
   double imbalance_ = 1.0;
+  std::vector<double> cost_;  ///< per owned particle at the last counted rebuild (measure_costs)
+  double busy_s_ = 0.0;      ///< compute seconds of this rank since the last balance check (waits left out)
+  std::chrono::steady_clock::time_point step_start_{};
+  double step_waits_ = 0.0;  ///< comm_stats_.rebuild_s when the step began
   DemParallelStats comm_stats_;  ///< the communication counters (the other fields are filled by parallel_stats())
   /// Rolling spring of particle slot i against wall w at wall_roll_[2 Dim i + w], in the store's order (laws with
   /// a rolling spring only, else empty; kept here so that the paper's law does not carry it per particle).

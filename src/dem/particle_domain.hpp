@@ -94,21 +94,11 @@ class ParticleDomain {
   /// The ranks other than this one that need a particle at x as a ghost, ascending, into `out` (cleared first).
   void ghost_ranks(const Vec<Dim>& x, std::vector<int>& out) const {
     out.clear();
-    const int b = layout_.block_at(x);
-    const int me = rank();
-    Index<Dim> off{};
-    for (int a = 0; a < Dim; ++a) off[a] = -1;
-    while (true) {
-      Index<Dim> shift{};
-      const int nb = layout_.neighbour(b, off, shift);
-      if (nb >= 0) {
-        const int r = layout_.owner(nb);
-        if (r != me && std::find(out.begin(), out.end(), r) == out.end() && near(x, nb, shift)) out.push_back(r);
-      }
-      int a = 0;
-      while (a < Dim && off[a] == 1) off[a++] = -1;
-      if (a == Dim) break;
-      ++off[a];
+    const auto b = static_cast<std::size_t>(layout_.block_at(x));
+    const Foreign& f = foreign();
+    for (std::uint32_t k = f.offset[b]; k < f.offset[b + 1]; ++k) {
+      const int r = f.owner[k];
+      if (std::find(out.begin(), out.end(), r) == out.end() && near(x, f.block[k], f.shift[k])) out.push_back(r);
     }
     std::sort(out.begin(), out.end());
   }
@@ -187,8 +177,47 @@ class ParticleDomain {
     return d2 <= contact_ * contact_ || in_kernel;
   }
 
+  /// Per block, its neighbours (the 3^Dim blocks around it, periodic images included) that other ranks own: a
+  /// particle in a block without any (most blocks, inside a rank's region) is nobody's ghost, found without a test.
+  struct Foreign {
+    std::uint64_t version = ~std::uint64_t{0};
+    std::vector<std::uint32_t> offset;  ///< per block, into the arrays below
+    std::vector<int> block, owner;
+    std::vector<Index<Dim>> shift;
+  };
+  const Foreign& foreign() const {
+    Foreign& f = foreign_;
+    if (f.version == layout_.version() && f.offset.size() == static_cast<std::size_t>(layout_.blocks()) + 1) return f;
+    const int me = rank();
+    f.offset.assign(1, 0);
+    f.block.clear();
+    f.owner.clear();
+    f.shift.clear();
+    for (int b = 0; b < layout_.blocks(); ++b) {
+      Index<Dim> off{};
+      for (int a = 0; a < Dim; ++a) off[a] = -1;
+      while (true) {
+        Index<Dim> shift{};
+        const int nb = layout_.neighbour(b, off, shift);
+        if (nb >= 0 && layout_.owner(nb) != me) {
+          f.block.push_back(nb);
+          f.owner.push_back(layout_.owner(nb));
+          f.shift.push_back(shift);
+        }
+        int a = 0;
+        while (a < Dim && off[a] == 1) off[a++] = -1;
+        if (a == Dim) break;
+        ++off[a];
+      }
+      f.offset.push_back(static_cast<std::uint32_t>(f.block.size()));
+    }
+    f.version = layout_.version();
+    return f;
+  }
+
   const Comm* comm_;
   BlockLayout<Dim> layout_;
+  mutable Foreign foreign_;  // a cache of the deal, filled on first use after it changes (never inside threads)
   PeriodicBox<Dim> periodic_;
   double contact_ = 0.0;
   Vec<Dim> kernel_{};

@@ -67,6 +67,12 @@ class BlockLayout {
       if (cells[a] < 1 || min_per_block[a] < 1) throw std::invalid_argument("BlockLayout: no cells");
       counts_[a] = std::max(1, cells[a] / min_per_block[a]);
       total *= static_cast<std::size_t>(counts_[a]);
+      // The last block whose first cell is at or below each cell (the inverse of first_cell), looked up per
+      // particle at every list build rather than divided out.
+      std::vector<int>& t = block_of_cell_[static_cast<std::size_t>(a)];
+      t.resize(static_cast<std::size_t>(cells[a]));
+      const long k = counts_[a], n = cells[a];
+      for (long cell = 0; cell < n; ++cell) t[static_cast<std::size_t>(cell)] = static_cast<int>((cell * k + k - 1) / n);
     }
     owner_.assign(total, 0);
   }
@@ -121,14 +127,12 @@ class BlockLayout {
   /// The block holding point x: the cell of x (clamped to the domain, as Grid::cell does) divided by the block
   /// size, so a particle and the cell its centre lies in always share a block.
   int block_at(const Vec<Dim>& x) const {
-    Index<Dim> c{};
-    for (int a = 0; a < Dim; ++a) {
+    int b = 0;
+    for (int a = Dim - 1; a >= 0; --a) {
       const int cell = std::clamp(static_cast<int>(std::floor((x[a] - origin_[a]) / h_[a])), 0, cells_[a] - 1);
-      // The last block whose first cell is at or below `cell` (the inverse of first_cell).
-      const long k = counts_[a], n = cells_[a];
-      c[a] = static_cast<int>((cell * k + k - 1) / n);
+      b = b * counts_[a] + block_of_cell_[static_cast<std::size_t>(a)][static_cast<std::size_t>(cell)];
     }
-    return block(c);
+    return b;
   }
 
   int owner(int b) const { return owner_[static_cast<std::size_t>(b)]; }
@@ -136,7 +140,10 @@ class BlockLayout {
   void set_owners(std::vector<int> o) {
     if (o.size() != owner_.size()) throw std::invalid_argument("BlockLayout::set_owners: one owner per block");
     owner_ = std::move(o);
+    ++version_;
   }
+  /// Counts the changes of the owners (a cache keyed by the deal compares it).
+  std::uint64_t version() const { return version_; }
 
   /// The blocks in the order of the Hilbert curve through the block grid (ties, from the padding of the grid to
   /// a power of two, cannot occur: every block has its own point).
@@ -173,6 +180,7 @@ class BlockLayout {
       before += weights[b];
       owner_[b] = std::clamp(static_cast<int>(std::floor(mid * ranks)), 0, ranks - 1);
     }
+    ++version_;
   }
 
   /// The weight each of `ranks` ranks holds under the current owners.
@@ -208,7 +216,9 @@ class BlockLayout {
   Vec<Dim> origin_{};
   std::array<bool, Dim> periodic_{};
   Index<Dim> counts_{};
+  std::array<std::vector<int>, Dim> block_of_cell_{};
   std::vector<int> owner_;
+  std::uint64_t version_ = 0;
 };
 
 /// Largest over mean of the ranks' weights: 1 for a perfect balance.
