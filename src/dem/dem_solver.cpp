@@ -305,8 +305,8 @@ void DemSolver<Dim>::rebuild(bool counted) {
     if (counted) measure_costs();  // from the list about to go
     drop_ghosts();  // the new set comes after migration
     const auto t0 = std::chrono::steady_clock::now();
-    if (counted) rebalance_if_needed();
-    migrate();
+    const bool dealt_again = counted && rebalance_if_needed();
+    migrate(dealt_again);
     comm_stats_.rebuild_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles drift
@@ -531,7 +531,7 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order) {
 }
 
 template <int Dim>
-void DemSolver<Dim>::migrate() {
+void DemSolver<Dim>::migrate(bool dealt_again) {
   // Called with no ghosts in the store: every slot is owned. Particles whose block is another rank's go there,
   // the others keep their order, the arrivals follow in the order of their senders' ranks.
   const int me = domain_->rank();
@@ -552,10 +552,30 @@ void DemSolver<Dim>::migrate() {
       leaving[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(i));
     }
   }
+  // Between list builds a particle moves less than half a skin, so it stays in its block or enters one next to
+  // it: only the neighbour ranks talk. After a new deal, or a jump no rule foresaw, every rank may: all talk.
+  const std::vector<int>& nbr = domain_->neighbour_ranks();
+  double far = 0.0;
   for (std::size_t r = 0; r < nr; ++r) {
-    if (!leaving[r].empty()) pack_records<Dim>(out[r], p_, walls_, wall_roll_, build_, held_, leaving[r], n_owned_);
+    if (!leaving[r].empty() && !std::binary_search(nbr.begin(), nbr.end(), static_cast<int>(r))) far = 1.0;
   }
-  const std::vector<Bytes> in = domain_->comm().exchange(out);
+  if (!dealt_again) far = domain_->comm().max(far);
+  std::vector<Bytes> in;
+  if (dealt_again || far != 0.0) {
+    for (std::size_t r = 0; r < nr; ++r) {
+      if (!leaving[r].empty()) pack_records<Dim>(out[r], p_, walls_, wall_roll_, build_, held_, leaving[r], n_owned_);
+    }
+    in = domain_->comm().exchange(out);
+  } else {
+    std::vector<Bytes> near(nbr.size());
+    for (std::size_t k = 0; k < nbr.size(); ++k) {
+      const auto r = static_cast<std::size_t>(nbr[k]);
+      if (!leaving[r].empty()) pack_records<Dim>(near[k], p_, walls_, wall_roll_, build_, held_, leaving[r], n_owned_);
+    }
+    std::vector<Bytes> got = domain_->comm().exchange_among(nbr, near);
+    in.assign(nr, Bytes{});
+    for (std::size_t k = 0; k < nbr.size(); ++k) in[static_cast<std::size_t>(nbr[k])] = std::move(got[k]);
+  }
   if (keep.size() != n_owned_) select_owned(keep);
   for (std::size_t r = 0; r < nr; ++r) {
     if (static_cast<int>(r) == me) continue;
@@ -588,7 +608,7 @@ void DemSolver<Dim>::measure_costs() {
 }
 
 template <int Dim>
-void DemSolver<Dim>::rebalance_if_needed() {
+bool DemSolver<Dim>::rebalance_if_needed() {
   // The verdict on the ranks' measured compute time since the last check (their waits for each other left out), as
   // LAMMPS's balancing by time does: no count model knows what a contact law, a cache or a shared core costs. A
   // rank's time is shared among its blocks by the particles' counted costs. Every rank reaches the same verdict and
@@ -609,7 +629,7 @@ void DemSolver<Dim>::rebalance_if_needed() {
   // Without time measured yet (the first build, after a restore) or with an idle rank, the counts decide alone.
   const bool timed = std::all_of(busy.begin(), busy.end(), [](double t) { return t > 0.0; });
   imbalance_ = imbalance(timed ? busy : cost);
-  if (imbalance_ <= rebalance_threshold_) return;
+  if (imbalance_ <= rebalance_threshold_) return false;
   const double per_cost = timed && counted > 0.0 ? busy[me] / counted : 1.0;
   std::vector<double> weight(static_cast<std::size_t>(layout.blocks()), 0.0);
   for (std::size_t i = 0; i < n_owned_; ++i) {
@@ -618,7 +638,9 @@ void DemSolver<Dim>::rebalance_if_needed() {
   c.max(std::span<double>(weight));  // a block's particles are all on its owner: the maximum is its weight
   const std::vector<int> before = layout.owners();
   domain_->layout().assign(weight, c.size());
-  if (layout.owners() != before) ++rebalances_;
+  if (layout.owners() == before) return false;
+  ++rebalances_;
+  return true;
 }
 
 template <int Dim>

@@ -245,9 +245,9 @@ class DemSolver {
   /// Distributed: the ghosts leave the store (the owned slots stay as they are).
   void drop_ghosts();
   /// Distributed: the particles whose block belongs to another rank go there, with their springs.
-  void migrate();
+  void migrate(bool dealt_again);
   /// Distributed: deal the blocks again when the ranks' costs are out of balance.
-  void rebalance_if_needed();
+  bool rebalance_if_needed();  ///< whether the blocks were dealt again (collective)
   void measure_costs();
   /// At a sorting rebuild: each owned particle's order key (its cell of a global lattice of the list's cell size)
   /// and the order (key, id) the store takes.

@@ -103,6 +103,11 @@ class ParticleDomain {
     std::sort(out.begin(), out.end());
   }
 
+  /// The ranks that own a block next to one of this rank's (periodic images included), ascending: the only ranks
+  /// a ghost goes to, or a particle moving less than a block between list builds. Symmetric: each of them lists
+  /// this rank.
+  const std::vector<int>& neighbour_ranks() const { return foreign().neighbours; }
+
   /// Ghost positions, velocities and spins from their owners (after every step), by the plan of the last set-up.
   void forward(ParticleStore<Dim>& p, GhostPlan& plan) const {
     constexpr int NS = kSpinComponents<Dim>;
@@ -135,22 +140,26 @@ class ParticleDomain {
   /// Sets up the ghosts of the owned particles p[0, owned): sends each to the ranks that need it (whole records)
   /// and appends the ones received, partner by partner in rank order; returns the plan that forward() follows.
   GhostPlan exchange_ghosts(ParticleStore<Dim>& p, std::size_t owned) const {
-    const int n_ranks = size();
-    std::vector<std::vector<std::uint32_t>> to(static_cast<std::size_t>(n_ranks));
+    // Only the neighbours talk (ghost_ranks names no other rank).
+    const std::vector<int>& nbr = neighbour_ranks();
+    std::vector<std::vector<std::uint32_t>> to(nbr.size());
     std::vector<int> ranks;
     for (std::size_t i = 0; i < owned; ++i) {
       ghost_ranks(p.pos(i), ranks);
-      for (int r : ranks) to[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(i));
+      for (int r : ranks) {
+        const auto k = static_cast<std::size_t>(std::lower_bound(nbr.begin(), nbr.end(), r) - nbr.begin());
+        to[k].push_back(static_cast<std::uint32_t>(i));
+      }
     }
-    std::vector<Bytes> out(static_cast<std::size_t>(n_ranks));
-    for (int r = 0; r < n_ranks; ++r) {
-      if (!to[static_cast<std::size_t>(r)].empty()) pack_particles<Dim>(out[static_cast<std::size_t>(r)], p, to[static_cast<std::size_t>(r)]);
+    std::vector<Bytes> out(nbr.size());
+    for (std::size_t k = 0; k < nbr.size(); ++k) {
+      if (!to[k].empty()) pack_particles<Dim>(out[k], p, to[k]);
     }
-    const std::vector<Bytes> in = comm_->exchange(out);
+    const std::vector<Bytes> in = comm_->exchange_among(nbr, out);
     GhostPlan plan;
-    for (int r = 0; r < n_ranks; ++r) {
-      const auto k = static_cast<std::size_t>(r);
-      if (r == rank() || (to[k].empty() && in[k].empty())) continue;
+    for (std::size_t k = 0; k < nbr.size(); ++k) {
+      const int r = nbr[k];
+      if (to[k].empty() && in[k].empty()) continue;
       plan.ranks.push_back(r);
       plan.send.push_back(std::move(to[k]));
       plan.recv_first.push_back(p.size());
@@ -184,6 +193,7 @@ class ParticleDomain {
     std::vector<std::uint32_t> offset;  ///< per block, into the arrays below
     std::vector<int> block, owner;
     std::vector<Index<Dim>> shift;
+    std::vector<int> neighbours;  ///< the owners of the blocks next to this rank's, ascending
   };
   const Foreign& foreign() const {
     Foreign& f = foreign_;
@@ -193,6 +203,7 @@ class ParticleDomain {
     f.block.clear();
     f.owner.clear();
     f.shift.clear();
+    f.neighbours.clear();
     for (int b = 0; b < layout_.blocks(); ++b) {
       Index<Dim> off{};
       for (int a = 0; a < Dim; ++a) off[a] = -1;
@@ -210,7 +221,12 @@ class ParticleDomain {
         ++off[a];
       }
       f.offset.push_back(static_cast<std::uint32_t>(f.block.size()));
+      if (layout_.owner(b) == me) {
+        f.neighbours.insert(f.neighbours.end(), f.owner.begin() + f.offset[static_cast<std::size_t>(b)], f.owner.end());
+      }
     }
+    std::sort(f.neighbours.begin(), f.neighbours.end());
+    f.neighbours.erase(std::unique(f.neighbours.begin(), f.neighbours.end()), f.neighbours.end());
     f.version = layout_.version();
     return f;
   }

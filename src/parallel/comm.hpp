@@ -97,6 +97,10 @@ class Comm {
   /// An irregular exchange: send[r] goes to rank r (send has size() entries, most of them empty); returns what
   /// every rank sent to this one (received[r] from rank r).
   virtual std::vector<Bytes> exchange(const std::vector<Bytes>& send) const = 0;
+  /// An irregular exchange among neighbours: send[k] goes to ranks[k]; returns what ranks[k] sent to this one.
+  /// The relation must be symmetric (every rank in `ranks` lists this one): then only neighbours talk, in
+  /// messages of any size, and the cost does not grow with the number of ranks as exchange()'s does.
+  virtual std::vector<Bytes> exchange_among(std::span<const int> ranks, const std::vector<Bytes>& send) const = 0;
   /// A regular exchange with known partners: send[k] goes to ranks[k] and recv[k], sized by the caller to what
   /// ranks[k] sends, is filled from it (both sides know the sizes, as after a ghost set-up).
   virtual void exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
@@ -138,6 +142,9 @@ class SerialComm : public Comm {
   std::vector<Bytes> gather(const Bytes& local, int) const override { return {local}; }
   void broadcast(Bytes&, int) const override {}
   std::vector<Bytes> exchange(const std::vector<Bytes>& send) const override { return send; }
+  std::vector<Bytes> exchange_among(std::span<const int>, const std::vector<Bytes>& send) const override {
+    return send;
+  }
   void exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
                      std::vector<std::vector<double>>& recv) const override {
     // Only rank 0 exists: what goes to it comes back.

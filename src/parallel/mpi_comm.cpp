@@ -269,6 +269,50 @@ std::vector<Bytes> MpiComm::exchange(const std::vector<Bytes>& send) const {
   return in;
 }
 
+std::vector<Bytes> MpiComm::exchange_among(std::span<const int> ranks, const std::vector<Bytes>& send) const {
+  if (send.size() != ranks.size()) throw_simulation_error("MpiComm::exchange_among: one message per partner");
+  const std::size_t n = ranks.size();
+  // The sizes first, partner to partner, then the messages (tags of their own: an exchange() may follow at once).
+  std::vector<std::int64_t> out_sizes(n), in_sizes(n, 0);
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    out_sizes[k] = static_cast<std::int64_t>(send[k].size());
+    if (ranks[k] == impl_->rank) {
+      in_sizes[k] = out_sizes[k];
+      continue;
+    }
+    requests.emplace_back();
+    check(MPI_Irecv(&in_sizes[k], 1, MPI_INT64_T, ranks[k], 3, impl_->comm, &requests.back()),
+          "receive of a neighbour's size");
+    requests.emplace_back();
+    check(MPI_Isend(&out_sizes[k], 1, MPI_INT64_T, ranks[k], 3, impl_->comm, &requests.back()),
+          "send of a size to a neighbour");
+  }
+  check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "neighbours' sizes");
+  requests.clear();
+  std::vector<Bytes> in(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (ranks[k] == impl_->rank) {
+      in[k] = send[k];
+      continue;
+    }
+    if (in_sizes[k] > 0) {
+      in[k].resize(static_cast<std::size_t>(in_sizes[k]));
+      requests.emplace_back();
+      check(MPI_Irecv(in[k].data(), count_of(in[k].size()), MPI_BYTE, ranks[k], 4, impl_->comm, &requests.back()),
+            "receive of a neighbour's message");
+    }
+    if (!send[k].empty()) {
+      requests.emplace_back();
+      check(MPI_Isend(send[k].data(), count_of(send[k].size()), MPI_BYTE, ranks[k], 4, impl_->comm, &requests.back()),
+            "send of a message to a neighbour");
+    }
+  }
+  check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "neighbour exchange");
+  return in;
+}
+
 void MpiComm::exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
                             std::vector<std::vector<double>>& recv) const {
   std::vector<MPI_Request> requests;

@@ -39,6 +39,7 @@ class MpiComm final : public Comm {
   std::vector<Bytes> gather(const Bytes& local, int root) const override;
   void broadcast(Bytes& data, int root) const override;
   std::vector<Bytes> exchange(const std::vector<Bytes>& send) const override;
+  std::vector<Bytes> exchange_among(std::span<const int> ranks, const std::vector<Bytes>& send) const override;
   void exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
                      std::vector<std::vector<double>>& recv) const override;
   void barrier() const override;
