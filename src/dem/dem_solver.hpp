@@ -46,12 +46,13 @@ struct DemParallelStats {
   std::uint64_t migrated = 0;       ///< particles that arrived from other ranks since the start
   std::uint64_t rebalances = 0;     ///< times the blocks were dealt again
   double imbalance = 1.0;           ///< largest over mean rank compute time at the last check
-  double busy_s = 0.0;              ///< this rank's DEM compute seconds since the start (waits left out)
+  double busy_s = 0.0;              ///< this rank's DEM compute seconds since the start (communication left out)
   // Communication since the start, this rank: the ghosts' positions every step (forward), the step's reduction,
-  // the exchanges of a list build (migration and ghost set-up). Seconds of wall time inside them (waiting for the
-  // slowest partner included), bytes sent, messages sent.
+  // the list builds' distributed part (balance check, migration and ghost set-up: rebuild_s in all, of it
+  // rebuild_comm_s inside communication calls, the rest packing and searching). Seconds of wall time inside them
+  // (waiting for the slowest partner included), bytes sent, messages sent.
   std::uint64_t steps = 0;
-  double forward_s = 0.0, reduce_s = 0.0, rebuild_s = 0.0;
+  double forward_s = 0.0, reduce_s = 0.0, rebuild_s = 0.0, rebuild_comm_s = 0.0;
   std::uint64_t forward_bytes = 0, rebuild_bytes = 0;
   std::uint64_t forward_messages = 0, rebuild_messages = 0;
 };
@@ -340,7 +341,7 @@ class DemSolver {
   std::vector<double> cost_;  ///< per owned particle at the last counted rebuild (measure_costs)
   double busy_s_ = 0.0;      ///< compute seconds of this rank since the last balance check (waits left out)
   std::chrono::steady_clock::time_point step_start_{};
-  double step_waits_ = 0.0;  ///< comm_stats_.rebuild_s when the step began
+  double step_comm_s_ = 0.0;  ///< the communicator's seconds_communicating() when the step began
   DemParallelStats comm_stats_;  ///< the communication counters (the other fields are filled by parallel_stats())
   /// Rolling spring of particle slot i against wall w at wall_roll_[2 Dim i + w], in the store's order (laws with
   /// a rolling spring only, else empty; kept here so that the paper's law does not carry it per particle).

@@ -114,6 +114,9 @@ class Comm {
   /// Ends every rank of the run at once with this exit code (a failure one rank cannot share through a
   /// collective: it would leave the others waiting).
   [[noreturn]] virtual void abort(int code) const = 0;
+  /// Seconds this process has spent inside communication calls so far, waits for the other ranks included (the
+  /// performance figures split a step's time by it); zero on one process.
+  virtual double seconds_communicating() const { return 0.0; }
 
   /// The collective verdict on a failure that some ranks may have met: nullopt when no rank failed, else the
   /// message of the failing rank with the smallest key (ties: the lowest rank), the same on every rank. A failure

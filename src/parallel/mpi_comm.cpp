@@ -24,9 +24,23 @@ struct MpiComm::Impl {
   bool own_mpi = false;
   int rank = 0;
   int size = 1;
+  double inside_s = 0.0;  // seconds inside the calls below (seconds_communicating)
 };
 
 namespace {
+
+// Adds the time of the enclosing call to the process's communication seconds.
+class Inside {
+ public:
+  explicit Inside(double& total) : total_(total), t0_(std::chrono::steady_clock::now()) {}
+  ~Inside() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+  Inside(const Inside&) = delete;
+  Inside& operator=(const Inside&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point t0_;
+};
 
 void check(int rc, const char* what) {
   if (rc != MPI_SUCCESS) throw_simulation_error(std::string("MPI: ") + what + " failed");
@@ -123,6 +137,7 @@ int MpiComm::size() const { return impl_->size; }
 double MpiComm::sum(double local) const { return sum(ExactSum(local)); }
 
 double MpiComm::sum(const ExactSum& local) const {
+  const Inside inside(impl_->inside_s);
   // Integer sums of the limbs: associative, so the reduction tree of MPI cannot change the result.
   const std::array<std::int64_t, ExactSum::kWords> mine = local.words();
   std::array<std::int64_t, ExactSum::kWords> total{};
@@ -131,18 +146,21 @@ double MpiComm::sum(const ExactSum& local) const {
 }
 
 double MpiComm::max(double local) const {
+  const Inside inside(impl_->inside_s);
   double out = local;
   check(MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, impl_->comm), "maximum");
   return out;
 }
 
 double MpiComm::min(double local) const {
+  const Inside inside(impl_->inside_s);
   double out = local;
   check(MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MIN, impl_->comm), "minimum");
   return out;
 }
 
 void MpiComm::sum(std::span<double> values) const {
+  const Inside inside(impl_->inside_s);
   const std::size_t n = values.size();
   std::vector<std::int64_t> mine(n * ExactSum::kWords), total(mine.size());
   for (std::size_t i = 0; i < n; ++i) {
@@ -159,6 +177,7 @@ void MpiComm::sum(std::span<double> values) const {
 }
 
 void MpiComm::max(std::span<double> values) const {
+  const Inside inside(impl_->inside_s);
   std::vector<double> out(values.size());
   check(MPI_Allreduce(values.data(), out.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX, impl_->comm),
         "element-wise maximum");
@@ -166,6 +185,7 @@ void MpiComm::max(std::span<double> values) const {
 }
 
 void MpiComm::sum(std::span<std::int64_t> values) const {
+  const Inside inside(impl_->inside_s);
   std::vector<std::int64_t> out(values.size());
   check(MPI_Allreduce(values.data(), out.data(), static_cast<int>(values.size()), MPI_INT64_T, MPI_SUM, impl_->comm),
         "integer sum");
@@ -182,6 +202,7 @@ int count_of(std::size_t n) {
 }  // namespace
 
 std::vector<Bytes> MpiComm::allgather(const Bytes& local) const {
+  const Inside inside(impl_->inside_s);
   const int p = impl_->size;
   const auto mine = static_cast<std::int64_t>(local.size());
   std::vector<std::int64_t> sizes(static_cast<std::size_t>(p));
@@ -206,6 +227,7 @@ std::vector<Bytes> MpiComm::allgather(const Bytes& local) const {
 }
 
 std::vector<Bytes> MpiComm::gather(const Bytes& local, int root) const {
+  const Inside inside(impl_->inside_s);
   const int p = impl_->size;
   const bool me = impl_->rank == root;
   const auto mine = static_cast<std::int64_t>(local.size());
@@ -231,6 +253,7 @@ std::vector<Bytes> MpiComm::gather(const Bytes& local, int root) const {
 }
 
 void MpiComm::broadcast(Bytes& data, int root) const {
+  const Inside inside(impl_->inside_s);
   auto n = static_cast<std::int64_t>(data.size());
   check(MPI_Bcast(&n, 1, MPI_INT64_T, root, impl_->comm), "broadcast of a size");
   data.resize(static_cast<std::size_t>(n));
@@ -238,6 +261,7 @@ void MpiComm::broadcast(Bytes& data, int root) const {
 }
 
 std::vector<Bytes> MpiComm::exchange(const std::vector<Bytes>& send) const {
+  const Inside inside(impl_->inside_s);
   const int p = impl_->size;
   if (send.size() != static_cast<std::size_t>(p)) throw_simulation_error("MpiComm::exchange: one message per rank");
   std::vector<std::int64_t> out_sizes(static_cast<std::size_t>(p)), in_sizes(static_cast<std::size_t>(p));
@@ -270,6 +294,7 @@ std::vector<Bytes> MpiComm::exchange(const std::vector<Bytes>& send) const {
 }
 
 std::vector<Bytes> MpiComm::exchange_among(std::span<const int> ranks, const std::vector<Bytes>& send) const {
+  const Inside inside(impl_->inside_s);
   if (send.size() != ranks.size()) throw_simulation_error("MpiComm::exchange_among: one message per partner");
   const std::size_t n = ranks.size();
   // The sizes first, partner to partner, then the messages (tags of their own: an exchange() may follow at once).
@@ -315,6 +340,7 @@ std::vector<Bytes> MpiComm::exchange_among(std::span<const int> ranks, const std
 
 void MpiComm::exchange_with(std::span<const int> ranks, const std::vector<std::vector<double>>& send,
                             std::vector<std::vector<double>>& recv) const {
+  const Inside inside(impl_->inside_s);
   std::vector<MPI_Request> requests;
   requests.reserve(2 * ranks.size());
   for (std::size_t k = 0; k < ranks.size(); ++k) {
@@ -336,7 +362,10 @@ void MpiComm::exchange_with(std::span<const int> ranks, const std::vector<std::v
   check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "neighbour exchange");
 }
 
-void MpiComm::barrier() const { check(MPI_Barrier(impl_->comm), "barrier"); }
+void MpiComm::barrier() const {
+  const Inside inside(impl_->inside_s);
+  check(MPI_Barrier(impl_->comm), "barrier");
+}
 
 bool MpiComm::all_arrive_within(double timeout_s) const {
   MPI_Request r;
@@ -356,8 +385,16 @@ void MpiComm::abort(int code) const {
   std::abort();
 }
 
-void MpiComm::exchange_halo(Field<2>& f) const { exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f); }
-void MpiComm::exchange_halo(Field<3>& f) const { exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f); }
+void MpiComm::exchange_halo(Field<2>& f) const {
+  const Inside inside(impl_->inside_s);
+  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f);
+}
+void MpiComm::exchange_halo(Field<3>& f) const {
+  const Inside inside(impl_->inside_s);
+  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f);
+}
+
+double MpiComm::seconds_communicating() const { return impl_->inside_s; }
 
 }  // namespace fluidbed
 

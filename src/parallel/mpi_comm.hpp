@@ -45,6 +45,7 @@ class MpiComm final : public Comm {
   void barrier() const override;
   bool all_arrive_within(double timeout_s) const override;
   [[noreturn]] void abort(int code) const override;
+  double seconds_communicating() const override;
 
  private:
   struct Impl;

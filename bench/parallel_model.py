@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""The performance model of docs/parallel.md: the time of a DEM (or CFD-DEM) step on P ranks with n particles
+each (weak scaling), from figures measured on this machine (bench/parallel.sh, bench/mpi_costs.cpp, the runs'
+parallel summary) and a cluster's network figures (assumed, said so). Prints the weak-scaling efficiency at the
+requested rank counts and the check against the 2-rank runs measured here.
+
+Per DEM step and rank (3D):
+  T = imb * [t_c n (1 + kappa g) + t_b n / s]                 compute, ghosts' share, rebuild bookkeeping
+      + m alpha + beta B_f g n                                 ghosts' positions forward (m messages)
+      + (2 m alpha + beta R (g + mu) n) / s                    list builds: sizes, then records
+      + alpha_r ceil(log2 P) (1 + 2 / s) + beta 16 P / s       the step's reduction; per build the far check and
+                                                               the balance check (2 doubles a rank)
+  CFD-DEM adds per DEM step, the gas solved on every rank on the whole grid (this version):
+      (t_g c n P + t_cp n (1 + g_cfd) + alpha ceil(log2 P) + beta 8 Dim' c n P) / k
+  and the one-rank reference is t_c n + (t_g c n + t_cp n) / k. The projection with the gas decomposed on the same
+  blocks replaces the replicated gas by its own cells, a halo a SIMPLE iteration and two reproducible reductions a
+  Krylov iteration.
+g: ghosts per owned particle for a cube of n particles at solids fraction phi with neighbours on every side,
+scaled by the surface factor of a Hilbert piece; m = 26 neighbours (fewer below 27 ranks).
+Usage: python3 bench/parallel_model.py [--n 20000] [--ranks 64 1024 8192] [--key value ...]
+"""
+import argparse
+import math
+
+p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+a = p.add_argument
+a("--n", type=float, default=20000, help="particles per rank")
+a("--ranks", type=int, nargs="+", default=[64, 256, 1024, 8192])
+a("--d", type=float, default=0.004, help="particle diameter, m")
+a("--phi", type=float, default=0.6, help="solids fraction of the packed bed")
+a("--reach", type=float, default=0.006, help="ghost reach for contacts: d + skin, m")
+a("--reach-cfd", type=float, default=0.012, help="ghost reach of CFD-DEM: half a 2 cm cell + skin, m")
+a("--surface", type=float, default=1.3, help="a Hilbert piece's surface over a cube's (assumed)")
+# Measured here (docs/parallel.md, Performance): settle-100k-3d and bubbling-100k-3d.
+a("--t-c", type=float, default=400e-9, help="DEM compute per particle-step, one rank, s (dense bubbling bed)")
+a("--kappa", type=float, default=0.35, help="compute of a ghost over an owned particle's (its pairs across the cut)")
+a("--t-b", type=float, default=130e-9, help="rebuild bookkeeping per owned particle and build, s")
+a("--s", type=float, default=6.0, help="steps per list build")
+a("--imb", type=float, default=1.04, help="slowest over mean rank compute (time balancing, threshold 1.2)")
+a("--bf", type=float, default=72.0, help="bytes per ghost forwarded a step (9 doubles)")
+a("--rec", type=float, default=235.0, help="bytes per record at a list build")
+a("--mu", type=float, default=0.01, help="migrating particles per owned particle and build")
+a("--t-g", type=float, default=3.9e-6, help="gas solve per cell and gas step, one rank, s")
+a("--t-cp", type=float, default=115e-9, help="coupling per particle and gas step (deposit, interpolate, drag), s")
+a("--cells", type=float, default=0.018, help="gas cells per particle (bubbling-100k-3d: 1800 / 100,000)")
+a("--k", type=float, default=2.0, help="DEM steps per gas step")
+a("--simple", type=float, default=9.0, help="SIMPLE iterations per gas step (the paper's case: 8.7)")
+a("--krylov", type=float, default=30.0, help="Krylov iterations per pressure solve, distributed gas (assumed)")
+a("--t-exact", type=float, default=2.0, help="cost of an exact (reproducible) reduction over a plain one")
+# A cluster's interconnect (assumed: InfiniBand HDR class, not measured here).
+a("--alpha", type=float, default=1.5e-6, help="point-to-point latency, s")
+a("--alpha-r", type=float, default=2.0e-6, help="allreduce latency per tree level, s")
+a("--beta", type=float, default=1 / 12e9, help="seconds per byte")
+# The check against this machine: N particles on P ranks (strong scaling of a bench bed), the ghosts per owned
+# particle and partner count measured by the run, the shared-memory latency and bandwidth of bench_mpi_costs.
+a("--check-N", type=float, default=100000, help="particles of the bench bed")
+a("--check-g", type=float, nargs="*", default=[], help="measured ghosts per owned particle at 2, 3, 4 ... ranks")
+a("--check-alpha", type=float, default=0.75e-6, help="shared-memory latency, s (bench_mpi_costs)")
+a("--check-beta", type=float, default=1 / 8e9, help="shared-memory seconds per byte (bench_mpi_costs)")
+args = p.parse_args()
+
+
+def ghosts(n, reach):
+    side = (n * math.pi / 6 * args.d**3 / args.phi) ** (1 / 3)
+    return args.surface * ((1 + 2 * reach / side) ** 3 - 1)
+
+
+def dem_step(P, n):
+    if P == 1:
+        return args.t_c * n, {}
+    g = ghosts(n, args.reach)
+    m = min(26, P - 1)
+    levels = math.ceil(math.log2(P))
+    parts = {
+        "compute": args.imb * args.t_c * n * (1 + args.kappa * g),
+        "bookkeeping": args.imb * args.t_b * n / args.s,
+        "forward": m * args.alpha + args.beta * args.bf * g * n,
+        "builds": (2 * m * args.alpha + args.beta * args.rec * (g + args.mu) * n) / args.s,
+        "reductions": args.alpha_r * levels * (1 + 2 / args.s) + args.beta * 16 * P / args.s,
+    }
+    return sum(parts.values()), parts
+
+
+def cfd_step(P, n):
+    t, parts = dem_step(P, n)
+    if P == 1:
+        return t + (args.t_g * args.cells * n + args.t_cp * n) / args.k, parts
+    gc = ghosts(n, args.reach_cfd)
+    levels = math.ceil(math.log2(P))
+    parts = dict(parts)
+    parts["gas (replicated)"] = args.t_g * args.cells * n * P / args.k
+    parts["coupling"] = args.t_cp * n * (1 + gc) / args.k
+    parts["cell allgather"] = (args.alpha * levels + args.beta * 8 * 8 * args.cells * n * P) / args.k
+    return sum(parts.values()), parts
+
+
+def cfd_distributed_step(P, n):
+    """The gas decomposed on the same blocks (issue 30): each rank solves its cells, a halo of one layer a SIMPLE
+    iteration, and two reproducible reductions a Krylov iteration."""
+    t, parts = dem_step(P, n)
+    if P == 1:
+        return t + (args.t_g * args.cells * n + args.t_cp * n) / args.k, parts
+    gc = ghosts(n, args.reach_cfd)
+    cells = args.cells * n
+    halo = args.surface * ((1 + 2 / cells ** (1 / 3)) ** 3 - 1) * cells
+    levels = math.ceil(math.log2(P))
+    parts = dict(parts)
+    parts["gas (own cells)"] = args.t_g * cells * (1 + 0.5 * halo / cells) / args.k
+    parts["coupling"] = args.t_cp * n * (1 + gc) / args.k
+    parts["gas halos"] = args.simple * (min(26, P - 1) * args.alpha + args.beta * 8 * 8 * halo) / args.k
+    parts["gas reductions"] = args.simple * args.krylov * 2 * args.t_exact * args.alpha_r * levels / args.k
+    return sum(parts.values()), parts
+
+
+n = args.n
+print(f"{n:.0f} particles per rank; ghosts per owned particle: {ghosts(n, args.reach):.3f} (contact reach), "
+      f"{ghosts(n, args.reach_cfd):.3f} (CFD-DEM reach)")
+for name, f in (("DEM only", dem_step), ("CFD-DEM, gas replicated (this version)", cfd_step),
+                ("CFD-DEM, gas decomposed (projected: issue 30)", cfd_distributed_step)):
+    t1, _ = f(1, n)
+    print(f"\n{name}: one rank {1e3 * t1:.3f} ms a step")
+    print(f"{'ranks':>6} {'ms/step':>9} {'efficiency':>10}  largest parts")
+    for P in args.ranks:
+        t, parts = f(P, n)
+        top = sorted(parts.items(), key=lambda kv: -kv[1])[:4]
+        print(f"{P:>6} {1e3 * t:>9.3f} {t1 / t:>10.2f}  " + ", ".join(f"{k} {1e3 * v:.3f}" for k, v in top))
+
+if args.check_g:
+    print(f"\ncheck on this machine: {args.check_N:.0f} particles, DEM only")
+    t1 = args.t_c * args.check_N
+    for P, g in enumerate(args.check_g, start=2):
+        n = args.check_N / P
+        m = 1 if P == 2 else 2
+        t = (args.imb * (args.t_c * n * (1 + args.kappa * g) + args.t_b * n / args.s)
+             + m * args.check_alpha + args.check_beta * args.bf * g * n
+             + (2 * m * args.check_alpha + args.check_beta * args.rec * (g + args.mu) * n) / args.s
+             + 2 * args.check_alpha * (1 + 2 / args.s))
+        print(f"{P} ranks: ghosts {g:.3f} per owned particle, predicted speed-up {t1 / t:.2f}")
