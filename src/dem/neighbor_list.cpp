@@ -70,7 +70,9 @@ CellBins<Dim> bin_points(const Coords<Dim>& xs, double cell_size) {
   for (int a = 0; a < Dim; ++a) {
     const std::vector<double>& x = *xs[static_cast<std::size_t>(a)];
     const auto [mn, mx] = std::minmax_element(x.begin(), x.end());
-    b.lo[a] = *mn;
+    // On the lattice of the order keys (DemSolver::assign_order_keys: cells from the origin), so that a search by
+    // cell rows meets the partners that have kept their cells in canonical order already.
+    b.lo[a] = std::floor(*mn / cell_size) * cell_size;
     const double cap = a == 0 ? max_cells : max_cells / cells_below + 1.0;
     b.n[a] = std::max(1, static_cast<int>(std::min((*mx - b.lo[a]) / cell_size + 1.0, cap)));
     cells_below *= b.n[a];
@@ -293,9 +295,14 @@ void sort_entries_by_rank(NeighborList<Dim>& out, std::span<const std::uint32_t>
       const auto i = static_cast<std::size_t>(ii);
       const std::size_t k0 = out.offset[i], m = out.offset[i + 1] - k0;
       if (m < 2) continue;
+      // Partners found in the order of their cells, most of them still in the cells of their order keys, often
+      // come in canonical order already (ranks are distinct: in order means sorted).
+      std::size_t q0 = 1;
+      while (q0 < m && id[partner[k0 + q0 - 1]] < id[partner[k0 + q0]]) ++q0;
+      if (q0 == m) continue;
       buf.resize(m);
       for (std::size_t q = 0; q < m; ++q) buf[q] = {id[partner[k0 + q]], partner[k0 + q]};
-      for (std::size_t q = 1; q < m; ++q) {
+      for (std::size_t q = q0; q < m; ++q) {
         const auto e = buf[q];
         std::size_t r = q;
         while (r > 0 && buf[r - 1].first > e.first) {
