@@ -225,6 +225,9 @@ class DemSolver {
  private:
   DemStepInfo advance(double h);
   double compute_forces(double dt);
+  /// compute_forces for a box with (Periodic) or without periodic axes: the law chosen, the pass run.
+  template <bool Periodic>
+  double compute_forces_on(double dt);
   /// Law: the composed contact law (contact_law.hpp); Mixed: species looked up per contact, overlap judged per
   /// contact; Periodic: minimum-image separations; Sized: particles have their own sizes, so the paper's dashpot
   /// (Eq. 8) is taken on each pair's own reduced mass.
