@@ -725,6 +725,7 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
     step_start_ = std::chrono::steady_clock::now();
     step_comm_s_ = domain_->comm().seconds_communicating();
   }
+  step_built_ = need_rebuild_ || list_stale_;
   if (need_rebuild_) {
     rebuild(true);
     info.rebuilt = true;
@@ -820,6 +821,7 @@ void DemSolver<Dim>::finish_step_distributed(int& moved_far, int& bad, int& esca
   DemParallelStats& c = comm_stats_;
   ++c.steps;
   c.forward_s += std::chrono::duration<double>(t1 - t0).count();
+  if (step_built_) c.forward_after_build_s += std::chrono::duration<double>(t1 - t0).count();
   c.reduce_s += std::chrono::duration<double>(t2 - t1).count();
   for (const std::vector<double>& b : plan_.send_buf) {
     c.forward_bytes += b.size() * sizeof(double);

@@ -53,6 +53,7 @@ struct DemParallelStats {
   // (waiting for the slowest partner included), bytes sent, messages sent.
   std::uint64_t steps = 0;
   double forward_s = 0.0, reduce_s = 0.0, rebuild_s = 0.0, rebuild_comm_s = 0.0;
+  double forward_after_build_s = 0.0;  ///< of forward_s, in steps that began with a list build (the rest: plain steps)
   std::uint64_t forward_bytes = 0, rebuild_bytes = 0;
   std::uint64_t forward_messages = 0, rebuild_messages = 0;
 };
@@ -343,6 +344,7 @@ class DemSolver {
   double imbalance_ = 1.0;
   std::vector<double> cost_;  ///< per owned particle at the last counted rebuild (measure_costs)
   double busy_s_ = 0.0;      ///< compute seconds of this rank since the last balance check (waits left out)
+  bool step_built_ = false;  ///< the step under way began with a list build
   std::chrono::steady_clock::time_point step_start_{};
   double step_comm_s_ = 0.0;  ///< the communicator's seconds_communicating() when the step began
   DemParallelStats comm_stats_;  ///< the communication counters (the other fields are filled by parallel_stats())

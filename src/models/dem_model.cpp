@@ -583,10 +583,10 @@ class DemModel final : public ModelRun {
     if (layout == nullptr) return {};
     const DemParallelStats st = sim_.dem().parallel_stats();
     // Largest and smallest over the ranks (a maximum of the negated value), and totals.
-    double v[11] = {static_cast<double>(st.owned), -static_cast<double>(st.owned), static_cast<double>(st.partners),
+    double v[12] = {static_cast<double>(st.owned), -static_cast<double>(st.owned), static_cast<double>(st.partners),
                     st.imbalance, st.forward_s, st.reduce_s, st.rebuild_comm_s,
                     st.steps > 0 ? static_cast<double>(st.forward_messages) / static_cast<double>(st.steps) : 0.0,
-                    st.busy_s, -st.busy_s, st.rebuild_s - st.rebuild_comm_s};
+                    st.busy_s, -st.busy_s, st.rebuild_s - st.rebuild_comm_s, st.forward_after_build_s};
     comm_->max(std::span<double>(v));
     std::int64_t t[4] = {static_cast<std::int64_t>(st.owned), static_cast<std::int64_t>(st.ghosts),
                          static_cast<std::int64_t>(st.forward_bytes), static_cast<std::int64_t>(st.rebuild_bytes)};
@@ -599,16 +599,16 @@ class DemModel final : public ModelRun {
     const double ranks = comm_->size();
     return fmt::format("decomposition: {} blocks of {}+ cells over {} ranks along the Hilbert curve; particles per "
                        "rank {:.0f}-{:.0f}, ghosts {:.3f} per owned particle, up to {:.0f} partner ranks; blocks dealt "
-                       "again {} times (largest/mean rank compute time at the last check {:.3f}, threshold {}); "
-                       "DEM compute {:.2f}-{:.2f} s per rank; communication over {} steps, per rank: {:.1f} kB in "
-                       "{:.1f} messages a step to the ghosts, {:.1f} kB a step in list builds; time inside it (waits "
-                       "for the other ranks included), the most of any rank: {:.3f} s forwarding ghosts, {:.3f} s in "
-                       "the step's reduction, {:.3f} s in list-build exchanges (and {:.3f} s of their packing and "
-                       "ghost search, within the compute time)",
+                       "again {} times (largest/mean rank compute time at the last check {:.3f}, threshold {}); DEM "
+                       "compute {:.2f}-{:.2f} s per rank; communication over {} steps, per rank: {:.1f} kB in {:.1f} messages a step to the "
+                       "ghosts, {:.1f} kB a step in list builds; time inside it (waits for the other ranks included), "
+                       "the most of any rank: {:.3f} s forwarding ghosts ({:.3f} s of it after steps with a list "
+                       "build), {:.3f} s in the step's reduction, {:.3f} s in list-build exchanges (and {:.3f} s of "
+                       "their packing and ghost search, within the compute time)",
                        layout->blocks(), cells, comm_->size(), -v[1], v[0],
                        t[0] > 0 ? static_cast<double>(t[1]) / static_cast<double>(t[0]) : 0.0, v[2], st.rebalances,
-                       v[3], config_.parallel.rebalance_threshold, -v[9], v[8], st.steps, t[2] / ranks / steps / 1e3, v[7],
-                       t[3] / ranks / steps / 1e3, v[4], v[5], v[6], v[10]);
+                       v[3], config_.parallel.rebalance_threshold, -v[9], v[8], st.steps, t[2] / ranks / steps / 1e3,
+                       v[7], t[3] / ranks / steps / 1e3, v[4], v[11], v[5], v[6], v[10]);
   }
   std::string describe() const override {
     const std::uint64_t n = sim_.dem().total_particles();
