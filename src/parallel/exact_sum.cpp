@@ -14,28 +14,33 @@ constexpr int kUnitExponent = -1074;  // limb 0, bit 0: the smallest subnormal
 }  // namespace
 
 void ExactSum::add(double x) {
-  if (x == 0.0) return;
-  if (std::isnan(x)) {
-    ++nan_;
-    return;
-  }
-  if (std::isinf(x)) {
-    ++(x > 0.0 ? pos_inf_ : neg_inf_);
+  // Branch-free but for NaN and infinities (rare, so predicted): a zero adds zero limbs, the sign is applied as a
+  // mask, and the limb index and shift come from the exponent by shifts. A branch on the sign or on zero is taken
+  // at random in a sum of mixed terms and cost ~8 ns a term in mispredictions (bench_mpi_costs).
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const auto biased = static_cast<unsigned>((bits >> 52) & 0x7ff);
+  if (biased == 0x7ff) [[unlikely]] {
+    if (std::isnan(x)) {
+      ++nan_;
+    } else {
+      ++(x > 0.0 ? pos_inf_ : neg_inf_);
+    }
     return;
   }
   // x = +-m 2^(b - 1074): the integer significand m (53 bits, fewer for a subnormal) and its bit offset b.
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  const auto biased = static_cast<int>((bits >> 52) & 0x7ff);
-  const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
-  const std::uint64_t m = biased == 0 ? fraction : fraction | (std::uint64_t{1} << 52);
-  const int b = biased == 0 ? 0 : biased - 1;
-  const auto k = static_cast<std::size_t>(b / 32);
-  const unsigned __int128 v = static_cast<unsigned __int128>(m) << (b % 32);
-  const std::int64_t c[3] = {static_cast<std::int64_t>(v & kLimbMask), static_cast<std::int64_t>((v >> 32) & kLimbMask),
-                             static_cast<std::int64_t>(v >> 64)};
-  const bool negative = std::signbit(x);
-  for (std::size_t i = 0; i < 3; ++i) limb_[k + i] += negative ? -c[i] : c[i];
-  if (++pending_ >= (1 << 30)) normalise();
+  const std::uint64_t normal = biased != 0 ? 1 : 0;
+  const std::uint64_t m = (bits & ((std::uint64_t{1} << 52) - 1)) | (normal << 52);
+  const unsigned b = biased - static_cast<unsigned>(normal);
+  const std::size_t k = b >> 5;
+  const unsigned __int128 v = static_cast<unsigned __int128>(m) << (b & 31);
+  const auto sign = -static_cast<std::int64_t>(bits >> 63);  // 0 or -1: (c ^ sign) - sign is c or -c
+  const auto lo = static_cast<std::int64_t>(static_cast<std::uint64_t>(v) & kLimbMask);
+  const auto mid = static_cast<std::int64_t>(static_cast<std::uint64_t>(v >> 32) & kLimbMask);
+  const auto hi = static_cast<std::int64_t>(static_cast<std::uint64_t>(v >> 64));
+  limb_[k] += (lo ^ sign) - sign;
+  limb_[k + 1] += (mid ^ sign) - sign;
+  limb_[k + 2] += (hi ^ sign) - sign;
+  if (++pending_ >= (1 << 30)) [[unlikely]] normalise();
 }
 
 void ExactSum::normalise() {

@@ -100,5 +100,24 @@ TEST(ExactSum, AgreesWithIntegerArithmeticOnScaledIntegers) {
   EXPECT_EQ(bits(exact_sum(v)), bits(expected));
 }
 
+TEST(ExactSum, EveryExponentAndSignLandsInItsLimbs) {
+  // Each term alone comes back exactly, and with its negation cancels to +0, from the smallest subnormal to the
+  // largest double: the limb index, the shift and the sign of every exponent (the add path has no branch on them).
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<std::uint64_t> fraction(0, (std::uint64_t{1} << 52) - 1);
+  for (std::uint64_t biased = 0; biased < 0x7ff; ++biased) {
+    for (const std::uint64_t f : {std::uint64_t{0}, std::uint64_t{1}, fraction(rng), (std::uint64_t{1} << 52) - 1}) {
+      for (const std::uint64_t sign : {std::uint64_t{0}, std::uint64_t{1}}) {
+        const double x = std::bit_cast<double>(sign << 63 | biased << 52 | f);
+        ExactSum one(x);
+        // -0 alone sums to +0, as IEEE addition of +0 and -0 does.
+        EXPECT_EQ(bits(one.value()), bits(x == 0.0 ? 0.0 : x)) << biased << " " << f << " " << sign;
+        one.add(-x);
+        EXPECT_EQ(bits(one.value()), bits(0.0)) << biased << " " << f << " " << sign;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fluidbed
