@@ -211,10 +211,13 @@ void read_gas_phase(CaseReader& r, CaseConfig& c, const GasKeys& k) {
   const std::string pc = r.string("gas.pressure_coupling", "simplec", "pressure-velocity coupling", {"simple", "simplec"});
   g.coupling = pc == "simple" ? PressureCoupling::Simple : PressureCoupling::Simplec;
   const std::string ps = r.string("gas.pressure_solver", "eigen", "pressure-correction solver: eigen (sparse Cholesky), "
-                                  "eigen-cg (incomplete-Cholesky CG) or hypre-pfmg (structured multigrid CG; needs a build "
-                                  "with hypre)", {"eigen", "eigen-cg", "hypre-pfmg"});
-  g.pressure_solver = ps == "hypre-pfmg" ? PressureBackend::HyprePfmg
-                      : ps == "eigen-cg" ? PressureBackend::EigenCg : PressureBackend::Eigen;
+                                  "eigen-cg (incomplete-Cholesky CG), hypre-pfmg (structured multigrid CG; needs a build "
+                                  "with hypre) or cg-multigrid (multigrid CG with exact inner products: the same bits on "
+                                  "any rank count)", {"eigen", "eigen-cg", "hypre-pfmg", "cg-multigrid"});
+  g.pressure_solver = ps == "hypre-pfmg"     ? PressureBackend::HyprePfmg
+                      : ps == "eigen-cg"     ? PressureBackend::EigenCg
+                      : ps == "cg-multigrid" ? PressureBackend::CgMultigrid
+                                             : PressureBackend::Eigen;
   // The periodic gas (GasSolver's rules, here so that `check` refuses what `run` would).
   if (c.model == Model::Dem && c.gas_enabled && c.domain.any_periodic()) {
     if (g.pressure_solver == PressureBackend::HyprePfmg) {

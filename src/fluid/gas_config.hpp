@@ -32,6 +32,7 @@ enum class PressureBackend {
   Eigen,      ///< Eigen's sparse Cholesky, reused as CG preconditioner within a step (the default)
   EigenCg,    ///< Eigen's incomplete-Cholesky CG, warm-started
   HyprePfmg,  ///< hypre's PFMG-preconditioned CG (structured multigrid), warm-started
+  CgMultigrid,  ///< our multigrid-preconditioned CG, the same bits on any rank count (numerics/multigrid_cg.hpp)
 };
 
 /// Pressure-velocity coupling of the outer iterations.

@@ -1,5 +1,6 @@
 #include "fluid/gas_solver.hpp"
 #include "numerics/structured_solver_hypre.hpp"
+#include "numerics/multigrid_cg.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
@@ -200,6 +201,9 @@ std::unique_ptr<StructuredSolver<Dim>> make_pressure_backend(const Grid<Dim>& g,
       return make_hypre_structured_solver<Dim>(g, c.pressure_solver_tolerance);
     case PressureBackend::EigenCg:
       return make_eigen_structured_solver<Dim>(g, PressureSolverKind::ConjugateGradient, c.pressure_solver_tolerance);
+    case PressureBackend::CgMultigrid:
+      // The gas is solved whole on every rank in this version: one process's solve.
+      return make_multigrid_cg_solver<Dim>(g, serial_comm(), {.tolerance = c.pressure_solver_tolerance});
     case PressureBackend::Eigen: break;
   }
   return make_eigen_structured_solver<Dim>(g, kind, c.pressure_solver_tolerance);

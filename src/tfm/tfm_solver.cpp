@@ -12,6 +12,7 @@
 #include "closures/drag.hpp"
 #include "fluid/gas_boundary.hpp"
 #include "numerics/structured_solver_hypre.hpp"
+#include "numerics/multigrid_cg.hpp"
 #include "numerics/band_pressure_solver.hpp"
 #include "numerics/line_loop.hpp"
 #include "tfm/packing_limiter.hpp"
@@ -274,6 +275,9 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     case PressureBackend::HyprePfmg: w.pressure = make_hypre_structured_solver<Dim>(grid_, kPressureTolerance); break;
     case PressureBackend::EigenCg:
       w.pressure = make_eigen_structured_solver<Dim>(grid_, PressureSolverKind::ConjugateGradient, kPressureTolerance);
+      break;
+    case PressureBackend::CgMultigrid:
+      w.pressure = make_multigrid_cg_solver<Dim>(grid_, serial_comm(), {.tolerance = kPressureTolerance});
       break;
     case PressureBackend::Eigen:
       // The direct solve: a band factorisation where the rows couple within a narrow band (2D), else Eigen's
