@@ -27,7 +27,7 @@ namespace fluidbed {
 struct MultigridCgOptions {
   double tolerance = 1e-10;   ///< stop at |r| <= tolerance |b| (2-norm, as Eigen's CG)
   int max_iterations = 500;   ///< a solve that has not converged by then fails the run (every rank at once)
-  int smoothing_sweeps = 1;   ///< red-black sweep pairs before and after the coarse correction
+  int smoothing_sweeps = 2;   ///< red-black sweep pairs before and after the coarse correction
 };
 
 /// What the last solve did (the same on every rank).
