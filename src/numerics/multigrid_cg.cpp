@@ -94,7 +94,7 @@ class MultigridCg final : public StructuredSolver<Dim> {
 
  private:
   void halo(const Level<Dim>& l, Field<Dim>& f) const {
-    if (l.shared) comm_.exchange_halo(f);
+    if (l.shared) comm_.exchange_halo_among(f, boxes_);
     fill_periodic_ghosts(l.grid, f);
   }
   void assemble_fine(const FaceFields<Dim>& coeff, const Field<Dim>& rhs);
@@ -114,6 +114,7 @@ class MultigridCg final : public StructuredSolver<Dim> {
   bool hierarchy_built_ = false;
   bool pinned_ = false;  ///< the last problem had no fixed-pressure face: the domain's first cell is held at zero
   Field<Dim> p_, q_, res_, sol_;
+  std::vector<IndexBox<Dim>> boxes_;  ///< every rank's owned box of the first level (its halos need no collective)
 };
 
 template <int Dim>
@@ -127,6 +128,7 @@ MultigridCg<Dim>::MultigridCg(const Grid<Dim>& grid, const Comm& comm, Multigrid
   // The levels' shapes depend on the domain only (the coarsening is global), so every rank builds the same ones;
   // the first level is the rank's block, the others the whole coarse domain on every rank.
   levels_.emplace_back(grid, comm.size() > 1);
+  if (comm.size() > 1) boxes_ = all_boxes<Dim>(comm, grid.owned);
   Index<Dim> n{};
   for (int a = 0; a < Dim; ++a) n[a] = grid.domain.extent(a);
   auto cells = [&] {

@@ -87,6 +87,11 @@ class Comm {
   /// Fill the ghost cells of f that lie inside the domain from the ranks that own them.
   virtual void exchange_halo(Field<2>& f) const = 0;
   virtual void exchange_halo(Field<3>& f) const = 0;
+  /// The same when the caller knows every rank's box of f (boxes[r] = f.box() on rank r, from all_boxes): no
+  /// collective call, only the ranks whose boxes touch talk. A solver that exchanges the same kind of field many
+  /// times gathers the boxes once.
+  virtual void exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes) const = 0;
+  virtual void exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes) const = 0;
 
   /// Every rank's bytes, in rank order, on every rank.
   virtual std::vector<Bytes> allgather(const Bytes& local) const = 0;
@@ -141,6 +146,8 @@ class SerialComm : public Comm {
   double sum(const ExactSum& local) const override { return local.value(); }
   void exchange_halo(Field<2>&) const override {}
   void exchange_halo(Field<3>&) const override {}
+  void exchange_halo_among(Field<2>&, std::span<const IndexBox<2>>) const override {}
+  void exchange_halo_among(Field<3>&, std::span<const IndexBox<3>>) const override {}
   std::vector<Bytes> allgather(const Bytes& local) const override { return {local}; }
   std::vector<Bytes> gather(const Bytes& local, int) const override { return {local}; }
   void broadcast(Bytes&, int) const override {}
@@ -157,6 +164,16 @@ class SerialComm : public Comm {
   bool all_arrive_within(double) const override { return true; }
   [[noreturn]] void abort(int code) const override { std::_Exit(code); }
 };
+
+/// Every rank's `mine`, in rank order, on every rank (collective).
+template <int Dim>
+std::vector<IndexBox<Dim>> all_boxes(const Comm& comm, const IndexBox<Dim>& mine) {
+  Bytes b;
+  pack(b, mine);
+  std::vector<IndexBox<Dim>> out;
+  for (const Bytes& from : comm.allgather(b)) out.push_back(Unpacker(from).get<IndexBox<Dim>>());
+  return out;
+}
 
 /// The communicator of a run on one process.
 inline const Comm& serial_comm() {

@@ -56,24 +56,30 @@ void for_each_outside(const IndexBox<Dim>& region, const IndexBox<Dim>& own, F&&
 }
 
 template <int Dim>
-void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f) {
-  if (ranks == 1) return;
-  // Every rank's box of this field (the same kind of field, the same ghost width, on every rank).
+std::vector<IndexBox<Dim>> gather_boxes(MPI_Comm comm, int ranks, const IndexBox<Dim>& box) {
   std::array<int, 2 * Dim> mine{};
   for (int a = 0; a < Dim; ++a) {
-    mine[static_cast<std::size_t>(a)] = f.box().lo[a];
-    mine[static_cast<std::size_t>(Dim + a)] = f.box().hi[a];
+    mine[static_cast<std::size_t>(a)] = box.lo[a];
+    mine[static_cast<std::size_t>(Dim + a)] = box.hi[a];
   }
   std::vector<int> all(static_cast<std::size_t>(2 * Dim * ranks));
   check(MPI_Allgather(mine.data(), 2 * Dim, MPI_INT, all.data(), 2 * Dim, MPI_INT, comm), "allgather of boxes");
-  auto box_of = [&](int q) {
-    IndexBox<Dim> b;
+  std::vector<IndexBox<Dim>> out(static_cast<std::size_t>(ranks));
+  for (int q = 0; q < ranks; ++q) {
     for (int a = 0; a < Dim; ++a) {
-      b.lo[a] = all[static_cast<std::size_t>(2 * Dim * q + a)];
-      b.hi[a] = all[static_cast<std::size_t>(2 * Dim * q + Dim + a)];
+      out[static_cast<std::size_t>(q)].lo[a] = all[static_cast<std::size_t>(2 * Dim * q + a)];
+      out[static_cast<std::size_t>(q)].hi[a] = all[static_cast<std::size_t>(2 * Dim * q + Dim + a)];
     }
-    return b;
-  };
+  }
+  return out;
+}
+
+// Fills f's ghosts inside the domain from the ranks whose boxes (boxes[q], the same kind of field and ghost width
+// on every rank) hold them.
+template <int Dim>
+void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f, std::span<const IndexBox<Dim>> boxes) {
+  if (ranks == 1) return;
+  auto box_of = [&](int q) { return boxes[static_cast<std::size_t>(q)]; };
   const int g = f.ghost();
   std::vector<std::vector<double>> in(static_cast<std::size_t>(ranks)), out(static_cast<std::size_t>(ranks));
   std::vector<MPI_Request> requests;
@@ -387,11 +393,21 @@ void MpiComm::abort(int code) const {
 
 void MpiComm::exchange_halo(Field<2>& f) const {
   const Inside inside(impl_->inside_s);
-  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f);
+  if (impl_->size == 1) return;
+  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<2>(impl_->comm, impl_->size, f.box()));
 }
 void MpiComm::exchange_halo(Field<3>& f) const {
   const Inside inside(impl_->inside_s);
-  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f);
+  if (impl_->size == 1) return;
+  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<3>(impl_->comm, impl_->size, f.box()));
+}
+void MpiComm::exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes) const {
+  const Inside inside(impl_->inside_s);
+  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, boxes);
+}
+void MpiComm::exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes) const {
+  const Inside inside(impl_->inside_s);
+  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, boxes);
 }
 
 double MpiComm::seconds_communicating() const { return impl_->inside_s; }
