@@ -2,10 +2,12 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -45,6 +47,7 @@ template <int Dim>
 struct Level {
   Grid<Dim> grid;                 ///< owned = domain on the redundant levels
   bool shared = false;            ///< the owned box is a part of the domain: ghosts come from other ranks
+  std::vector<IndexBox<Dim>> boxes;  ///< when shared: every rank's owned box (its halos need no collective)
   std::array<int, Dim> ratio{};   ///< cells per coarse cell along each axis, towards the next level (1 or 2)
   Field<Dim> diag;                ///< a_PP
   std::array<Field<Dim>, Dim> w;  ///< w[a] at c: the coupling of c with its high neighbour along a (wrapped)
@@ -71,17 +74,22 @@ struct Level {
   }
 };
 
-/// The coarse cells whose first child lies in the fine level's owned box: the ones this rank computes.
+/// The coarse cells whose first child lies in `owned`, a box of the fine level: the ones its rank computes (and
+/// owns, where the coarse level is shared among the ranks too).
 template <int Dim>
-IndexBox<Dim> first_children_box(const Level<Dim>& fine) {
+IndexBox<Dim> first_children_box(const Level<Dim>& fine, const IndexBox<Dim>& owned) {
   IndexBox<Dim> b;
   for (int a = 0; a < Dim; ++a) {
-    const int r = fine.ratio[a], lo = fine.grid.owned.lo[a] - fine.grid.domain.lo[a];
-    const int hi = fine.grid.owned.hi[a] - fine.grid.domain.lo[a];
+    const int r = fine.ratio[a], lo = owned.lo[a] - fine.grid.domain.lo[a];
+    const int hi = owned.hi[a] - fine.grid.domain.lo[a];
     b.lo[a] = (lo + r - 1) / r;
     b.hi[a] = (hi + r - 1) / r;
   }
   return b;
+}
+template <int Dim>
+IndexBox<Dim> first_children_box(const Level<Dim>& fine) {
+  return first_children_box(fine, fine.grid.owned);
 }
 
 template <int Dim>
@@ -94,14 +102,15 @@ class MultigridCg final : public StructuredSolver<Dim> {
 
  private:
   void halo(const Level<Dim>& l, Field<Dim>& f) const {
-    if (l.shared) comm_.exchange_halo_among(f, boxes_);
+    if (l.shared) comm_.exchange_halo_among(f, l.boxes);
     fill_periodic_ghosts(l.grid, f);
   }
   void assemble_fine(const FaceFields<Dim>& coeff, const Field<Dim>& rhs);
   void check_finite(const FaceFields<Dim>& coeff, const Field<Dim>& rhs) const;
   void coarsen(const Level<Dim>& fine, Level<Dim>& coarse) const;
   void factorise_coarsest();
-  void gather_redundant(const Level<Dim>& fine, std::initializer_list<Field<Dim>*> fields) const;
+  void gather_redundant(const Level<Dim>& fine, const Level<Dim>& coarse,
+                        std::initializer_list<Field<Dim>*> fields) const;
   void apply(Level<Dim>& l, Field<Dim>& in, Field<Dim>& out) const;
   void smooth(Level<Dim>& l, int colour) const;
   void vcycle(std::size_t level);
@@ -114,7 +123,6 @@ class MultigridCg final : public StructuredSolver<Dim> {
   bool hierarchy_built_ = false;
   bool pinned_ = false;  ///< the last problem had no fixed-pressure face: the domain's first cell is held at zero
   Field<Dim> p_, q_, res_, sol_;
-  std::vector<IndexBox<Dim>> boxes_;  ///< every rank's owned box of the first level (its halos need no collective)
 };
 
 template <int Dim>
@@ -125,32 +133,50 @@ MultigridCg<Dim>::MultigridCg(const Grid<Dim>& grid, const Comm& comm, Multigrid
       throw_input_error("pressure solver \"cg-multigrid\": periodic axis " + std::to_string(a) +
                         " is cut across ranks (its ghosts would need the opposite rank); cut the other axes");
   }
-  // The levels' shapes depend on the domain only (the coarsening is global), so every rank builds the same ones;
-  // the first level is the rank's block, the others the whole coarse domain on every rank.
-  levels_.emplace_back(grid, comm.size() > 1);
-  if (comm.size() > 1) boxes_ = all_boxes<Dim>(comm, grid.owned);
-  Index<Dim> n{};
-  for (int a = 0; a < Dim; ++a) n[a] = grid.domain.extent(a);
-  auto cells = [&] {
+  // The levels' shapes depend on the domain only: every level's extents by one rule, at least one coarse level,
+  // down to at most 128 cells (a chain that depended on the cut would change the preconditioner, and the bits).
+  std::vector<Index<Dim>> extents(1);
+  for (int a = 0; a < Dim; ++a) extents[0][a] = grid.domain.extent(a);
+  auto cells = [](const Index<Dim>& n) {
     std::size_t c = 1;
     for (int a = 0; a < Dim; ++a) c *= static_cast<std::size_t>(n[a]);
     return c;
   };
-  auto coarsenable = [&] {
+  auto coarsenable = [](const Index<Dim>& n) {
     bool any = false;
     for (int a = 0; a < Dim; ++a) any = any || n[a] > 1;
     return any;
   };
-  while ((cells() > 128 || levels_.back().shared) && coarsenable()) {
+  while ((cells(extents.back()) > 128 || extents.size() == 1) && coarsenable(extents.back())) {
+    Index<Dim> c{};
+    for (int a = 0; a < Dim; ++a) c[a] = (extents.back()[a] + 1) / 2;
+    extents.push_back(c);
+  }
+  // The first level is the rank's block; a coarse level above the bottom stays shared among the ranks while every
+  // rank's part of it keeps 2 cells per axis (where the domain has them); the first level below that and all below
+  // it are the whole coarse domain on every rank.
+  levels_.emplace_back(grid, comm.size() > 1);
+  if (comm.size() > 1) levels_[0].boxes = all_boxes<Dim>(comm, grid.owned);
+  for (std::size_t l = 1; l < extents.size(); ++l) {
+    Level<Dim>& fine = levels_.back();
     Grid<Dim> g;
     for (int a = 0; a < Dim; ++a) {
-      levels_.back().ratio[a] = n[a] > 1 ? 2 : 1;
-      n[a] = (n[a] + levels_.back().ratio[a] - 1) / levels_.back().ratio[a];
-      g.domain.hi[a] = n[a];
+      fine.ratio[a] = extents[l - 1][a] > 1 ? 2 : 1;
+      g.domain.hi[a] = extents[l][a];
     }
     g.owned = g.domain;
     g.periodic = grid.periodic;
-    levels_.emplace_back(g, false);
+    std::vector<IndexBox<Dim>> parts;
+    bool share = fine.shared && l + 1 < extents.size();
+    if (share) {
+      for (const IndexBox<Dim>& b : fine.boxes) {
+        parts.push_back(first_children_box(fine, b));
+        for (int a = 0; a < Dim; ++a) share = share && parts.back().extent(a) >= std::min(2, extents[l][a]);
+      }
+    }
+    if (share) g.owned = parts[static_cast<std::size_t>(comm.rank())];
+    levels_.emplace_back(g, share);
+    if (share) levels_.back().boxes = std::move(parts);
   }
   stats.levels = static_cast<int>(levels_.size());
   p_ = q_ = res_ = sol_ = Field<Dim>(grid.owned, 1);
@@ -255,18 +281,18 @@ void MultigridCg<Dim>::coarsen(const Level<Dim>& fine, Level<Dim>& coarse) const
     coarse.diag[cc] = 0.5 * d;
     for (int a = 0; a < Dim; ++a) coarse.w[a][cc] = 0.5 * wc[static_cast<std::size_t>(a)];
   });
-  std::initializer_list<Field<Dim>*> fields = {&coarse.diag};
-  gather_redundant(fine, fields);
-  for (int a = 0; a < Dim; ++a) gather_redundant(fine, {&coarse.w[a]});
-  fill_periodic_ghosts(coarse.grid, coarse.diag);
-  for (int a = 0; a < Dim; ++a) fill_periodic_ghosts(coarse.grid, coarse.w[a]);
+  gather_redundant(fine, coarse, {&coarse.diag});
+  for (int a = 0; a < Dim; ++a) gather_redundant(fine, coarse, {&coarse.w[a]});
+  halo(coarse, coarse.diag);
+  for (int a = 0; a < Dim; ++a) halo(coarse, coarse.w[a]);
 }
 
 template <int Dim>
-void MultigridCg<Dim>::gather_redundant(const Level<Dim>& fine, std::initializer_list<Field<Dim>*> fields) const {
-  // Each rank computed the coarse cells of its first children; every rank receives them all, so the levels below
-  // are the same on every rank.
-  if (!fine.shared || comm_.size() == 1) return;
+void MultigridCg<Dim>::gather_redundant(const Level<Dim>& fine, const Level<Dim>& coarse,
+                                        std::initializer_list<Field<Dim>*> fields) const {
+  // Each rank computed the coarse cells of its first children; where the coarse level is not shared every rank
+  // receives them all, so it and the levels below are the same on every rank.
+  if (!fine.shared || coarse.shared) return;
   const IndexBox<Dim> mine = first_children_box(fine);
   Bytes msg;
   pack(msg, mine);
@@ -387,8 +413,9 @@ void MultigridCg<Dim>::vcycle(std::size_t level) {
     for_each(kids, [&](const Index<Dim>& c) { s += l.r[c]; });
     coarse.b[cc] = s;
   });
-  gather_redundant(l, {&coarse.b});
+  gather_redundant(l, coarse, {&coarse.b});
   vcycle(level + 1);
+  halo(coarse, coarse.x);  // a parent below this rank's first child lies in the coarse level's ghosts
   for_cells(l.grid.owned, [&](const Index<Dim>& c) {
     Index<Dim> parent;
     for (int a = 0; a < Dim; ++a) parent[a] = (c[a] - l.grid.domain.lo[a]) / l.ratio[a];

@@ -1,7 +1,7 @@
 // The multigrid-preconditioned CG pressure backend on 1 to 4 ranks (ctest runs this under mpiexec -n 1..4) against
 // the same backend on one process, bit for bit: the answer, the iteration count and the last residual, for 2D and
-// 3D problems with a fixed-pressure top, an all-Neumann (pinned) one, a periodic axis, and blocks cut along every
-// axis the rank count allows. Each rank also solves the one-process reference itself (the problems are small).
+// 3D problems with a fixed-pressure top, an all-Neumann (pinned) one, a periodic axis, blocks cut along every axis
+// the rank count allows, coarse levels shared among the ranks, and a grid smaller than the bottom level. Each rank also solves the one-process reference itself (the problems are small).
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -115,6 +115,12 @@ TEST(MultigridCgRanks, Fixed3dAlongEveryAxis) {
   check<3>({19, 14, 23}, true, -1, {p, 1, 1});
   if (p == 4) check<3>({19, 14, 23}, true, -1, {2, 2, 1});
 }
+// Fewer cells than the bottom level holds: still one coarse level on every rank count (a hierarchy whose depth
+// followed the cut would change the preconditioner, and the bits).
+TEST(MultigridCgRanks, TinyGrid) { check<2>({9, 12}, true, -1, {1, world().size()}); }
+// Coarse levels shared among the ranks, some of them starting at an odd index (their first coarse cell computed by
+// the rank below).
+TEST(MultigridCgRanks, SharedCoarseLevels) { check<3>({24, 40, 16}, false, -1, {1, world().size(), 1}); }
 TEST(MultigridCgRanks, PeriodicXCutAlongY) { check<2>({24, 41}, true, 0, {1, world().size()}); }
 TEST(MultigridCgRanks, Periodic3dCutAlongZ) { check<3>({10, 12, 21}, true, 0, {1, 1, world().size()}); }
 
