@@ -8,14 +8,15 @@
 //  - the smoother is red-black Gauss-Seidel (a cell's colour is the parity of its global index, so the colouring
 //    does not depend on the cut), each colour's new values computed from the values before that colour's sweep;
 //  - a coarse cell is computed by the rank that owns its first child, from all its children in a fixed order
-//    (the other children read from the halo), and the coarse levels below the first are solved redundantly on
-//    every rank from the same gathered values.
+//    (the other children read from the halo); coarse levels stay split among the ranks while every rank's part
+//    keeps 2 cells per axis, and the levels below are solved alike on every rank from the same gathered values;
+//  - the chain of levels depends on the domain only.
 // The levels are cell-centred aggregates of 2 cells per axis with the scaled Galerkin operator 0.5 P^T A P of
 // piecewise-constant prolongation (Braess, "Towards algebraic multigrid for elliptic problems of second order",
 // Computing 55, 1995: the factor counters the aggregates' too-weak coarse correction), pre-smoothed red then black
 // and post-smoothed black then red, so the preconditioner is symmetric and CG applies (Tatebe, "The multigrid
-// preconditioned conjugate gradient method", NASA CP-3224, 1993). The coarsest level (at most 128 cells) is solved
-// by a dense Cholesky factorisation.
+// preconditioned conjugate gradient method", NASA CP-3224, 1993). The coarsest level (at most 128 cells, and at
+// least one level below the grid) is solved by a dense LDL^T factorisation.
 #include <memory>
 
 #include "core/grid.hpp"
