@@ -13,8 +13,10 @@ Per DEM step and rank (3D):
   CFD-DEM adds per DEM step, the gas solved on every rank on the whole grid (this version):
       (t_g c n P + t_cp n (1 + g_cfd) + alpha ceil(log2 P) + beta 8 Dim' c n P) / k
   and the one-rank reference is t_c n + (t_g c n + t_cp n) / k. The projection with the gas decomposed on the same
-  blocks replaces the replicated gas by its own cells, a halo a SIMPLE iteration and two reproducible reductions a
-  Krylov iteration.
+  blocks replaces the replicated gas by its own cells, a halo a SIMPLE iteration, and per CG iteration of the
+  pressure solve (cg-multigrid) its exact reductions and the V-cycle's halos: on each level split among the ranks
+  2 x 2 x sweeps + 1 face halos (6 neighbours) and 2 transfer halos (26), levels split while a rank keeps 2 cells
+  per axis; the coarse level gathered below them (an allgather of its cells).
 g: ghosts per owned particle for a cube of n particles at solids fraction phi with neighbours on every side,
 scaled by the surface factor of a Hilbert piece; m = 26 neighbours (fewer below 27 ranks).
 Usage: python3 bench/parallel_model.py [--n 20000] [--ranks 64 1024 8192] [--key value ...]
@@ -45,8 +47,14 @@ a("--t-cp", type=float, default=115e-9, help="coupling per particle and gas step
 a("--cells", type=float, default=0.018, help="gas cells per particle (bubbling-100k-3d: 1800 / 100,000)")
 a("--k", type=float, default=2.0, help="DEM steps per gas step")
 a("--simple", type=float, default=9.0, help="SIMPLE iterations per gas step (the paper's case: 8.7)")
-a("--krylov", type=float, default=30.0, help="Krylov iterations per pressure solve, distributed gas (assumed)")
+# The decomposed pressure solve (cg-multigrid, docs/parallel.md): measured on 216,000 cells, 9 solves to 1e-12.
+a("--krylov", type=float, default=10.0, help="CG iterations per pressure solve (cg-multigrid: 93 in 9 solves)")
+a("--reductions", type=float, default=3.0, help="exact reductions per CG iteration (p.q, r.r, r.z)")
+a("--sweeps", type=float, default=2.0, help="red-black sweep pairs before and after the coarse correction")
 a("--t-exact", type=float, default=2.0, help="cost of an exact (reproducible) reduction over a plain one")
+a("--t-mg", type=float, default=43e-9, help="cg-multigrid compute per cell and CG iteration, one rank, s (216,000 "
+  "cells: 870 ms for 93 iterations)")
+a("--solve-cells", type=float, default=50000, help="cells per rank of the pressure solve alone (issue 30: 50,000)")
 # A cluster's interconnect (assumed: InfiniBand HDR class, not measured here).
 a("--alpha", type=float, default=1.5e-6, help="point-to-point latency, s")
 a("--alpha-r", type=float, default=2.0e-6, help="allreduce latency per tree level, s")
@@ -94,6 +102,26 @@ def cfd_step(P, n):
     return sum(parts.values()), parts
 
 
+def pressure_comm(P, cells):
+    """Communication of one CG iteration of cg-multigrid with `cells` cells a rank: the V-cycle's halos on the
+    levels split while a rank's side keeps 2 cells (face halos: the smoother and the products; transfer halos:
+    edges and corners too), the exact reductions, and the gather of the first level not split."""
+    side = cells ** (1 / 3)
+    fine_side = side
+    split = 0
+    while side >= 4:
+        side /= 2
+        split += 1
+    face_halos = split * (4 * args.sweeps + 1) + 1
+    msgs = face_halos * min(6, P - 1) + split * 2 * min(26, P - 1)
+    levels = math.ceil(math.log2(P))
+    return {
+        "halos": msgs * args.alpha + args.beta * 8 * 6 * face_halos * fine_side**2 * 8 / 7,
+        "reductions": args.reductions * args.t_exact * args.alpha_r * levels,
+        "gather": args.alpha_r * levels + args.beta * 8 * P * side**3,
+    }
+
+
 def cfd_distributed_step(P, n):
     """The gas decomposed on the same blocks (issue 30): each rank solves its cells, a halo of one layer a SIMPLE
     iteration, and two reproducible reductions a Krylov iteration."""
@@ -108,7 +136,8 @@ def cfd_distributed_step(P, n):
     parts["gas (own cells)"] = args.t_g * cells * (1 + 0.5 * halo / cells) / args.k
     parts["coupling"] = args.t_cp * n * (1 + gc) / args.k
     parts["gas halos"] = args.simple * (min(26, P - 1) * args.alpha + args.beta * 8 * 8 * halo) / args.k
-    parts["gas reductions"] = args.simple * args.krylov * 2 * args.t_exact * args.alpha_r * levels / args.k
+    for name, t in pressure_comm(P, cells).items():
+        parts["pressure " + name] = args.simple * args.krylov * t / args.k
     return sum(parts.values()), parts
 
 
@@ -124,6 +153,15 @@ for name, f in (("DEM only", dem_step), ("CFD-DEM, gas replicated (this version)
         t, parts = f(P, n)
         top = sorted(parts.items(), key=lambda kv: -kv[1])[:4]
         print(f"{P:>6} {1e3 * t:>9.3f} {t1 / t:>10.2f}  " + ", ".join(f"{k} {1e3 * v:.3f}" for k, v in top))
+
+c = args.solve_cells
+t1 = args.t_mg * c
+print(f"\nThe pressure solve alone (cg-multigrid), {c:.0f} cells per rank: one rank {1e6 * t1:.0f} us a CG iteration")
+print(f"{'ranks':>6} {'us/iter':>9} {'efficiency':>10}  parts")
+for P in args.ranks:
+    parts = pressure_comm(P, c)
+    t = t1 + sum(parts.values())
+    print(f"{P:>6} {1e6 * t:>9.0f} {t1 / t:>10.2f}  " + ", ".join(f"{k} {1e6 * v:.0f}" for k, v in parts.items()))
 
 if args.check_g:
     print(f"\ncheck on this machine: {args.check_N:.0f} particles, DEM only")

@@ -101,8 +101,10 @@ class MultigridCg final : public StructuredSolver<Dim> {
   MultigridCgStats stats;
 
  private:
-  void halo(const Level<Dim>& l, Field<Dim>& f) const {
-    if (l.shared) comm_.exchange_halo_among(f, l.boxes);
+  /// The smoother and the products read the face ghosts only; the transfers read a block's children or parents
+  /// across its edges and corners too (HaloCells::All).
+  void halo(const Level<Dim>& l, Field<Dim>& f, HaloCells cells = HaloCells::All) const {
+    if (l.shared) comm_.exchange_halo_among(f, l.boxes, cells);
     fill_periodic_ghosts(l.grid, f);
   }
   void assemble_fine(const FaceFields<Dim>& coeff, const Field<Dim>& rhs);
@@ -335,7 +337,7 @@ void MultigridCg<Dim>::factorise_coarsest() {
 
 template <int Dim>
 void MultigridCg<Dim>::apply(Level<Dim>& l, Field<Dim>& in, Field<Dim>& out) const {
-  halo(l, in);
+  halo(l, in, HaloCells::Faces);
   const double* u = in.data().data();
   const double* d = l.diag.data().data();
   double* y = out.data().data();
@@ -357,7 +359,7 @@ void MultigridCg<Dim>::apply(Level<Dim>& l, Field<Dim>& in, Field<Dim>& out) con
 template <int Dim>
 void MultigridCg<Dim>::smooth(Level<Dim>& l, int colour) const {
   // One colour's cells, each from its neighbours of the other colour (Level::odd_periodic: see there).
-  halo(l, l.x);
+  halo(l, l.x, HaloCells::Faces);
   double* u = l.x.data().data();
   double* dst = l.odd_periodic ? l.t.data().data() : u;
   const double* d = l.diag.data().data();

@@ -66,6 +66,9 @@ class Unpacker {
   std::size_t at_ = 0;
 };
 
+/// Which ghosts a halo exchange fills: all of them (edges and corners too), or those beyond the box's faces.
+enum class HaloCells { All, Faces };
+
 class Comm {
  public:
   virtual ~Comm() = default;
@@ -89,9 +92,10 @@ class Comm {
   virtual void exchange_halo(Field<3>& f) const = 0;
   /// The same when the caller knows every rank's box of f (boxes[r] = f.box() on rank r, from all_boxes): no
   /// collective call, only the ranks whose boxes touch talk. A solver that exchanges the same kind of field many
-  /// times gathers the boxes once.
-  virtual void exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes) const = 0;
-  virtual void exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes) const = 0;
+  /// times gathers the boxes once. HaloCells::Faces fills only the ghosts beyond a face of the box (outside it
+  /// along one axis): all a (2 Dim + 1)-point stencil reads, from the face neighbours only (6 ranks in 3D, not 26).
+  virtual void exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes, HaloCells cells) const = 0;
+  virtual void exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes, HaloCells cells) const = 0;
 
   /// Every rank's bytes, in rank order, on every rank.
   virtual std::vector<Bytes> allgather(const Bytes& local) const = 0;
@@ -146,8 +150,8 @@ class SerialComm : public Comm {
   double sum(const ExactSum& local) const override { return local.value(); }
   void exchange_halo(Field<2>&) const override {}
   void exchange_halo(Field<3>&) const override {}
-  void exchange_halo_among(Field<2>&, std::span<const IndexBox<2>>) const override {}
-  void exchange_halo_among(Field<3>&, std::span<const IndexBox<3>>) const override {}
+  void exchange_halo_among(Field<2>&, std::span<const IndexBox<2>>, HaloCells) const override {}
+  void exchange_halo_among(Field<3>&, std::span<const IndexBox<3>>, HaloCells) const override {}
   std::vector<Bytes> allgather(const Bytes& local) const override { return {local}; }
   std::vector<Bytes> gather(const Bytes& local, int) const override { return {local}; }
   void broadcast(Bytes&, int) const override {}

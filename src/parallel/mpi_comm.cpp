@@ -46,12 +46,14 @@ void check(int rc, const char* what) {
   if (rc != MPI_SUCCESS) throw_simulation_error(std::string("MPI: ") + what + " failed");
 }
 
-// The entries of `region` outside `own`, in storage order (axis 0 fastest): what one rank sends another for the
-// other's ghosts, enumerated alike on both sides.
+// The entries of `region` outside `own` (with HaloCells::Faces: outside it along exactly one axis), in storage order
+// (axis 0 fastest): what one rank sends another for the other's ghosts, enumerated alike on both sides.
 template <int Dim, class F>
-void for_each_outside(const IndexBox<Dim>& region, const IndexBox<Dim>& own, F&& f) {
+void for_each_outside(const IndexBox<Dim>& region, const IndexBox<Dim>& own, HaloCells cells, F&& f) {
   for_each(region, [&](const Index<Dim>& c) {
-    if (!own.contains(c)) f(c);
+    int out = 0;
+    for (int a = 0; a < Dim; ++a) out += (c[a] < own.lo[a] || c[a] >= own.hi[a]) ? 1 : 0;
+    if (out > 0 && (cells == HaloCells::All || out == 1)) f(c);
   });
 }
 
@@ -77,7 +79,8 @@ std::vector<IndexBox<Dim>> gather_boxes(MPI_Comm comm, int ranks, const IndexBox
 // Fills f's ghosts inside the domain from the ranks whose boxes (boxes[q], the same kind of field and ghost width
 // on every rank) hold them.
 template <int Dim>
-void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f, std::span<const IndexBox<Dim>> boxes) {
+void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f, std::span<const IndexBox<Dim>> boxes,
+                    HaloCells cells) {
   if (ranks == 1) return;
   auto box_of = [&](int q) { return boxes[static_cast<std::size_t>(q)]; };
   const int g = f.ghost();
@@ -87,9 +90,9 @@ void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f, std::span<c
     if (q == me) continue;
     const IndexBox<Dim> bq = box_of(q);
     std::size_t n_in = 0;
-    for_each_outside<Dim>(intersect(f.allocated(), bq), f.box(), [&](const Index<Dim>&) { ++n_in; });
+    for_each_outside<Dim>(intersect(f.allocated(), bq), f.box(), cells, [&](const Index<Dim>&) { ++n_in; });
     std::vector<double>& send = out[static_cast<std::size_t>(q)];
-    for_each_outside<Dim>(intersect(bq.grown(g), f.box()), bq, [&](const Index<Dim>& c) { send.push_back(f[c]); });
+    for_each_outside<Dim>(intersect(bq.grown(g), f.box()), bq, cells, [&](const Index<Dim>& c) { send.push_back(f[c]); });
     if (n_in > 0) {
       in[static_cast<std::size_t>(q)].resize(n_in);
       requests.emplace_back();
@@ -108,7 +111,7 @@ void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f, std::span<c
     if (q == me || in[static_cast<std::size_t>(q)].empty()) continue;
     std::size_t k = 0;
     const std::vector<double>& got = in[static_cast<std::size_t>(q)];
-    for_each_outside<Dim>(intersect(f.allocated(), box_of(q)), f.box(), [&](const Index<Dim>& c) { f[c] = got[k++]; });
+    for_each_outside<Dim>(intersect(f.allocated(), box_of(q)), f.box(), cells, [&](const Index<Dim>& c) { f[c] = got[k++]; });
   }
 }
 
@@ -394,20 +397,22 @@ void MpiComm::abort(int code) const {
 void MpiComm::exchange_halo(Field<2>& f) const {
   const Inside inside(impl_->inside_s);
   if (impl_->size == 1) return;
-  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<2>(impl_->comm, impl_->size, f.box()));
+  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<2>(impl_->comm, impl_->size, f.box()),
+                    HaloCells::All);
 }
 void MpiComm::exchange_halo(Field<3>& f) const {
   const Inside inside(impl_->inside_s);
   if (impl_->size == 1) return;
-  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<3>(impl_->comm, impl_->size, f.box()));
+  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<3>(impl_->comm, impl_->size, f.box()),
+                    HaloCells::All);
 }
-void MpiComm::exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes) const {
+void MpiComm::exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes, HaloCells cells) const {
   const Inside inside(impl_->inside_s);
-  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, boxes);
+  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, boxes, cells);
 }
-void MpiComm::exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes) const {
+void MpiComm::exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes, HaloCells cells) const {
   const Inside inside(impl_->inside_s);
-  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, boxes);
+  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, boxes, cells);
 }
 
 double MpiComm::seconds_communicating() const { return impl_->inside_s; }

@@ -35,8 +35,8 @@ class MpiComm final : public Comm {
   double sum(const ExactSum& local) const override;
   void exchange_halo(Field<2>& f) const override;
   void exchange_halo(Field<3>& f) const override;
-  void exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes) const override;
-  void exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes) const override;
+  void exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes, HaloCells cells) const override;
+  void exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes, HaloCells cells) const override;
   std::vector<Bytes> allgather(const Bytes& local) const override;
   std::vector<Bytes> gather(const Bytes& local, int root) const override;
   void broadcast(Bytes& data, int root) const override;
