@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,6 +67,17 @@ struct Level {
   /// Offset of cell c in every field, and the offset of a step along each axis.
   std::size_t at(const Index<Dim>& c) const { return x.index(c); }
   std::size_t step(int a) const { return x.stride(a); }
+  /// Along axis a, the coarse cell holding cell i of this level.
+  int parent(int a, int i) const { return (i - grid.domain.lo[a]) / ratio[a]; }
+  /// The cells of this level aggregated into coarse cell cc (fewer at the domain's high side when its extent is odd).
+  IndexBox<Dim> children(const Index<Dim>& cc) const {
+    IndexBox<Dim> kids;
+    for (int a = 0; a < Dim; ++a) {
+      kids.lo[a] = grid.domain.lo[a] + ratio[a] * cc[a];
+      kids.hi[a] = std::min(kids.lo[a] + ratio[a], grid.domain.hi[a]);
+    }
+    return kids;
+  }
   /// Red (0) or black (1): the parity of the cell's global index, the same whoever owns it.
   int colour(const Index<Dim>& c) const {
     int s = 0;
@@ -111,8 +123,7 @@ class MultigridCg final : public StructuredSolver<Dim> {
   void check_finite(const FaceFields<Dim>& coeff, const Field<Dim>& rhs) const;
   void coarsen(const Level<Dim>& fine, Level<Dim>& coarse) const;
   void factorise_coarsest();
-  void gather_redundant(const Level<Dim>& fine, const Level<Dim>& coarse,
-                        std::initializer_list<Field<Dim>*> fields) const;
+  void gather_redundant(const Level<Dim>& fine, const Level<Dim>& coarse, std::span<Field<Dim>* const> fields) const;
   void apply(Level<Dim>& l, Field<Dim>& in, Field<Dim>& out) const;
   void smooth(Level<Dim>& l, int colour) const;
   void vcycle(std::size_t level);
@@ -125,6 +136,7 @@ class MultigridCg final : public StructuredSolver<Dim> {
   bool hierarchy_built_ = false;
   bool pinned_ = false;  ///< the last problem had no fixed-pressure face: the domain's first cell is held at zero
   Field<Dim> p_, q_, res_, sol_;
+  std::vector<std::size_t> fine_lines_;  ///< offsets of the first level's lines along axis 0 (the inner products')
 };
 
 template <int Dim>
@@ -182,6 +194,9 @@ MultigridCg<Dim>::MultigridCg(const Grid<Dim>& grid, const Comm& comm, Multigrid
   }
   stats.levels = static_cast<int>(levels_.size());
   p_ = q_ = res_ = sol_ = Field<Dim>(grid.owned, 1);
+  IndexBox<Dim> starts = grid.owned;
+  starts.hi[0] = starts.lo[0] + 1;
+  for_each(starts, [&](const Index<Dim>& c) { fine_lines_.push_back(p_.index(c)); });
 }
 
 template <int Dim>
@@ -259,21 +274,14 @@ void MultigridCg<Dim>::coarsen(const Level<Dim>& fine, Level<Dim>& coarse) const
   // coupling sums the fine couplings across the aggregate's high face.
   const IndexBox<Dim> mine = first_children_box(fine);
   for_cells(mine, [&](const Index<Dim>& cc) {
-    IndexBox<Dim> kids;
-    for (int a = 0; a < Dim; ++a) {
-      kids.lo[a] = fine.grid.domain.lo[a] + fine.ratio[a] * cc[a];
-      kids.hi[a] = std::min(kids.lo[a] + fine.ratio[a], fine.grid.domain.hi[a]);
-    }
     double d = 0.0;
     std::array<double, Dim> wc{};
-    for_each(kids, [&](const Index<Dim>& c) {
+    for_each(fine.children(cc), [&](const Index<Dim>& c) {
       const std::size_t k = fine.at(c);
       d += fine.diag.data()[k];
       for (int a = 0; a < Dim; ++a) {
         const double wf = fine.w[a].data()[k];
-        const int up = fine.grid.wrap(a, c[a] + 1);
-        const bool inside = (up - fine.grid.domain.lo[a]) / fine.ratio[a] == cc[a];
-        if (inside) {
+        if (fine.parent(a, fine.grid.wrap(a, c[a] + 1)) == cc[a]) {  // a coupling inside the aggregate
           d -= 2.0 * wf;
         } else {
           wc[static_cast<std::size_t>(a)] += wf;
@@ -283,15 +291,16 @@ void MultigridCg<Dim>::coarsen(const Level<Dim>& fine, Level<Dim>& coarse) const
     coarse.diag[cc] = 0.5 * d;
     for (int a = 0; a < Dim; ++a) coarse.w[a][cc] = 0.5 * wc[static_cast<std::size_t>(a)];
   });
-  gather_redundant(fine, coarse, {&coarse.diag});
-  for (int a = 0; a < Dim; ++a) gather_redundant(fine, coarse, {&coarse.w[a]});
+  std::array<Field<Dim>*, Dim + 1> op{&coarse.diag};
+  for (int a = 0; a < Dim; ++a) op[static_cast<std::size_t>(a + 1)] = &coarse.w[a];
+  gather_redundant(fine, coarse, op);
   halo(coarse, coarse.diag);
   for (int a = 0; a < Dim; ++a) halo(coarse, coarse.w[a]);
 }
 
 template <int Dim>
 void MultigridCg<Dim>::gather_redundant(const Level<Dim>& fine, const Level<Dim>& coarse,
-                                        std::initializer_list<Field<Dim>*> fields) const {
+                                        std::span<Field<Dim>* const> fields) const {
   // Each rank computed the coarse cells of its first children; where the coarse level is not shared every rank
   // receives them all, so it and the levels below are the same on every rank.
   if (!fine.shared || coarse.shared) return;
@@ -406,21 +415,17 @@ void MultigridCg<Dim>::vcycle(std::size_t level) {
   halo(l, l.r);  // the children of this rank's coarse cells beyond its block
   Level<Dim>& coarse = levels_[level + 1];
   for_cells(first_children_box(l), [&](const Index<Dim>& cc) {
-    IndexBox<Dim> kids;
-    for (int a = 0; a < Dim; ++a) {
-      kids.lo[a] = l.grid.domain.lo[a] + l.ratio[a] * cc[a];
-      kids.hi[a] = std::min(kids.lo[a] + l.ratio[a], l.grid.domain.hi[a]);
-    }
     double s = 0.0;
-    for_each(kids, [&](const Index<Dim>& c) { s += l.r[c]; });
+    for_each(l.children(cc), [&](const Index<Dim>& c) { s += l.r[c]; });
     coarse.b[cc] = s;
   });
-  gather_redundant(l, coarse, {&coarse.b});
+  Field<Dim>* const rhs = &coarse.b;
+  gather_redundant(l, coarse, std::span(&rhs, 1));
   vcycle(level + 1);
   halo(coarse, coarse.x);  // a parent below this rank's first child lies in the coarse level's ghosts
   for_cells(l.grid.owned, [&](const Index<Dim>& c) {
     Index<Dim> parent;
-    for (int a = 0; a < Dim; ++a) parent[a] = (c[a] - l.grid.domain.lo[a]) / l.ratio[a];
+    for (int a = 0; a < Dim; ++a) parent[a] = l.parent(a, c[a]);
     l.x[c] += coarse.x[parent];
   });
   for (int s = 0; s < options_.smoothing_sweeps; ++s) {
@@ -432,11 +437,7 @@ void MultigridCg<Dim>::vcycle(std::size_t level) {
 template <int Dim>
 double MultigridCg<Dim>::dot(const Field<Dim>& u, const Field<Dim>& v) const {
   const IndexBox<Dim>& box = levels_[0].grid.owned;
-  IndexBox<Dim> starts = box;
-  starts.hi[0] = starts.lo[0] + 1;
-  std::vector<Index<Dim>> first;
-  first.reserve(starts.count());
-  for_each(starts, [&](const Index<Dim>& c) { first.push_back(c); });
+  const std::vector<std::size_t>& first = fine_lines_;
   const double* pu = u.data().data();
   const double* pv = v.data().data();
   const auto n = static_cast<std::size_t>(box.extent(0));
@@ -446,7 +447,7 @@ double MultigridCg<Dim>::dot(const Field<Dim>& u, const Field<Dim>& v) const {
     ExactSum part;  // exact: how the lines are shared among threads does not matter
 #pragma omp for schedule(static) nowait
     for (std::size_t line = 0; line < first.size(); ++line) {
-      const std::size_t k0 = u.index(first[line]);
+      const std::size_t k0 = first[line];
       for (std::size_t k = k0; k < k0 + n; ++k) part.add(pu[k] * pv[k]);
     }
 #pragma omp critical
