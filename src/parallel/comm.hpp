@@ -7,6 +7,7 @@
 // ranks meet. A sum that must not depend on the number of ranks is accumulated exactly (ExactSum) on each rank and
 // reduced exactly: sum(const ExactSum&).
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
@@ -169,13 +170,24 @@ class SerialComm : public Comm {
   [[noreturn]] void abort(int code) const override { std::_Exit(code); }
 };
 
-/// Every rank's `mine`, in rank order, on every rank (collective).
+/// Every rank's `mine`, in rank order, on every rank (one collective: each rank fills its own slots of a zeroed
+/// table, and the integer sum over ranks is the table).
 template <int Dim>
 std::vector<IndexBox<Dim>> all_boxes(const Comm& comm, const IndexBox<Dim>& mine) {
-  Bytes b;
-  pack(b, mine);
-  std::vector<IndexBox<Dim>> out;
-  for (const Bytes& from : comm.allgather(b)) out.push_back(Unpacker(from).get<IndexBox<Dim>>());
+  const auto p = static_cast<std::size_t>(comm.size()), me = static_cast<std::size_t>(comm.rank());
+  std::vector<std::int64_t> table(2 * Dim * p, 0);
+  for (int a = 0; a < Dim; ++a) {
+    table[2 * Dim * me + static_cast<std::size_t>(a)] = mine.lo[a];
+    table[2 * Dim * me + static_cast<std::size_t>(Dim + a)] = mine.hi[a];
+  }
+  comm.sum(std::span<std::int64_t>(table));
+  std::vector<IndexBox<Dim>> out(p);
+  for (std::size_t q = 0; q < p; ++q) {
+    for (int a = 0; a < Dim; ++a) {
+      out[q].lo[a] = static_cast<int>(table[2 * Dim * q + static_cast<std::size_t>(a)]);
+      out[q].hi[a] = static_cast<int>(table[2 * Dim * q + static_cast<std::size_t>(Dim + a)]);
+    }
+  }
   return out;
 }
 

@@ -57,25 +57,6 @@ void for_each_outside(const IndexBox<Dim>& region, const IndexBox<Dim>& own, Hal
   });
 }
 
-template <int Dim>
-std::vector<IndexBox<Dim>> gather_boxes(MPI_Comm comm, int ranks, const IndexBox<Dim>& box) {
-  std::array<int, 2 * Dim> mine{};
-  for (int a = 0; a < Dim; ++a) {
-    mine[static_cast<std::size_t>(a)] = box.lo[a];
-    mine[static_cast<std::size_t>(Dim + a)] = box.hi[a];
-  }
-  std::vector<int> all(static_cast<std::size_t>(2 * Dim * ranks));
-  check(MPI_Allgather(mine.data(), 2 * Dim, MPI_INT, all.data(), 2 * Dim, MPI_INT, comm), "allgather of boxes");
-  std::vector<IndexBox<Dim>> out(static_cast<std::size_t>(ranks));
-  for (int q = 0; q < ranks; ++q) {
-    for (int a = 0; a < Dim; ++a) {
-      out[static_cast<std::size_t>(q)].lo[a] = all[static_cast<std::size_t>(2 * Dim * q + a)];
-      out[static_cast<std::size_t>(q)].hi[a] = all[static_cast<std::size_t>(2 * Dim * q + Dim + a)];
-    }
-  }
-  return out;
-}
-
 // Fills f's ghosts inside the domain from the ranks whose boxes (boxes[q], the same kind of field and ghost width
 // on every rank) hold them.
 template <int Dim>
@@ -395,16 +376,10 @@ void MpiComm::abort(int code) const {
 }
 
 void MpiComm::exchange_halo(Field<2>& f) const {
-  const Inside inside(impl_->inside_s);
-  if (impl_->size == 1) return;
-  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<2>(impl_->comm, impl_->size, f.box()),
-                    HaloCells::All);
+  if (impl_->size > 1) exchange_halo_among(f, all_boxes<2>(*this, f.box()), HaloCells::All);
 }
 void MpiComm::exchange_halo(Field<3>& f) const {
-  const Inside inside(impl_->inside_s);
-  if (impl_->size == 1) return;
-  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, gather_boxes<3>(impl_->comm, impl_->size, f.box()),
-                    HaloCells::All);
+  if (impl_->size > 1) exchange_halo_among(f, all_boxes<3>(*this, f.box()), HaloCells::All);
 }
 void MpiComm::exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes, HaloCells cells) const {
   const Inside inside(impl_->inside_s);
