@@ -14,9 +14,13 @@
 #include <numbers>
 
 #include "numerics/structured_solver_hypre.hpp"
+#include "field_error.hpp"
 
 namespace fluidbed {
 namespace {
+
+using test::max_abs;
+using test::max_diff;
 
 template <int Dim>
 struct Problem {
@@ -60,20 +64,6 @@ Problem<Dim> make_problem(const Index<Dim>& n, bool dirichlet) {
     pr.rhs[c] = s;
   });
   return pr;
-}
-
-template <int Dim>
-double max_abs(const Field<Dim>& f) {
-  double m = 0.0;
-  for (double v : f.data()) m = std::max(m, std::abs(v));
-  return m;
-}
-
-template <int Dim>
-double max_diff(const Field<Dim>& a, const Field<Dim>& b) {
-  double m = 0.0;
-  for (std::size_t k = 0; k < a.data().size(); ++k) m = std::max(m, std::abs(a.data()[k] - b.data()[k]));
-  return m;
 }
 
 template <int Dim>

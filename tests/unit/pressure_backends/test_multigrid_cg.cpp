@@ -17,9 +17,13 @@
 
 #include "core/error.hpp"
 #include "numerics/multigrid_cg.hpp"
+#include "field_error.hpp"
 
 namespace fluidbed {
 namespace {
+
+using test::max_abs;
+using test::max_diff;
 
 constexpr double kSpread = 20.1;  // e^3: the coefficients lie in [e^-1.5, e^1.5]
 
@@ -88,20 +92,6 @@ Problem<Dim> make_problem(const Index<Dim>& n, Sides sides) {
     pr.rhs[cells.lo] = 0.0;
   }
   return pr;
-}
-
-template <int Dim>
-double max_abs(const Field<Dim>& f) {
-  double m = 0.0;
-  for (double v : f.data()) m = std::max(m, std::abs(v));
-  return m;
-}
-
-template <int Dim>
-double max_diff(const Field<Dim>& a, const Field<Dim>& b) {
-  double m = 0.0;
-  for (std::size_t k = 0; k < a.data().size(); ++k) m = std::max(m, std::abs(a.data()[k] - b.data()[k]));
-  return m;
 }
 
 template <int Dim>
