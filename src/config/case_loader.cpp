@@ -69,13 +69,9 @@ void read_case_and_domain(CaseReader& r, CaseConfig& c) {
   c.domain.gravity = {grav[0], grav[1], grav.size() == 3 ? grav[2] : 0.0};
   const std::vector<std::string> periodic =
       r.strings("domain.periodic", {}, "periodic axes: particles and gas leaving through one side re-enter through "
-                "the opposite one, with no walls there (x; z too in 3D; CFD-DEM and DEM only)",
+                "the opposite one, with no walls there (x; z too in 3D; every model)",
                 three_d ? std::vector<std::string>{"x", "z"} : std::vector<std::string>{"x"});
   for (const std::string& axis : periodic) c.domain.periodic[axis == "x" ? 0 : 2] = true;
-  if (c.model == Model::Tfm && !periodic.empty()) {
-    r.fail("domain.periodic", "the two-fluid model has walls on every side in this version: periodic axes need "
-                              "case.model = \"dem\"");
-  }
   c.dem.domain = c.domain;
   const std::string ptop = r.string("domain.particle_top", "open", "what particles meet at the top: open (a particle "
                                     "that crosses it fails the run), wall (they bounce; the gas outlet stays open), "

@@ -218,11 +218,12 @@ void read_gas_phase(CaseReader& r, CaseConfig& c, const GasKeys& k) {
                       : ps == "eigen-cg"     ? PressureBackend::EigenCg
                       : ps == "cg-multigrid" ? PressureBackend::CgMultigrid
                                              : PressureBackend::Eigen;
-  // The periodic gas (GasSolver's rules, here so that `check` refuses what `run` would).
-  if (c.model == Model::Dem && c.gas_enabled && c.domain.any_periodic()) {
+  // The periodic gas and the periodic two-fluid model (GasSolver's and TfmSolver's rules, here so that `check`
+  // refuses what `run` would).
+  if (((c.model == Model::Dem && c.gas_enabled) || c.model == Model::Tfm) && c.domain.any_periodic()) {
     if (g.pressure_solver == PressureBackend::HyprePfmg) {
       r.fail("gas.pressure_solver", "hypre-pfmg does not take periodic axes (domain.periodic) in this version: use "
-                                    "eigen or eigen-cg");
+                                    "eigen, eigen-cg or cg-multigrid");
     }
     if (c.domain.periodic[0] && c.grid.nx < 3) {
       r.fail("grid.cell_width", fmt::format("{} m leaves {} cells across the periodic width {} m; a periodic axis "

@@ -58,10 +58,17 @@ PackingLimitResult limit_packing(const Grid<Dim>& g, const Field<Dim>& phi_old, 
     });
     if (!over) return res;
     for (int a = 0; a < Dim; ++a) {
+      // On a periodic axis the cell beyond face n is the first one and the cell before face 0 the last: faces 0
+      // and n hold the same flux, so they take the same cut and stay equal.
+      const bool per = g.periodic[static_cast<std::size_t>(a)];
+      auto cell = [&](Index<Dim> c) {
+        c[a] = g.wrap(a, c[a]);
+        return c;
+      };
       for_each(box.faces(a), [&](const Index<Dim>& face_index) {
         double& face = f[a][face_index];
-        if (face > 0.0 && face_index[a] < box.hi[a]) cut(face, factor[face_index]);
-        if (face < 0.0 && face_index[a] > box.lo[a]) cut(face, factor[shifted<Dim>(face_index, a, -1)]);
+        if (face > 0.0 && (per || face_index[a] < box.hi[a])) cut(face, factor[cell(face_index)]);
+        if (face < 0.0 && (per || face_index[a] > box.lo[a])) cut(face, factor[cell(shifted<Dim>(face_index, a, -1))]);
       });
     }
   }

@@ -24,7 +24,7 @@ struct PackingLimitResult {
 /// cell is over its bound at all (the check has no tolerance, and uses the very expression of
 /// conservative_update); after max_sweeps the run fails (simulation error). Where cut cells form a loop of flow,
 /// each cut returns to the cell that started it, so the sweeps converge geometrically; the default cap leaves a
-/// wide margin. Non-periodic grids only (face 0 and face n of an axis are distinct faces).
+/// wide margin. On a periodic axis of the grid face n is face 0 (the same flux on entry): both take the same cut.
 template <int Dim>
 PackingLimitResult limit_packing(const Grid<Dim>& grid, const Field<Dim>& phi_old, double dt, double phi_max,
                                  FaceFluxes<Dim>& flux, int max_sweeps = 1000);

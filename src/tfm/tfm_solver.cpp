@@ -15,6 +15,7 @@
 #include "numerics/multigrid_cg.hpp"
 #include "numerics/band_pressure_solver.hpp"
 #include "numerics/line_loop.hpp"
+#include "parallel/periodic_halo.hpp"
 #include "tfm/packing_limiter.hpp"
 
 namespace fluidbed::tfm {
@@ -211,6 +212,16 @@ void validate(const TfmConfig& c) {
   }
   need(c.boundary.top == TopBoundary::PressureOutlet || c.boundary.lid_velocity == 0.0,
        "a moving lid (boundary lid_velocity) is not supported by the two-fluid model");
+  need(!d.periodic[1], "the vertical axis (y: distributor and outlet) cannot be periodic");
+  need(three_d || !d.periodic[2], "a 2D case has no periodic z axis");
+  for (int a : {0, 2}) {
+    const double length = a == 0 ? d.width : d.depth;
+    need(!d.periodic[static_cast<std::size_t>(a)] || std::lround(length / c.cell_size) >= 3,
+         "a periodic axis needs at least 3 cells (face 0 must join two different cells)");
+  }
+  need(!d.any_periodic() || c.pressure_solver != PressureBackend::HyprePfmg,
+       "pressure_solver = \"hypre-pfmg\" does not take periodic axes (domain.periodic): use \"eigen\", "
+       "\"eigen-cg\" or \"cg-multigrid\"");
 }
 
 template <int Dim>
@@ -249,7 +260,9 @@ Grid<Dim> validated_grid(const TfmConfig& c) {
   const Vec<Dim> extent = c.domain.extent<Dim>();
   Index<Dim> n{};
   for (int a = 0; a < Dim; ++a) n[a] = static_cast<int>(std::lround(extent[a] / c.cell_size));
-  return Grid<Dim>::uniform(extent, n, kGhost);
+  Grid<Dim> g = Grid<Dim>::uniform(extent, n, kGhost);
+  for (int a = 0; a < Dim; ++a) g.periodic[static_cast<std::size_t>(a)] = c.domain.periodic[static_cast<std::size_t>(a)];
+  return g;
 }
 }  // namespace
 
@@ -264,8 +277,10 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     for_each(cells, [&](const Index<Dim>& c) {
       std::array<int, 2 * Dim> r{};
       for (int a = 0; a < Dim; ++a) {
-        r[2 * a] = c[a] > cells.lo[a] ? cell_row(cells, shifted<Dim>(c, a, -1)) : -1;
-        r[2 * a + 1] = c[a] < cells.hi[a] - 1 ? cell_row(cells, shifted<Dim>(c, a, 1)) : -1;
+        // Across a periodic axis's face 0 the neighbour is the cell at the other end.
+        const bool lo = periodic(a) || c[a] > cells.lo[a], hi = periodic(a) || c[a] < cells.hi[a] - 1;
+        r[2 * a] = lo ? cell_row(cells, with<Dim>(c, a, grid_.wrap(a, c[a] - 1))) : -1;
+        r[2 * a + 1] = hi ? cell_row(cells, with<Dim>(c, a, grid_.wrap(a, c[a] + 1))) : -1;
       }
       nb[static_cast<std::size_t>(cell_row(cells, c))] = r;
     });
@@ -313,7 +328,7 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
       s_.eps[c] = std::clamp(s_.eps[c] + config_.eps_noise * (2.0 * u - 1.0), config_.eps_star, 1.0);
     });
   }
-  fill_cell_ghosts(s_.eps);
+  fill_cell_ghosts(s_.eps, grid_.periodic);
   // Gas carries the background inflow at t = 0 (the start of an inlet ramp, src/fluid/gas_boundary.hpp):
   // superficial velocity over the face voidage the continuity equation uses, so the initial volume flux is
   // divergence-free.
@@ -322,7 +337,7 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
   {
     FaceFields<Dim> up(cells, kGhost);
     up[kUp].fill(1.0);
-    tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{up}, w.eg);
+    tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{up, grid_.periodic}, w.eg);
     for_each(cells.faces(kUp), [&](const Index<Dim>& f) {
       const bool closed = f[kUp] == cells.hi[kUp] && !top_open;
       s_.ug[kUp][f] = closed ? 0.0 : u_in / (f[kUp] == cells.lo[kUp] ? 1.0 : w.eg[kUp][f]);
@@ -348,6 +363,8 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     s_.p[cell(ny - 1)] = config_.boundary.top_pressure + (top_open ? 0.5 * drop_across(ny) : 0.0);
     for (int j = ny - 1; j > 0; --j) s_.p[cell(j - 1)] = s_.p[cell(j)] + drop_across(j);
   });
+  tie(s_.p);
+  tie(s_.ug);
 }
 
 template <int Dim>
@@ -359,6 +376,24 @@ template <int Dim>
 template <class F>
 void TfmSolver<Dim>::for_each_bottom(F&& f) const {
   for_each(grid_.domain.inside(kUp, false), f);
+}
+
+template <int Dim>
+void TfmSolver<Dim>::tie(Field<Dim>& f) const {
+  if (grid_.any_periodic()) fill_periodic_ghosts(grid_, f);
+}
+
+template <int Dim>
+void TfmSolver<Dim>::tie(FaceFields<Dim>& f) const {
+  for (int a = 0; a < Dim; ++a) tie(f[a]);
+}
+
+template <int Dim>
+IndexBox<Dim> TfmSolver<Dim>::interior_faces(int a) const {
+  IndexBox<Dim> faces = grid_.domain.faces(a);
+  if (!periodic(a)) faces.lo[a] += 1;
+  faces.hi[a] -= 1;
+  return faces;
 }
 
 template <int Dim>
@@ -415,16 +450,15 @@ double TfmSolver<Dim>::advance(double t_stop) {
 
 template <int Dim>
 void TfmSolver<Dim>::mask_trace_solids_velocity() {
-  const IndexBox<Dim>& cells = grid_.domain;
   // A face with (almost) no solids on one side has no meaningful solids velocity; it takes the velocity of the
   // next face into the solids (zero gradient), so stresses and convection at a bed surface see the bed only.
   for (int d = 0; d < Dim; ++d) {
     Field<Dim>& u0 = w_->s0[d];  // the velocities before masking (s0 is rewritten by the predictor later)
     u0.data() = s_.us[d].data();
+    tie(u0);
     const int n = grid_.n(d);
-    IndexBox<Dim> faces = cells.faces(d);
-    faces.lo[d] += 1;
-    faces.hi[d] -= 1;
+    const bool per = periodic(d);
+    const IndexBox<Dim> faces = interior_faces(d);
     const auto se = static_cast<std::ptrdiff_t>(s_.eps.stride(d)), su = static_cast<std::ptrdiff_t>(u0.stride(d));
     IndexBox<Dim> lines = faces;
     lines.hi[0] = lines.lo[0] + 1;
@@ -438,11 +472,12 @@ void TfmSolver<Dim>::mask_trace_solids_velocity() {
         const bool l = has(pe[-se]), r = has(pe[0]);
         if (l && r) continue;
         double val = 0.0;
-        if (l && f[d] - 1 > 0 && has(pe[-2 * se])) val = pu[-su];
-        if (r && f[d] + 1 < n && has(pe[se])) val = pu[su];
+        if (l && (per || f[d] - 1 > 0) && has(pe[-2 * se])) val = pu[-su];
+        if (r && (per || f[d] + 1 < n) && has(pe[se])) val = pu[su];
         *out = val;
       }
     });
+    tie(s_.us[d]);
   }
 }
 
@@ -467,6 +502,10 @@ void TfmSolver<Dim>::compute_closures_of() {
   // Velocity gradient of component `comp` along axis `along` from the cell centres: central inside, one-sided in
   // the outer layers (the strain rate's off-diagonal part).
   auto gradient = [&](const Index<Dim>& cell, int comp, int along) {
+    if (periodic(along)) {  // central everywhere: the neighbours across face 0 are the other end's cells
+      const int lo = grid_.wrap(along, cell[along] - 1), hi = grid_.wrap(along, cell[along] + 1);
+      return (usc[comp][with<Dim>(cell, along, hi)] - usc[comp][with<Dim>(cell, along, lo)]) / (2 * grid_.h[along]);
+    }
     const int lo = std::max(cell[along] - 1, cells.lo[along]);
     const int hi = std::min(cell[along] + 1, cells.hi[along] - 1);
     if (!(hi > lo)) return 0.0;
@@ -528,6 +567,8 @@ void TfmSolver<Dim>::compute_closures_of() {
       for (; cell[0] < cells.hi[0]; ++cell[0]) close(cell);
     });
   }
+  // The faces of a periodic axis's face 0 read the closures of the cell beyond it.
+  for (Field<Dim>* f : {&beta_c_, &mu_s_, &lambda_s_, &p_s_, &dps_deps_, &s_.theta}) tie(*f);
 }
 
 template <int Dim>
@@ -573,6 +614,8 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
   for (int a = 0; a < Dim; ++a) {
     fill_face_ghosts(w.g0[a]);
     fill_face_ghosts(w.s0[a]);
+    tie(w.g0[a]);  // across a periodic axis the ghosts are the other side's faces
+    tie(w.s0[a]);
     for (FaceFields<Dim>* f : {&w.dg, &w.ds, &w.gs, &w.ss}) (*f)[a].fill(0.0);
   }
   // The solids stresses (Eq. 19) the momentum cells of both components share: the normal stress of each cell and
@@ -582,7 +625,7 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
   const FaceFields<Dim>& s0 = w.s0;
   if (!(w.div_s.box() == cells)) {
     w.div_s = Field<Dim>(cells, 0);
-    for (Field<Dim>& f : w.normal) f = Field<Dim>(cells, 0);
+    for (Field<Dim>& f : w.normal) f = Field<Dim>(cells, 1);  // a face 0 of a periodic axis reads the ghost
   }
   for_each(cells, [&](const Index<Dim>& cell) {
     double div = (s0[0][shifted<Dim>(cell, 0, 1)] - s0[0][cell]) / h[0];
@@ -591,6 +634,7 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
     for (int d = 0; d < Dim; ++d)
       w.normal[d][cell] = 2.0 * mu_s_[cell] * (s0[d][shifted<Dim>(cell, d, 1)] - s0[d][cell]) / h[d] + lambda_s_[cell] * div;
   });
+  for (Field<Dim>& f : w.normal) tie(f);
   for (int p = 0; p < Dim; ++p)
     for (int q = p + 1; q < Dim; ++q) {
       Field<Dim>& mu = w.mu_edge[static_cast<std::size_t>(edge_plane(p, q))];
@@ -600,15 +644,18 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
         mu = Field<Dim>(edges, 0);
         shear = Field<Dim>(edges, 0);
       }
-      edges.lo[p] += 1;
-      edges.hi[p] -= 1;
-      edges.lo[q] += 1;
-      edges.hi[q] -= 1;
+      // Edges on a wall are the wall's business; on a periodic axis edge 0 is interior and edge n is edge 0.
+      for (int a : {p, q}) {
+        if (!periodic(a)) edges.lo[a] += 1;
+        edges.hi[a] -= 1;
+      }
       for_each(edges, [&](const Index<Dim>& k) {
         const double mc = mu_corner(k, p, q);
         mu[k] = mc;
         shear[k] = mc * ((s0[p][k] - s0[p][shifted<Dim>(k, q, -1)]) / h[q] + (s0[q][k] - s0[q][shifted<Dim>(k, p, -1)]) / h[p]);
       });
+      tie(mu);
+      tie(shear);
     }
   if constexpr (Dim == 2) {
     // The two components read the same inputs and write disjoint outputs.
@@ -652,9 +699,8 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
   const Field<Dim>& normal = w.normal[d];  // Eq. 19 normal stress of the momentum cell centred on a cell
   // Interior faces of component d and, along the vertical when open, the top face (a ghost pressure keeps P =
   // P_top there).
-  IndexBox<Dim> faces = cells.faces(d);
-  faces.lo[d] += 1;
-  faces.hi[d] -= (d == kUp && top_open) ? 0 : 1;
+  IndexBox<Dim> faces = interior_faces(d);
+  if (d == kUp && top_open) faces.hi[d] += 1;
   // Lines along axis 0; a thread takes a contiguous block of them. The advection of a line is computed first, as
   // vectorised runs, then the faces one by one.
   const int n = faces.extent(0);
@@ -692,7 +738,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
       double shear[2];
       for (int high = 0; high < 2; ++high) {
         const Index<Dim> k = high ? shifted<Dim>(f, b, 1) : f;  // the cell edge on this side
-        if (k[b] == cells.lo[b] || k[b] == cells.hi[b]) {
+        if (!periodic(b) && (k[b] == cells.lo[b] || k[b] == cells.hi[b])) {
           if (b == kUp) {
             shear[high] = 0.0;  // bottom and top are free-slip for the solids
           } else {
@@ -728,6 +774,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
         l.s.template run<d>(c.limiter, s0, grid_, f, l.adv_s.data());
         for (int i = 0; i < n; ++i, ++f[0]) face_update(f, l.adv_g[static_cast<std::size_t>(i)], l.adv_s[static_cast<std::size_t>(i)]);
       });
+  for (Field<Dim>* x : {&s_.ug[d], &s_.us[d], &w.dg[d], &w.ds[d], &w.gs[d], &w.ss[d]}) tie(*x);
 }
 
 template <int Dim>
@@ -739,6 +786,7 @@ void TfmSolver<Dim>::set_boundary_faces(double t) {
   inlet_superficial_profile<Dim>(config_.boundary, grid_, t, inlet);
   for (int a = 0; a < Dim; ++a)
     for (bool high : {false, true}) {
+      if (periodic(a)) continue;  // no wall: face 0 is an unknown of the momentum step
       IndexBox<Dim> side = cells.faces(a);
       side.lo[a] = high ? cells.hi[a] : cells.lo[a];
       side.hi[a] = side.lo[a] + 1;
@@ -765,8 +813,8 @@ void TfmSolver<Dim>::face_fractions() {
   const std::vector<double>& e = s_.eps.data();
   for (std::size_t k = 0; k < es.size(); ++k) es[k] = 1.0 - e[k];  // the ghosts too: they repeat the boundary
   side_by_side(two_tasks(static_cast<long>(grid_.domain.count())),
-               [&] { tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{s_.ug}, w.eg); },
-               [&] { tvd_face_values(grid_, config_.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, w.es); });
+               [&] { tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{s_.ug, grid_.periodic}, w.eg); },
+               [&] { tvd_face_values(grid_, config_.limiter, w.eps_s, FaceVelocity<Dim>{s_.us, grid_.periodic}, w.es); });
   for_each_bottom([&](const Index<Dim>& c) { w.eg[kUp][c] = 1.0; });  // gas enters through the distributor undiluted
 }
 
@@ -833,10 +881,7 @@ void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
     for (int a = 0; a < Dim; ++a) {
       w.a[a].fill(0.0);
       const double ratio = face_area(grid_, a) / grid_.h[a];
-      IndexBox<Dim> inner = cells.faces(a);
-      inner.lo[a] += 1;
-      inner.hi[a] -= 1;
-      for_each(inner, [&](const Index<Dim>& f) {
+      for_each(interior_faces(a), [&](const Index<Dim>& f) {
         w.a[a][f] = ratio * (w.eg[a][f] * w.dg[a][f] + w.es[a][f] * w.ds[a][f]);
       });
     }
@@ -858,16 +903,16 @@ void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
         "{}: {} (mixture volume constraint, Eqs. 15 + 16). Likely cause: face velocities that are no longer finite "
         "(a solids stress or drag that overflowed). Remedy: {}", step_label(dt), e.what(), remedy()));
   }
+  tie(w.p_corr);  // face 0 of a periodic axis reads the last cell through the ghost
   const Field<Dim>& pc = w.p_corr;
   for (int a = 0; a < Dim; ++a) {
-    IndexBox<Dim> inner = cells.faces(a);
-    inner.lo[a] += 1;
-    inner.hi[a] -= 1;
-    for_each(inner, [&](const Index<Dim>& f) {
+    for_each(interior_faces(a), [&](const Index<Dim>& f) {
       const double g = (pc[f] - pc[shifted<Dim>(f, a, -1)]) / grid_.h[a];
       s_.ug[a][f] -= w.dg[a][f] * g;
       s_.us[a][f] -= w.ds[a][f] * g;
     });
+    tie(s_.ug[a]);
+    tie(s_.us[a]);
   }
   if (top_open) {
     for_each(top_faces(), [&](const Index<Dim>& f) {
@@ -878,6 +923,7 @@ void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
     });
   }
   for_each(cells, [&](const Index<Dim>& c) { s_.p[c] += pc[c]; });
+  tie(s_.p);
 }
 
 template <int Dim>
@@ -897,7 +943,7 @@ void TfmSolver<Dim>::solids_fraction_rows(double dt) {
     std::array<double, 2 * Dim> coef{}, k{};
     for (int a = 0; a < Dim; ++a) {
       const Index<Dim> hi = shifted<Dim>(cell, a, 1);
-      const bool has_lo = cell[a] > cells.lo[a], has_hi = cell[a] + 1 < cells.hi[a];
+      const bool has_lo = periodic(a) || cell[a] > cells.lo[a], has_hi = periodic(a) || cell[a] + 1 < cells.hi[a];
       coef[2 * a] = has_lo ? ratio[a] * w.es[a][cell] * w.ss[a][cell] : 0.0;
       coef[2 * a + 1] = has_hi ? ratio[a] * w.es[a][hi] * w.ss[a][hi] : 0.0;
       k[2 * a] = has_lo ? dps_deps_[shifted<Dim>(cell, a, -1)] : 0.0;
@@ -946,16 +992,18 @@ void TfmSolver<Dim>::correct_solids_fraction(double dt) {
         "runaway granular temperature). Remedy: {}",
         step_label(dt), e_res.why, where(bad), s_.eps[bad], p_s_[bad], dps_deps_[bad], s_.theta[bad], remedy()));
   }
-  auto wk = [&](const Index<Dim>& x) { return dps_deps_[x] * e_corr[cell_row(cells, x)]; };
+  auto wk = [&](Index<Dim> x) {
+    for (int a = 0; a < Dim; ++a) x[a] = grid_.wrap(a, x[a]);  // the cell before a periodic face 0
+    return dps_deps_[x] * e_corr[cell_row(cells, x)];
+  };
   for (int a = 0; a < Dim; ++a) {
-    IndexBox<Dim> inner = cells.faces(a);
-    inner.lo[a] += 1;
-    inner.hi[a] -= 1;
-    for_each(inner, [&](const Index<Dim>& f) {
+    for_each(interior_faces(a), [&](const Index<Dim>& f) {
       const double g = (wk(f) - wk(shifted<Dim>(f, a, -1))) / grid_.h[a];
       s_.ug[a][f] -= w.gs[a][f] * g;
       s_.us[a][f] -= w.ss[a][f] * g;
     });
+    tie(s_.ug[a]);
+    tie(s_.us[a]);
   }
   correct_pressure(dt, true);
 }
@@ -966,7 +1014,7 @@ void TfmSolver<Dim>::solids_continuity(double dt) {
   Work& w = *w_;
   // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
   try {
-    advance_scalar_implicit(grid_, c.limiter, w.eps_s, FaceVelocity<Dim>{s_.us}, dt, c.mass_corrections, w.fs,
+    advance_scalar_implicit(grid_, c.limiter, w.eps_s, FaceVelocity<Dim>{s_.us, grid_.periodic}, dt, c.mass_corrections, w.fs,
                             c.linear_max_iterations, &linear_fallbacks_, &w.transport);
   } catch (const Error& e) {
     throw_simulation_error(fmt::format("{}: {}. Remedy: {}", step_label(dt), e.what(), remedy()));
@@ -1036,7 +1084,7 @@ void TfmSolver<Dim>::close_gas_continuity(double dt) {
     if (eps_new < c.eps_star) dense_change = std::max(dense_change, s_.eps[x] - eps_new);
     s_.eps[x] = eps_new;
   });
-  fill_cell_ghosts(s_.eps);
+  fill_cell_ghosts(s_.eps, grid_.periodic);
   w.dense_change = dense_change;
 }
 
@@ -1198,10 +1246,7 @@ template <int Dim>
 double TfmSolver<Dim>::max_solids_speed() const {
   double vmax = 0.0;
   for (int a = 0; a < Dim; ++a) {
-    IndexBox<Dim> inner = grid_.domain.faces(a);
-    inner.lo[a] += 1;
-    inner.hi[a] -= 1;
-    for_each(inner, [&](const Index<Dim>& f) {
+    for_each(interior_faces(a), [&](const Index<Dim>& f) {
       if (std::min(1.0 - s_.eps[shifted<Dim>(f, a, -1)], 1.0 - s_.eps[f]) > 1e-6) {
         vmax = std::max(vmax, std::abs(s_.us[a][f]));
       }
@@ -1295,8 +1340,13 @@ void TfmSolver<Dim>::restore_state(const std::vector<NamedArray>& arrays) {
   for (const NamedArray& a : arrays) {
     if (a.name == "gas_residual" && a.values.size() == 1) next.gas_residual = a.values[0];
   }
-  fill_cell_ghosts(next.eps);
+  fill_cell_ghosts(next.eps, grid_.periodic);
   s_ = std::move(next);
+  // Checkpoints hold the domain only: the periodic images the step reads are rebuilt from it.
+  tie(s_.p);
+  tie(s_.theta);
+  tie(s_.ug);
+  tie(s_.us);
 }
 
 template class TfmSolver<2>;

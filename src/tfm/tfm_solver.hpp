@@ -153,6 +153,14 @@ class TfmSolver {
   std::string step_label(double dt) const;
   double gravity_norm() const;
   double bottom_area() const;
+  /// Axis a is periodic (domain.periodic): no walls there, face 0 is an unknown and face n is the same plane.
+  bool periodic(int a) const { return grid_.periodic[static_cast<std::size_t>(a)]; }
+  /// The ghosts of f along the periodic axes (face n of a face field included) from their images in the domain.
+  void tie(Field<Dim>& f) const;
+  void tie(FaceFields<Dim>& f) const;
+  /// The faces of axis a between two cells: 1 .. n - 1 on a walled axis, 0 .. n - 1 on a periodic one (face 0
+  /// joins the last cell to the first; face n is face 0 and is set by tie()).
+  IndexBox<Dim> interior_faces(int a) const;
   template <class F>
   void for_each_bottom(F&& f) const;
 
