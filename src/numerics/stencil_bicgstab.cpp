@@ -14,16 +14,26 @@
 namespace fluidbed {
 namespace {
 
-bool all_finite(std::span<const double> v) {
-  // x - x is zero exactly for a finite x, NaN otherwise: one branch-free pass.
-  double acc = 0.0;
-  for (double x : v) acc += x - x;
-  return acc == 0.0;
+__attribute__((target_clones("avx2", "default"))) bool all_finite(std::span<const double> v) {
+  // x - x is +0 for a finite x and NaN otherwise; four independent sums, so that the compiler can keep them in one
+  // vector register (a single sum would be a chain of dependent additions).
+  double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
+  const double* p = v.data();
+  const std::size_t n = v.size();
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    a0 += p[i] - p[i];
+    a1 += p[i + 1] - p[i + 1];
+    a2 += p[i + 2] - p[i + 2];
+    a3 += p[i + 3] - p[i + 3];
+  }
+  for (; i < n; ++i) a0 += p[i] - p[i];
+  return (a0 + a1) + (a2 + a3) == 0.0;
 }
 
 // The sum of u[i] v[i] over one line in the fixed order of every rank: four interleaved partial sums from the
 // line's first cell, combined as (s0 + s1) + (s2 + s3), then the tail in order.
-double line_dot(const double* u, const double* v, int n) {
+__attribute__((target_clones("avx2", "default"))) double line_dot(const double* u, const double* v, int n) {
   double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
   int i = 0;
   for (; i + 4 <= n; i += 4) {
@@ -35,6 +45,21 @@ double line_dot(const double* u, const double* v, int n) {
   double s = (s0 + s1) + (s2 + s3);
   for (; i < n; ++i) s += u[i] * v[i];
   return s;
+}
+
+// One line of the product: each row the diagonal, then the neighbours in slot order (the same additions on every
+// rank). Cloned for AVX2 without FMA (-ffp-contract=off): every clone rounds alike.
+template <int Slots>
+__attribute__((target_clones("avx2", "default"))) void stencil_line(int n, const double* d,
+                                                                    const std::array<const double*, Slots>& o,
+                                                                    const double* x,
+                                                                    const std::array<std::ptrdiff_t, Slots>& shift,
+                                                                    double* y) {
+  for (int i = 0; i < n; ++i) {
+    double s = d[i] * x[i];
+    for (int k = 0; k < Slots; ++k) s += o[static_cast<std::size_t>(k)][i] * x[i + shift[static_cast<std::size_t>(k)]];
+    y[i] = s;
+  }
 }
 
 }  // namespace
@@ -101,13 +126,7 @@ void StencilBicgstab<Dim>::multiply(std::span<const double> in, std::vector<doub
     const double* d = diag_.data() + r0;
     std::array<const double*, kSlots> o{};
     for (int k = 0; k < kSlots; ++k) o[static_cast<std::size_t>(k)] = off_[static_cast<std::size_t>(k)].data() + r0;
-    double* y = out.data() + r0;
-    // Each row: the diagonal, then the neighbours in slot order (the same additions on every rank).
-    for (int i = 0; i < n0; ++i) {
-      double s = d[i] * x[i];
-      for (int k = 0; k < kSlots; ++k) s += o[static_cast<std::size_t>(k)][i] * x[i + shift_[static_cast<std::size_t>(k)]];
-      y[i] = s;
-    }
+    stencil_line<kSlots>(n0, d, o, x, shift_, out.data() + r0);
   }
 }
 
@@ -160,7 +179,8 @@ LinearSolveOutcome StencilBicgstab<Dim>::solve(std::span<const double> b, std::v
     out.why = "non-finite coefficient or right-hand side in row " + *first;
     return out;
   }
-  std::vector<double> y = x;
+  std::vector<double>& y = answer_;
+  y = x;
   // The iterations are the same on every rank, so every rank agrees on whether they converged.
   if (bicgstab(b, y, out) && comm_.min(all_finite(y) ? 1.0 : 0.0) > 0.0) {
     out.ok = true;

@@ -72,7 +72,7 @@ class StencilBicgstab {
   Field<Dim> ghosted_;                           ///< the product's input with its ghost layer
   double tolerance_ = 1e-12;
   int max_iterations_ = 0;
-  std::vector<double> invdiag_, r_, r0_, v_, p_, y_, z_, s_, t_;
+  std::vector<double> invdiag_, r_, r0_, v_, p_, y_, z_, s_, t_, answer_;
 };
 
 extern template class StencilBicgstab<2>;
