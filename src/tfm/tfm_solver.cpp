@@ -13,6 +13,7 @@
 #include "fluid/gas_boundary.hpp"
 #include "numerics/structured_solver_hypre.hpp"
 #include "numerics/multigrid_cg.hpp"
+#include "numerics/stencil_bicgstab.hpp"
 #include "numerics/band_pressure_solver.hpp"
 #include "numerics/line_loop.hpp"
 #include "parallel/periodic_halo.hpp"
@@ -245,8 +246,9 @@ struct TfmSolver<Dim>::Work {
   std::vector<double> inlet;
   double dense_change = 0.0;
   std::unique_ptr<StructuredSolver<Dim>> pressure;  // shared with the gas solver (src/fluid)
-  StencilMatrix e_matrix;  // solids-fraction correction, (2 Dim + 1)-point pattern fixed at construction
-  CheckedSparseSolver solids_solver;
+  // The solids-fraction correction E': its rows, solver and vectors (the same bits on any rank count).
+  std::unique_ptr<StencilBicgstab<Dim>> e_solver;
+  std::vector<double> e_rhs, e_corr;
   ImplicitTransportWork<Dim> transport;  // the implicit solids continuity's matrix, solver and work arrays
 };
 
@@ -271,21 +273,8 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     : config_(config), grid_(validated_grid<Dim>(config)), w_(std::make_unique<Work>()) {
   const IndexBox<Dim>& cells = grid_.domain;
   Work& w = *w_;
-  {
-    // Rows numbered axis 0 fastest; neighbours low and high along each axis in turn (W, E, S, N[, B, F]).
-    std::vector<std::array<int, 2 * Dim>> nb(cells.count());
-    for_each(cells, [&](const Index<Dim>& c) {
-      std::array<int, 2 * Dim> r{};
-      for (int a = 0; a < Dim; ++a) {
-        // Across a periodic axis's face 0 the neighbour is the cell at the other end.
-        const bool lo = periodic(a) || c[a] > cells.lo[a], hi = periodic(a) || c[a] < cells.hi[a] - 1;
-        r[2 * a] = lo ? cell_row(cells, with<Dim>(c, a, grid_.wrap(a, c[a] - 1))) : -1;
-        r[2 * a + 1] = hi ? cell_row(cells, with<Dim>(c, a, grid_.wrap(a, c[a] + 1))) : -1;
-      }
-      nb[static_cast<std::size_t>(cell_row(cells, c))] = r;
-    });
-    w.e_matrix.build(static_cast<int>(cells.count()), nb);
-  }
+  // Rows numbered axis 0 fastest; neighbours low and high along each axis in turn (W, E, S, N[, B, F]).
+  w.e_solver = std::make_unique<StencilBicgstab<Dim>>(grid_, serial_comm());
   switch (config_.pressure_solver) {
     case PressureBackend::HyprePfmg: w.pressure = make_hypre_structured_solver<Dim>(grid_, kPressureTolerance); break;
     case PressureBackend::EigenCg:
@@ -953,7 +942,7 @@ void TfmSolver<Dim>::solids_fraction_rows(double dt) {
     for (int m = 1; m < 2 * Dim; ++m) sum += coef[m];
     std::array<double, 2 * Dim> off{};
     for (int m = 0; m < 2 * Dim; ++m) off[m] = -coef[m] * k[m];
-    w.e_matrix.set_row(cell_row(cells, cell), vol / dt + dps_deps_[cell] * sum, off);
+    w.e_solver->set_row(cell_row(cells, cell), vol / dt + dps_deps_[cell] * sum, off);
   });
 }
 
@@ -964,10 +953,13 @@ void TfmSolver<Dim>::correct_solids_fraction(double dt) {
   Work& w = *w_;
   const IndexBox<Dim>& cells = grid_.domain;
   outflow(w.out_g, w.out_s);
-  w.solids_solver.set_tolerance(1e-12);
-  w.solids_solver.set_max_iterations(c.linear_max_iterations);
-  Eigen::VectorXd e_corr;  // empty: a zero initial guess
-  const LinearSolveOutcome e_res = w.solids_solver.solve(w.e_matrix.matrix(), -w.out_s, e_corr);
+  w.e_solver->set_tolerance(1e-12);
+  w.e_solver->set_max_iterations(c.linear_max_iterations);
+  w.e_rhs.resize(static_cast<std::size_t>(w.out_s.size()));
+  for (std::size_t r = 0; r < w.e_rhs.size(); ++r) w.e_rhs[r] = -w.out_s[static_cast<Eigen::Index>(r)];
+  std::vector<double>& e_corr = w.e_corr;
+  e_corr.clear();  // a zero initial guess
+  const LinearSolveOutcome e_res = w.e_solver->solve(w.e_rhs, e_corr);
   if (e_res.fell_back) ++linear_fallbacks_;
   if (!e_res.ok) {
     // Name the cell: the row that is not finite, else the stiffest cell (largest dP_s/d eps_s).
@@ -994,7 +986,7 @@ void TfmSolver<Dim>::correct_solids_fraction(double dt) {
   }
   auto wk = [&](Index<Dim> x) {
     for (int a = 0; a < Dim; ++a) x[a] = grid_.wrap(a, x[a]);  // the cell before a periodic face 0
-    return dps_deps_[x] * e_corr[cell_row(cells, x)];
+    return dps_deps_[x] * e_corr[static_cast<std::size_t>(cell_row(cells, x))];
   };
   for (int a = 0; a < Dim; ++a) {
     for_each(interior_faces(a), [&](const Index<Dim>& f) {

@@ -192,34 +192,26 @@ struct TransportRows {
   }
 };
 
-// Upwind matrix: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume. A boundary face takes the cell's
+// Upwind rows: (1/dt) phi_P + sum_faces (F+ phi_P - F- phi_nb), per unit volume. A boundary face takes the cell's
 // own value (zero-gradient ghost), so it always lands on the diagonal; flux_out is the velocity / length leaving the
-// cell through the face. The fixed pattern (one slot per face, kept in `w`) unless a periodic axis of one or two cells
-// meets the same neighbour through both faces (or the cell itself): the entries then add up, in `tmat`.
+// cell through the face. The rows go to the stencil solver kept in `w` (true), unless a periodic axis of one or two
+// cells meets the same neighbour through both faces (or the cell itself): the entries then add up, in `tmat`.
 template <int Dim>
-const StencilMatrix::Matrix& upwind_matrix(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, double dt,
-                                           ImplicitTransportWork<Dim>& w,
-                                           Eigen::SparseMatrix<double, Eigen::RowMajor>& tmat) {
+bool upwind_rows(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, double dt, ImplicitTransportWork<Dim>& w,
+                 Eigen::SparseMatrix<double, Eigen::RowMajor>& tmat) {
   const IndexBox<Dim>& box = g.domain;
   const int n = static_cast<int>(box.count());
   const TransportRows<Dim> rows(box, vel.periodic);
-  bool fixed_pattern = true;
-  for (int a = 0; a < Dim; ++a) fixed_pattern = fixed_pattern && !(vel.periodic[a] && box.extent(a) <= 2);
-  if (fixed_pattern) {
-    if (!w.built || !(w.box == box) || w.periodic != vel.periodic) {
-      std::vector<std::array<int, 2 * Dim>> nb(static_cast<std::size_t>(n));
-      int p = 0;
-      for_each(box, [&](const Index<Dim>& c) {
-        for (int a = 0; a < Dim; ++a) {
-          nb[static_cast<std::size_t>(p)][2 * a] = rows.neighbour(c, p, a, false);
-          nb[static_cast<std::size_t>(p)][2 * a + 1] = rows.neighbour(c, p, a, true);
-        }
-        ++p;
-      });
-      w.matrix.build(n, nb);
+  bool stencil = true;
+  for (int a = 0; a < Dim; ++a) stencil = stencil && !(vel.periodic[a] && box.extent(a) <= 2);
+  if (stencil) {
+    if (!w.stencil || !(w.box == box) || w.periodic != vel.periodic) {
+      Grid<Dim> rows_grid = g;
+      rows_grid.owned = box;
+      rows_grid.periodic = vel.periodic;
+      w.stencil = std::make_unique<StencilBicgstab<Dim>>(rows_grid, serial_comm());
       w.box = box;
       w.periodic = vel.periodic;
-      w.built = true;
     }
     int p = 0;
     for_each(box, [&](const Index<Dim>& c) {
@@ -235,9 +227,9 @@ const StencilMatrix::Matrix& upwind_matrix(const Grid<Dim>& g, const FaceVelocit
           }
         }
       }
-      w.matrix.set_row(p++, diag, off);
+      w.stencil->set_row(p++, diag, off);
     });
-    return w.matrix.matrix();
+    return true;
   }
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<std::size_t>(n) * (2 * Dim + 1));
@@ -260,7 +252,7 @@ const StencilMatrix::Matrix& upwind_matrix(const Grid<Dim>& g, const FaceVelocit
   for (int p = 0; p < n; ++p) trip.emplace_back(p, p, diag[p]);
   tmat.resize(n, n);
   tmat.setFromTriplets(trip.begin(), trip.end());
-  return tmat;
+  return false;
 }
 
 // Deferred correction: the divergence of the limited face values less their upwind part (only the limiter's
@@ -351,32 +343,39 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   }
   ImplicitTransportWork<Dim>& w = *work;
   Eigen::SparseMatrix<double, Eigen::RowMajor> tmat;
-  const StencilMatrix::Matrix& mat = upwind_matrix<Dim>(g, vel, dt, w, tmat);
-
-  CheckedSparseSolver& solver = w.solver;
-  solver.set_tolerance(1e-12);
-  solver.set_max_iterations(linear_max_iterations);
-
-  if (w.rhs.size() != n) {
-    w.rhs.resize(n);
-    w.x.resize(n);
+  const bool stencil = upwind_rows<Dim>(g, vel, dt, w, tmat);
+  if (stencil) {
+    w.stencil->set_tolerance(1e-12);
+    w.stencil->set_max_iterations(linear_max_iterations);
   }
+  w.solver.set_tolerance(1e-12);
+  w.solver.set_max_iterations(linear_max_iterations);
+  auto solve = [&](const std::vector<double>& b, std::vector<double>& x) {
+    if (stencil) return w.stencil->solve(b, x);
+    Eigen::VectorXd xe = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+    const LinearSolveOutcome res =
+        w.solver.solve(tmat, Eigen::Map<const Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size())), xe);
+    std::copy_n(xe.data(), x.size(), x.data());
+    return res;
+  };
+  w.rhs.resize(static_cast<std::size_t>(n));
+  w.x.resize(static_cast<std::size_t>(n));
   Field<Dim> phi(box, kGhost);
   for_each(box, [&](const Index<Dim>& c) { phi[c] = phi_old[c]; });
   fill_cell_ghosts(phi, vel.periodic);
   Field<Dim> corr_div(box, kGhost);
   FaceFields<Dim>& phi_f = w.phi_f;  // its ghost faces are never written: they stay zero
-  Eigen::VectorXd& rhs = w.rhs;
-  Eigen::VectorXd& x = w.x;
+  std::vector<double>& rhs = w.rhs;
+  std::vector<double>& x = w.x;
   for (int pass = 0; pass <= corrections; ++pass) {
     corr_div.fill(0.0);
     if (limiter != Limiter::Upwind && pass > 0) limiter_correction<Dim>(g, limiter, phi, vel, phi_f, corr_div);
-    int r = 0;
+    std::size_t r = 0;
     for_each(box, [&](const Index<Dim>& c) {
       rhs[r] = phi_old[c] / dt - corr_div[c];
       x[r++] = phi[c];
     });
-    const LinearSolveOutcome res = solver.solve(mat, rhs, x);
+    const LinearSolveOutcome res = solve(rhs, x);
     if (res.fell_back && fallbacks) ++*fallbacks;
     if (!res.ok) transport_failed<Dim>(box, res, pass);
     r = 0;

@@ -4,11 +4,14 @@
 // Fields carry kGhost ghost layers; stencils read them and never clamp (fill_cell_ghosts writes them).
 #include <Eigen/Core>
 #include <array>
+#include <memory>
+#include <vector>
 #include <type_traits>
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "numerics/tvd_limiter.hpp"
+#include "numerics/stencil_bicgstab.hpp"
 #include "numerics/stencil_matrix.hpp"
 
 namespace fluidbed::tfm {
@@ -74,8 +77,8 @@ Field<Dim> conservative_update(const Grid<Dim>& grid, const Field<Dim>& phi_old,
 /// One backward-Euler step of d(phi)/dt + div(U phi) = 0. The upwind part is implicit; the limiter correction is
 /// deferred and refreshed `corrections` times. The result is formed from conservative face fluxes (returned in
 /// `flux`), so sum(phi * volume) is conserved to rounding whatever the solver tolerance. Each linear solve is
-/// checked (CheckedSparseSolver: BiCGSTAB, a sparse LU when it stops short; at most `linear_max_iterations`
-/// BiCGSTAB iterations, 0 for Eigen's default); a solve neither answers is a simulation error. `fallbacks`, when
+/// checked (StencilBicgstab: BiCGSTAB, a sparse LU when it stops short; at most `linear_max_iterations`
+/// BiCGSTAB iterations, 0 for twice the cell count); a solve neither answers is a simulation error. `fallbacks`, when
 /// given, counts the solves the LU answered. phi_old's ghosts are not read.
 /// What advance_scalar_implicit keeps from one call to the next (matrix pattern, solver, work arrays), so that a
 /// step allocates nothing: one per convected scalar. The results do not depend on it.
@@ -83,11 +86,12 @@ template <int Dim>
 struct ImplicitTransportWork {
   IndexBox<Dim> box{};
   std::array<bool, Dim> periodic{};
-  bool built = false;
-  StencilMatrix matrix;
+  /// The rows' solver (StencilBicgstab: the same bits on any rank count); a periodic axis of one or two cells,
+  /// where a row meets one neighbour through both faces, takes an assembled matrix and the checked Eigen solver.
+  std::unique_ptr<StencilBicgstab<Dim>> stencil;
   CheckedSparseSolver solver;
   FaceFields<Dim> phi_f;
-  Eigen::VectorXd rhs, x;
+  std::vector<double> rhs, x;
 };
 
 template <int Dim>
