@@ -19,6 +19,7 @@ Per DEM step and rank (3D):
   per axis; the coarse level gathered below them (an allgather of its cells).
 g: ghosts per owned particle for a cube of n particles at solids fraction phi with neighbours on every side,
 scaled by the surface factor of a Hilbert piece; m = 26 neighbours (fewer below 27 ranks).
+The two-fluid model's projection (tfm_step) is described there.
 Usage: python3 bench/parallel_model.py [--n 20000] [--ranks 64 1024 8192] [--key value ...]
 """
 import argparse
@@ -55,6 +56,18 @@ a("--t-exact", type=float, default=2.0, help="cost of an exact (reproducible) re
 a("--t-mg", type=float, default=43e-9, help="cg-multigrid compute per cell and CG iteration, one rank, s (216,000 "
   "cells: 870 ms for 93 iterations)")
 a("--solve-cells", type=float, default=50000, help="cells per rank of the pressure solve alone (issue 30: 50,000)")
+# The two-fluid model on blocks (issue 30), measured on cases/tfm3d/column.toml (16 x 50 x 16, cg-multigrid, one
+# thread, 0.05 s: 150 steps, 1.8 us a cell-step; perf shares: P' solves 40%, BiCGSTAB solves 9%, the rest 51%).
+a("--tfm-cells", type=float, default=50000, help="TFM cells per rank (issue 30: 50,000)")
+a("--t-tfm", type=float, default=0.92e-6, help="TFM compute per cell-step outside the linear solves, s")
+a("--t-bicg", type=float, default=13e-9, help="StencilBicgstab compute per cell and iteration, s")
+a("--tfm-cg", type=float, default=20.4, help="CG iterations of the two P' solves of a TFM step (column: 2 x 10.2)")
+a("--tfm-bicg", type=float, default=12.4, help="BiCGSTAB iterations of a TFM step (column: E' 4.9, 3 x 2.5)")
+a("--tfm-halo-layers", type=float, default=35.0, help="field layers a TFM step exchanges across each cut face "
+  "(the stages' halos, counted in docs/parallel.md)")
+a("--tfm-rounds", type=float, default=12.0, help="halo rounds of a TFM step outside the solves")
+a("--tfm-collectives", type=float, default=14.0, help="small collectives of a TFM step outside the Krylov "
+  "iterations (dt, packing sweeps, health, residual, the solves' finiteness checks)")
 # A cluster's interconnect (assumed: InfiniBand HDR class, not measured here).
 a("--alpha", type=float, default=1.5e-6, help="point-to-point latency, s")
 a("--alpha-r", type=float, default=2.0e-6, help="allreduce latency per tree level, s")
@@ -141,6 +154,31 @@ def cfd_distributed_step(P, n):
     return sum(parts.values()), parts
 
 
+def tfm_step(P, c):
+    """The two-fluid model on blocks of c cells a rank, x never cut (the BiCGSTAB inner products sum whole lines
+    along x), so the blocks are x-long columns of side s = sqrt(c / nx) in y and z with 4 face neighbours and 8
+    with the edges: the stages' halos, the shared face planes computed by both ranks, the P' solves (cg-multigrid,
+    pressure_comm) and the BiCGSTAB solves (2 face halos and 3 collectives of two 71-word exact sums an
+    iteration)."""
+    nx = 60.0  # a column of industrial interest: 60 cells across (issue 30)
+    side = math.sqrt(c / nx)
+    t_solve = args.tfm_cg * args.t_mg * c + args.tfm_bicg * args.t_bicg * c
+    if P == 1:
+        return args.t_tfm * c + t_solve, {}
+    levels = math.ceil(math.log2(P))
+    face = nx * side  # cells on one cut face of the block
+    parts = {
+        "compute": args.t_tfm * c * (1 + 2 / side) + t_solve,
+        "stage halos": args.tfm_rounds * min(8, P - 1) * args.alpha + args.beta * 8 * 4 * face * args.tfm_halo_layers,
+        "collectives": args.tfm_collectives * args.alpha_r * levels,
+        "bicgstab comm": args.tfm_bicg * (2 * (min(4, P - 1) * args.alpha + args.beta * 8 * 4 * face)
+                                          + 3 * (args.alpha_r + args.beta * 2 * 71 * 8) * levels),
+    }
+    for name, t in pressure_comm(P, c).items():
+        parts["P' " + name] = args.tfm_cg * t
+    return sum(parts.values()), parts
+
+
 n = args.n
 print(f"{n:.0f} particles per rank; ghosts per owned particle: {ghosts(n, args.reach):.3f} (contact reach), "
       f"{ghosts(n, args.reach_cfd):.3f} (CFD-DEM reach)")
@@ -162,6 +200,15 @@ for P in args.ranks:
     parts = pressure_comm(P, c)
     t = t1 + sum(parts.values())
     print(f"{P:>6} {1e6 * t:>9.0f} {t1 / t:>10.2f}  " + ", ".join(f"{k} {1e6 * v:.0f}" for k, v in parts.items()))
+
+c = args.tfm_cells
+t1, _ = tfm_step(1, c)
+print(f"\nThe two-fluid model (projected: issue 30), {c:.0f} cells per rank: one rank {1e3 * t1:.1f} ms a step")
+print(f"{'ranks':>6} {'ms/step':>9} {'efficiency':>10}  largest parts")
+for P in args.ranks:
+    t, parts = tfm_step(P, c)
+    top = sorted(parts.items(), key=lambda kv: -kv[1])[:5]
+    print(f"{P:>6} {1e3 * t:>9.2f} {t1 / t:>10.2f}  " + ", ".join(f"{k} {1e3 * v:.2f}" for k, v in top))
 
 if args.check_g:
     print(f"\ncheck on this machine: {args.check_N:.0f} particles, DEM only")
