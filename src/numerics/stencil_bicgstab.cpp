@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "numerics/line_sum.hpp"
 #include "parallel/periodic_halo.hpp"
 
 namespace fluidbed {
@@ -29,22 +30,6 @@ __attribute__((target_clones("avx2", "default"))) bool all_finite(std::span<cons
   }
   for (; i < n; ++i) a0 += p[i] - p[i];
   return (a0 + a1) + (a2 + a3) == 0.0;
-}
-
-// The sum of u[i] v[i] over one line in the fixed order of every rank: four interleaved partial sums from the
-// line's first cell, combined as (s0 + s1) + (s2 + s3), then the tail in order.
-__attribute__((target_clones("avx2", "default"))) double line_dot(const double* u, const double* v, int n) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    s0 += u[i] * v[i];
-    s1 += u[i + 1] * v[i + 1];
-    s2 += u[i + 2] * v[i + 2];
-    s3 += u[i + 3] * v[i + 3];
-  }
-  double s = (s0 + s1) + (s2 + s3);
-  for (; i < n; ++i) s += u[i] * v[i];
-  return s;
 }
 
 // One line of the product: each row the diagonal, then the neighbours in slot order (the same additions on every

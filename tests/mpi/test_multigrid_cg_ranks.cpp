@@ -62,7 +62,7 @@ std::vector<std::uint64_t> bits_on(const Grid<Dim>& domain_grid, const Field<Dim
 }
 
 template <int Dim>
-void check(const Index<Dim>& n, bool fixed_top, int periodic_axis, Index<Dim> blocks) {
+void check(const Index<Dim>& n, bool fixed_top, int periodic_axis, Index<Dim> blocks, bool line_sums = false) {
   const Comm& comm = world();
   Vec<Dim> ext{};
   for (int a = 0; a < Dim; ++a) ext[a] = 1.0;
@@ -73,7 +73,7 @@ void check(const Index<Dim>& n, bool fixed_top, int periodic_axis, Index<Dim> bl
   Field<Dim> rhs;
   fill_problem(whole, fixed_top, coeff, rhs);
   Field<Dim> ref(whole.owned, 0);
-  auto one = make_multigrid_cg_solver<Dim>(whole, serial_comm(), {.tolerance = 1e-11});
+  auto one = make_multigrid_cg_solver<Dim>(whole, serial_comm(), {.tolerance = 1e-11, .line_sums = line_sums});
   one->solve(coeff, rhs, ref, false);
   const MultigridCgStats ref_stats = multigrid_cg_stats<Dim>(*one);
   // This rank's block.
@@ -81,7 +81,7 @@ void check(const Index<Dim>& n, bool fixed_top, int periodic_axis, Index<Dim> bl
   part.owned = block_of<Dim>(whole.domain, blocks, comm.rank());
   fill_problem(part, fixed_top, coeff, rhs);
   Field<Dim> x(part.owned, 0);
-  auto many = make_multigrid_cg_solver<Dim>(part, comm, {.tolerance = 1e-11});
+  auto many = make_multigrid_cg_solver<Dim>(part, comm, {.tolerance = 1e-11, .line_sums = line_sums});
   many->solve(coeff, rhs, x, false);
   const MultigridCgStats st = multigrid_cg_stats<Dim>(*many);
   EXPECT_EQ(st.iterations, ref_stats.iterations);
@@ -123,6 +123,14 @@ TEST(MultigridCgRanks, TinyGrid) { check<2>({9, 12}, true, -1, {1, world().size(
 TEST(MultigridCgRanks, SharedCoarseLevels) { check<3>({24, 40, 16}, false, -1, {1, world().size(), 1}); }
 TEST(MultigridCgRanks, PeriodicXCutAlongY) { check<2>({24, 41}, true, 0, {1, world().size()}); }
 TEST(MultigridCgRanks, Periodic3dCutAlongZ) { check<3>({10, 12, 21}, true, 0, {1, 1, world().size()}); }
+// The two-fluid model's mode: inner products as line sums along x, blocks that span x.
+TEST(MultigridCgRanks, LineSumsCutAlongYAndZ) {
+  const int p = world().size();
+  check<2>({37, 53}, true, 0, {1, p}, true);
+  check<3>({13, 24, 16}, false, -1, {1, p, 1}, true);
+  check<3>({19, 14, 23}, true, 0, {1, 1, p}, true);
+  if (p == 4) check<3>({19, 14, 23}, true, -1, {1, 2, 2}, true);
+}
 
 }  // namespace
 }  // namespace fluidbed

@@ -95,14 +95,14 @@ Problem<Dim> make_problem(const Index<Dim>& n, Sides sides) {
 }
 
 template <int Dim>
-MultigridCgStats check(const Index<Dim>& n, Sides sides) {
+MultigridCgStats check(const Index<Dim>& n, Sides sides, bool line_sums = false) {
   const double tol = 1e-10;
   Problem<Dim> pr = make_problem<Dim>(n, sides);
   int nmax = 0;
   for (int a = 0; a < Dim; ++a) nmax = std::max(nmax, n[a]);
   const double kappa = kSpread * 8.0 * nmax * nmax / (std::numbers::pi * std::numbers::pi);
   const double bound = (sides == Sides::Neumann ? 10.0 : 1.0) * kappa * tol * max_abs(pr.exact);
-  auto mg = make_multigrid_cg_solver<Dim>(pr.grid, serial_comm(), {.tolerance = tol});
+  auto mg = make_multigrid_cg_solver<Dim>(pr.grid, serial_comm(), {.tolerance = tol, .line_sums = line_sums});
   Field<Dim> xm(pr.grid.owned, 0), xe(pr.grid.owned, 0);
   mg->solve(pr.coeff, pr.rhs, xm, false);
   const MultigridCgStats st = multigrid_cg_stats<Dim>(*mg);
@@ -127,6 +127,14 @@ TEST(MultigridCg, Poisson2dPeriodic) { check<2>({21, 40}, Sides::PeriodicX); }
 TEST(MultigridCg, Poisson3dFixedTop) { check<3>({20, 24, 16}, Sides::FixedTop); }
 TEST(MultigridCg, Poisson3dNeumannPinned) { check<3>({9, 11, 7}, Sides::Neumann); }
 TEST(MultigridCg, Poisson3dPeriodic) { check<3>({12, 20, 9}, Sides::PeriodicX); }
+// Inner products as line sums (the two-fluid model's mode): the same bound, and about the same iterations.
+TEST(MultigridCg, LineSums) {
+  const int exact = check<2>({30, 50}, Sides::FixedTop).iterations;
+  EXPECT_NEAR(check<2>({30, 50}, Sides::FixedTop, true).iterations, exact, 1);
+  check<3>({20, 24, 16}, Sides::FixedTop, true);
+  check<3>({12, 20, 9}, Sides::PeriodicX, true);
+  check<3>({9, 11, 7}, Sides::Neumann, true);
+}
 
 // A multigrid preconditioner keeps CG's iteration count nearly independent of the grid (plain or diagonally
 // preconditioned CG needs ~n times more); 16 times the cells may cost a few more iterations, not four times as many.
@@ -141,15 +149,18 @@ TEST(MultigridCg, IterationsNearlyFlatUnderRefinement) {
 
 TEST(MultigridCg, SameBitsOnOneAndTwoThreads) {
   Problem<3> pr = make_problem<3>({40, 48, 32}, Sides::PeriodicX);
-  Field<3> x1(pr.grid.owned, 0), x2(pr.grid.owned, 0);
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(1);
-  make_multigrid_cg_solver<3>(pr.grid, serial_comm())->solve(pr.coeff, pr.rhs, x1, false);
-  omp_set_num_threads(2);
-  make_multigrid_cg_solver<3>(pr.grid, serial_comm())->solve(pr.coeff, pr.rhs, x2, false);
-  omp_set_num_threads(before);
-  for (std::size_t k = 0; k < x1.data().size(); ++k)
-    ASSERT_EQ(std::bit_cast<std::uint64_t>(x1.data()[k]), std::bit_cast<std::uint64_t>(x2.data()[k])) << k;
+  for (bool line_sums : {false, true}) {
+    Field<3> x1(pr.grid.owned, 0), x2(pr.grid.owned, 0);
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(1);
+    make_multigrid_cg_solver<3>(pr.grid, serial_comm(), {.line_sums = line_sums})->solve(pr.coeff, pr.rhs, x1, false);
+    omp_set_num_threads(2);
+    make_multigrid_cg_solver<3>(pr.grid, serial_comm(), {.line_sums = line_sums})->solve(pr.coeff, pr.rhs, x2, false);
+    omp_set_num_threads(before);
+    for (std::size_t k = 0; k < x1.data().size(); ++k)
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(x1.data()[k]), std::bit_cast<std::uint64_t>(x2.data()[k]))
+          << k << (line_sums ? " (line sums)" : "");
+  }
 }
 
 TEST(MultigridCg, RefusesAPeriodicAxisCutAcrossRanks) {
@@ -161,6 +172,17 @@ TEST(MultigridCg, RefusesAPeriodicAxisCutAcrossRanks) {
     FAIL() << "a periodic axis cut across ranks was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("periodic axis 0 is cut across ranks"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MultigridCg, LineSumsRefuseACutAlongX) {
+  Grid<2> g = Grid<2>::uniform({1.0, 1.0}, {8, 8}, 1);
+  g.owned.hi[0] = 4;
+  try {
+    make_multigrid_cg_solver<2>(g, serial_comm(), {.line_sums = true});
+    FAIL() << "line sums over a block cut along x were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("axis 0 (x) is cut"), std::string::npos) << e.what();
   }
 }
 
