@@ -17,13 +17,16 @@ constexpr double kLandingMargin = 1e-14;
 
 template <int Dim>
 PackingLimitResult limit_packing(const Grid<Dim>& g, const Field<Dim>& phi_old, double dt, double phi_max,
-                                 FaceFluxes<Dim>& f, int max_sweeps) {
-  const IndexBox<Dim>& box = g.domain;
+                                 FaceFluxes<Dim>& f, int max_sweeps, const Comm& comm) {
+  const IndexBox<Dim>& box = g.owned;
+  const IndexBox<Dim>& dom = g.domain;
   std::array<double, Dim> courant{};
   for (int a = 0; a < Dim; ++a) courant[a] = dt / g.h[a];
   PackingLimitResult res;
   // Factor of every cell's inflow faces in this sweep (1: the cell is within its bound).
-  Field<Dim> factor(box, 0);
+  // A face on the block's edge is cut by the factor of a neighbour's cell: the factors carry one ghost layer.
+  Field<Dim> factor(box, 1, 1.0);
+  const std::vector<IndexBox<Dim>> boxes = comm.size() > 1 ? all_boxes<Dim>(comm, box) : std::vector<IndexBox<Dim>>{box};
   // Every cell reads the fluxes as the previous sweep left them, so the factors do not depend on the order the
   // cells are visited in (a Jacobi sweep: it can run on sub-domains with a halo exchange between sweeps).
   auto cell_factor = [&](const Index<Dim>& c) {
@@ -56,7 +59,8 @@ PackingLimitResult limit_packing(const Grid<Dim>& g, const Field<Dim>& phi_old, 
       factor[c] = cell_factor(c);
       over = over || factor[c] != 1.0;
     });
-    if (!over) return res;
+    if (comm.max(over ? 1.0 : 0.0) == 0.0) return res;  // every rank sweeps until no cell anywhere is over
+    fill_block_ghosts<Dim>(factor, dom, g.periodic, comm, boxes);
     for (int a = 0; a < Dim; ++a) {
       // On a periodic axis the cell beyond face n is the first one and the cell before face 0 the last: faces 0
       // and n hold the same flux, so they take the same cut and stay equal.
@@ -67,8 +71,8 @@ PackingLimitResult limit_packing(const Grid<Dim>& g, const Field<Dim>& phi_old, 
       };
       for_each(box.faces(a), [&](const Index<Dim>& face_index) {
         double& face = f[a][face_index];
-        if (face > 0.0 && (per || face_index[a] < box.hi[a])) cut(face, factor[cell(face_index)]);
-        if (face < 0.0 && (per || face_index[a] > box.lo[a])) cut(face, factor[cell(shifted<Dim>(face_index, a, -1))]);
+        if (face > 0.0 && (per || face_index[a] < dom.hi[a])) cut(face, factor[cell(face_index)]);
+        if (face < 0.0 && (per || face_index[a] > dom.lo[a])) cut(face, factor[cell(shifted<Dim>(face_index, a, -1))]);
       });
     }
   }
@@ -83,8 +87,10 @@ void transfer_to_gas(const FaceFluxes<Dim>& solids_before, const FaceFluxes<Dim>
     for_each(gas[a].box(), [&](const Index<Dim>& f) { gas[a][f] += solids_before[a][f] - solids_after[a][f]; });
 }
 
-template PackingLimitResult limit_packing<2>(const Grid<2>&, const Field<2>&, double, double, FaceFluxes<2>&, int);
-template PackingLimitResult limit_packing<3>(const Grid<3>&, const Field<3>&, double, double, FaceFluxes<3>&, int);
+template PackingLimitResult limit_packing<2>(const Grid<2>&, const Field<2>&, double, double, FaceFluxes<2>&, int,
+                                             const Comm&);
+template PackingLimitResult limit_packing<3>(const Grid<3>&, const Field<3>&, double, double, FaceFluxes<3>&, int,
+                                             const Comm&);
 template void transfer_to_gas<2>(const FaceFluxes<2>&, const FaceFluxes<2>&, FaceFluxes<2>&);
 template void transfer_to_gas<3>(const FaceFluxes<3>&, const FaceFluxes<3>&, FaceFluxes<3>&);
 

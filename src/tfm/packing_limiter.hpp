@@ -25,9 +25,11 @@ struct PackingLimitResult {
 /// conservative_update); after max_sweeps the run fails (simulation error). Where cut cells form a loop of flow,
 /// each cut returns to the cell that started it, so the sweeps converge geometrically; the default cap leaves a
 /// wide margin. On a periodic axis of the grid face n is face 0 (the same flux on entry): both take the same cut.
+/// On a rank's block (grid.owned; `comm` the ranks of the others) the factors' ghosts come from their owners between
+/// sweeps and a face shared with a neighbour takes the cut the neighbour gives it: the same bits as on one process.
 template <int Dim>
 PackingLimitResult limit_packing(const Grid<Dim>& grid, const Field<Dim>& phi_old, double dt, double phi_max,
-                                 FaceFluxes<Dim>& flux, int max_sweeps = 1000);
+                                 FaceFluxes<Dim>& flux, int max_sweeps = 1000, const Comm& comm = serial_comm());
 
 /// Keeps the mixture volume flux F_g + F_s of every face when the solids flux changes from `solids_before` to
 /// `solids_after`: F_g += solids_before - solids_after, face by face.

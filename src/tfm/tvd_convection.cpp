@@ -54,6 +54,33 @@ void fill_face_ghosts(Field<Dim>& f) {
   fill_cell_ghosts<Dim>(f);
 }
 
+template <int Dim>
+void fill_block_ghosts(Field<Dim>& f, const IndexBox<Dim>& domain, const std::type_identity_t<std::array<bool, Dim>>& periodic,
+                       const Comm& comm, std::span<const IndexBox<Dim>> boxes) {
+  if (comm.size() > 1) comm.exchange_halo_among(f, boxes, HaloCells::All);
+  const IndexBox<Dim>& b = f.box();
+  const int g = f.ghost();
+  // Axis by axis over the whole span of the other axes (their ghosts included: those inside the domain came from
+  // the owners above), so that the edges and corners get what one process gives them.
+  for (int a = 0; a < Dim; ++a) {
+    const bool per = periodic[static_cast<std::size_t>(a)];
+    if (per && (b.lo[a] != domain.lo[a] || b.hi[a] != domain.hi[a]))
+      throw_input_error("periodic axis " + std::to_string(a) + " is cut across ranks: cut the other axes");
+    const int n = domain.extent(a);
+    for (bool high : {false, true}) {
+      if (high ? b.hi[a] != domain.hi[a] : b.lo[a] != domain.lo[a]) continue;  // a cut: the owner filled it
+      IndexBox<Dim> side = f.allocated();
+      side.lo[a] = high ? b.hi[a] : b.lo[a] - g;
+      side.hi[a] = high ? b.hi[a] + g : b.lo[a];
+      for_each(side, [&](const Index<Dim>& c) {
+        Index<Dim> src = c;
+        src[a] = per ? domain.lo[a] + ((c[a] - domain.lo[a]) % n + n) % n : (high ? b.hi[a] - 1 : b.lo[a]);
+        f[c] = f[src];
+      });
+    }
+  }
+}
+
 namespace {
 
 // Net outward flux difference div(U phi) from face values.
@@ -62,7 +89,8 @@ void divergence_from_faces(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, con
                            Field<Dim>& out) {
   bool periodic = false;
   for (int a = 0; a < Dim; ++a) periodic = periodic || vel.periodic[a];
-  IndexBox<Dim> lines = g.domain;
+  const IndexBox<Dim>& own = g.owned;
+  IndexBox<Dim> lines = own;
   lines.hi[0] = lines.lo[0] + 1;
   for_each(lines, [&](Index<Dim> c) {
     std::array<const double*, Dim> pu{}, pf{};
@@ -74,11 +102,11 @@ void divergence_from_faces(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, con
       sf[a] = static_cast<std::ptrdiff_t>(phi_f[a].stride(a));
     }
     double* o = out.data().data() + out.index(c);
-    for (int i = g.domain.lo[0]; i < g.domain.hi[0]; ++i, ++o) {
+    for (int i = own.lo[0]; i < own.hi[0]; ++i, ++o) {
       c[0] = i;
       double div = 0.0;
       for (int a = 0; a < Dim; ++a) {
-        const std::ptrdiff_t k = i - g.domain.lo[0];
+        const std::ptrdiff_t k = i - own.lo[0];
         const double u_lo = pu[a][k], u_hi = periodic ? vel.at(a, shifted<Dim>(c, a, 1)) : pu[a][k + su[a]];
         const double term = (u_hi * pf[a][k + sf[a]] - u_lo * pf[a][k]) / g.h[a];
         div = a == 0 ? term : div + term;
@@ -95,8 +123,8 @@ void tvd_face_values_of(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& p
                         FaceFields<Dim>& phi_f) {
   for (int a = 0; a < Dim; ++a) {
     const bool per = vel.periodic[a];
-    const int lo = g.domain.lo[a], hi = g.domain.hi[a];
-    const IndexBox<Dim> faces = g.domain.faces(a);
+    const int lo = g.domain.lo[a], hi = g.domain.hi[a];  // the walls (a rank's block computes its cut faces)
+    const IndexBox<Dim> faces = g.owned.faces(a);
     const Field<Dim>& u = vel.u[a];
     const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
     // A periodic axis reads face n's velocity from face 0.
@@ -141,7 +169,7 @@ void ensure_faces(const IndexBox<Dim>& cells, FaceFields<Dim>& f) {
 template <int Dim>
 void tvd_face_values(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
                      FaceFields<Dim>& phi_f) {
-  ensure_faces(g.domain, phi_f);
+  ensure_faces(g.owned, phi_f);
   tvd_face_values_of<Dim>(g, limiter, phi, vel, phi_f);
 }
 
@@ -150,14 +178,14 @@ void convective_divergence(const Grid<Dim>& g, Limiter limiter, const Field<Dim>
                            Field<Dim>& out) {
   FaceFields<Dim> phi_f;
   tvd_face_values(g, limiter, phi, vel, phi_f);
-  if (!(out.box() == g.domain)) out = Field<Dim>(g.domain, kGhost);
+  if (!(out.box() == g.owned)) out = Field<Dim>(g.owned, kGhost);
   divergence_from_faces(g, vel, phi_f, out);
 }
 
 template <int Dim>
 Field<Dim> conservative_update(const Grid<Dim>& g, const Field<Dim>& phi_old, const FaceFluxes<Dim>& f, double dt) {
-  Field<Dim> out(g.domain, kGhost);
-  for_each(g.domain, [&](const Index<Dim>& c) { out[c] = conservative_cell_update(g, phi_old, f, c, dt); });
+  Field<Dim> out(g.owned, kGhost);
+  for_each(g.owned, [&](const Index<Dim>& c) { out[c] = conservative_cell_update(g, phi_old, f, c, dt); });
   return out;
 }
 
@@ -198,20 +226,20 @@ struct TransportRows {
 // cells meets the same neighbour through both faces (or the cell itself): the entries then add up, in `tmat`.
 template <int Dim>
 bool upwind_rows(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, double dt, ImplicitTransportWork<Dim>& w,
-                 Eigen::SparseMatrix<double, Eigen::RowMajor>& tmat) {
-  const IndexBox<Dim>& box = g.domain;
+                 Eigen::SparseMatrix<double, Eigen::RowMajor>& tmat, const Comm& comm) {
+  const IndexBox<Dim>& box = g.owned;
+  const IndexBox<Dim>& dom = g.domain;
   const int n = static_cast<int>(box.count());
-  const TransportRows<Dim> rows(box, vel.periodic);
   bool stencil = true;
-  for (int a = 0; a < Dim; ++a) stencil = stencil && !(vel.periodic[a] && box.extent(a) <= 2);
+  for (int a = 0; a < Dim; ++a) stencil = stencil && !(vel.periodic[a] && dom.extent(a) <= 2);
   if (stencil) {
     if (!w.stencil || !(w.box == box) || w.periodic != vel.periodic) {
       Grid<Dim> rows_grid = g;
-      rows_grid.owned = box;
       rows_grid.periodic = vel.periodic;
-      w.stencil = std::make_unique<StencilBicgstab<Dim>>(rows_grid, serial_comm());
+      w.stencil = std::make_unique<StencilBicgstab<Dim>>(rows_grid, comm);
       w.box = box;
       w.periodic = vel.periodic;
+      w.cell_boxes = comm.size() > 1 ? all_boxes<Dim>(comm, box) : std::vector<IndexBox<Dim>>{box};
     }
     int p = 0;
     for_each(box, [&](const Index<Dim>& c) {
@@ -220,7 +248,9 @@ bool upwind_rows(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, double dt, Im
       for (int a = 0; a < Dim; ++a) {
         for (bool high : {true, false}) {
           const double flux_out = high ? vel.at(a, shifted<Dim>(c, a, 1)) / g.h[a] : -vel.at(a, c) / g.h[a];
-          if (flux_out > 0.0 || rows.neighbour(c, p, a, high) < 0) {
+          // A wall of the domain has no neighbour; a cut between ranks has one, on the other rank.
+          const bool wall = !vel.periodic[a] && c[a] == (high ? dom.hi[a] - 1 : dom.lo[a]);
+          if (flux_out > 0.0 || wall) {
             diag += flux_out;
           } else {
             off[2 * a + (high ? 1 : 0)] = flux_out;
@@ -231,6 +261,9 @@ bool upwind_rows(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, double dt, Im
     });
     return true;
   }
+  if (comm.size() > 1 || !(box == dom))
+    throw_input_error("implicit transport: a periodic axis of one or two cells runs on one process only");
+  const TransportRows<Dim> rows(box, vel.periodic);
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<std::size_t>(n) * (2 * Dim + 1));
   Eigen::VectorXd diag = Eigen::VectorXd::Constant(n, 1.0 / dt);
@@ -260,10 +293,10 @@ bool upwind_rows(const Grid<Dim>& g, const FaceVelocity<Dim>& vel, double dt, Im
 template <int Dim>
 void limiter_correction(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
                         FaceFields<Dim>& phi_f, Field<Dim>& corr_div) {
-  const IndexBox<Dim>& box = g.domain;
+  const IndexBox<Dim>& box = g.domain;  // the walls; the faces are the block's
   tvd_face_values(g, limiter, phi, vel, phi_f);
   for (int a = 0; a < Dim; ++a) {
-    const IndexBox<Dim> faces = box.faces(a);
+    const IndexBox<Dim> faces = g.owned.faces(a);
     const auto sp = static_cast<std::ptrdiff_t>(phi.stride(a));
     const auto wrap = static_cast<std::ptrdiff_t>(vel.u[a].stride(a)) * box.extent(a);
     const bool per = vel.periodic[a];
@@ -308,7 +341,7 @@ template <int Dim>
 template <int Dim>
 void final_fluxes(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, const FaceVelocity<Dim>& vel,
                   FaceFields<Dim>& phi_f, FaceFluxes<Dim>& flux) {
-  const IndexBox<Dim>& box = g.domain;
+  const IndexBox<Dim>& box = g.owned;
   tvd_face_values(g, limiter, phi, vel, phi_f);
   ensure_faces(box, flux);
   for (int a = 0; a < Dim; ++a) {
@@ -333,8 +366,9 @@ void final_fluxes(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi, co
 template <int Dim>
 Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Field<Dim>& phi_old,
                                    const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
-                                   int linear_max_iterations, int* fallbacks, ImplicitTransportWork<Dim>* work) {
-  const IndexBox<Dim>& box = g.domain;
+                                   int linear_max_iterations, int* fallbacks, ImplicitTransportWork<Dim>* work,
+                                   const Comm& comm) {
+  const IndexBox<Dim>& box = g.owned;
   const int n = static_cast<int>(box.count());
   std::unique_ptr<ImplicitTransportWork<Dim>> local;  // a caller without its own buffers gets fresh ones
   if (!work) {
@@ -343,7 +377,15 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   }
   ImplicitTransportWork<Dim>& w = *work;
   Eigen::SparseMatrix<double, Eigen::RowMajor> tmat;
-  const bool stencil = upwind_rows<Dim>(g, vel, dt, w, tmat);
+  const bool stencil = upwind_rows<Dim>(g, vel, dt, w, tmat, comm);
+  // The solution's ghosts: from the ranks that own them, else the walls' zero gradient or the periodic image.
+  auto fill = [&](Field<Dim>& f) {
+    if (stencil) {
+      fill_block_ghosts<Dim>(f, g.domain, vel.periodic, comm, w.cell_boxes);
+    } else {
+      fill_cell_ghosts(f, vel.periodic);
+    }
+  };
   if (stencil) {
     w.stencil->set_tolerance(1e-12);
     w.stencil->set_max_iterations(linear_max_iterations);
@@ -362,7 +404,7 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   w.x.resize(static_cast<std::size_t>(n));
   Field<Dim> phi(box, kGhost);
   for_each(box, [&](const Index<Dim>& c) { phi[c] = phi_old[c]; });
-  fill_cell_ghosts(phi, vel.periodic);
+  fill(phi);
   Field<Dim> corr_div(box, kGhost);
   FaceFields<Dim>& phi_f = w.phi_f;  // its ghost faces are never written: they stay zero
   std::vector<double>& rhs = w.rhs;
@@ -377,10 +419,10 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
     });
     const LinearSolveOutcome res = solve(rhs, x);
     if (res.fell_back && fallbacks) ++*fallbacks;
-    if (!res.ok) transport_failed<Dim>(box, res, pass);
+    if (!res.ok) transport_failed<Dim>(g.domain, res, pass);  // bad_row counts the domain's cells
     r = 0;
     for_each(box, [&](const Index<Dim>& c) { phi[c] = x[r++]; });
-    fill_cell_ghosts(phi, vel.periodic);
+    fill(phi);
     if (limiter == Limiter::Upwind && pass == 0) break;
   }
   final_fluxes<Dim>(g, limiter, phi, vel, phi_f, flux);
@@ -398,7 +440,10 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   template Field<D> advance_scalar_implicit<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,    \
                                                double, int);                                                        \
   template Field<D> advance_scalar_implicit<D>(const Grid<D>&, Limiter, const Field<D>&, const FaceVelocity<D>&,    \
-                                               double, int, FaceFluxes<D>&, int, int*, ImplicitTransportWork<D>*);
+                                               double, int, FaceFluxes<D>&, int, int*, ImplicitTransportWork<D>*,  \
+                                               const Comm&);                                                        \
+  template void fill_block_ghosts<D>(Field<D>&, const IndexBox<D>&, const std::array<bool, D>&, const Comm&,        \
+                                     std::span<const IndexBox<D>>);
 FLUIDBED_TVD_INSTANTIATE(2)
 FLUIDBED_TVD_INSTANTIATE(3)
 #undef FLUIDBED_TVD_INSTANTIATE

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <memory>
+#include <span>
 #include <vector>
 #include <type_traits>
 
@@ -48,6 +49,14 @@ void fill_cell_ghosts(Field<Dim>& phi, const std::type_identity_t<std::array<boo
 /// Zero-gradient ghost layers of a face field along every axis (the convected velocities beyond the domain).
 template <int Dim>
 void fill_face_ghosts(Field<Dim>& f);
+/// The ghosts of a field on a rank's block: f.box() is this rank's box of that kind of field (its cells, or its
+/// faces of an axis), `domain` that kind's box over the whole domain and boxes[r] rank r's. First the ghosts inside
+/// the domain from the ranks that own them, then, axis by axis over the whole span of the other axes (their ghosts
+/// included), the wall's zero gradient or the periodic image; a periodic axis must span the block (else an input
+/// error). On one process with f.box() = domain it gives what fill_cell_ghosts gives.
+template <int Dim>
+void fill_block_ghosts(Field<Dim>& f, const IndexBox<Dim>& domain, const std::type_identity_t<std::array<bool, Dim>>& periodic,
+                       const Comm& comm, std::span<const IndexBox<Dim>> boxes);
 
 /// Limited face values of phi (ghosts filled) on every face. On a non-periodic boundary face the adjacent cell's
 /// value is used (the wall flux is zero anyway; an inflow value is the caller's business).
@@ -79,7 +88,9 @@ Field<Dim> conservative_update(const Grid<Dim>& grid, const Field<Dim>& phi_old,
 /// `flux`), so sum(phi * volume) is conserved to rounding whatever the solver tolerance. Each linear solve is
 /// checked (StencilBicgstab: BiCGSTAB, a sparse LU when it stops short; at most `linear_max_iterations`
 /// BiCGSTAB iterations, 0 for twice the cell count); a solve neither answers is a simulation error. `fallbacks`, when
-/// given, counts the solves the LU answered. phi_old's ghosts are not read.
+/// given, counts the solves the LU answered. phi_old's ghosts are not read. On a rank's block (grid.owned, x spanned,
+/// `comm` the ranks of the others) every owned cell and every face of the block is computed, the faces shared with a
+/// neighbour from the same ghosts as the neighbour's: the same bits as on one process.
 /// What advance_scalar_implicit keeps from one call to the next (matrix pattern, solver, work arrays), so that a
 /// step allocates nothing: one per convected scalar. The results do not depend on it.
 template <int Dim>
@@ -89,6 +100,7 @@ struct ImplicitTransportWork {
   /// The rows' solver (StencilBicgstab: the same bits on any rank count); a periodic axis of one or two cells,
   /// where a row meets one neighbour through both faces, takes an assembled matrix and the checked Eigen solver.
   std::unique_ptr<StencilBicgstab<Dim>> stencil;
+  std::vector<IndexBox<Dim>> cell_boxes;  ///< every rank's block (the halo partners of the solution's ghosts)
   CheckedSparseSolver solver;
   FaceFields<Dim> phi_f;
   std::vector<double> rhs, x;
@@ -98,7 +110,7 @@ template <int Dim>
 Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi_old,
                                    const FaceVelocity<Dim>& vel, double dt, int corrections, FaceFluxes<Dim>& flux,
                                    int linear_max_iterations = 0, int* fallbacks = nullptr,
-                                   ImplicitTransportWork<Dim>* work = nullptr);
+                                   ImplicitTransportWork<Dim>* work = nullptr, const Comm& comm = serial_comm());
 /// The same step without the fluxes.
 template <int Dim>
 Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi_old,
