@@ -16,6 +16,8 @@
 #include "numerics/stencil_bicgstab.hpp"
 #include "numerics/band_pressure_solver.hpp"
 #include "numerics/line_loop.hpp"
+#include "parallel/decomposition.hpp"
+#include "parallel/exact_sum.hpp"
 #include "parallel/periodic_halo.hpp"
 #include "tfm/packing_limiter.hpp"
 
@@ -249,6 +251,7 @@ struct TfmSolver<Dim>::Work {
   // The solids-fraction correction E': its rows, solver and vectors (the same bits on any rank count).
   std::unique_ptr<StencilBicgstab<Dim>> e_solver;
   std::vector<double> e_rhs, e_corr;
+  Field<Dim> e_field;  // E' on the block with its ghosts (the faces on the block's edge read the neighbour's)
   ImplicitTransportWork<Dim> transport;  // the implicit solids continuity's matrix, solver and work arrays
 };
 
@@ -269,12 +272,52 @@ Grid<Dim> validated_grid(const TfmConfig& c) {
 }  // namespace
 
 template <int Dim>
-TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
-    : config_(config), grid_(validated_grid<Dim>(config)), w_(std::make_unique<Work>()) {
-  const IndexBox<Dim>& cells = grid_.domain;
+Index<Dim> tfm_blocks(int ranks, const Index<Dim>& n, const std::array<bool, Dim>& periodic) {
+  Index<Dim> best{};
+  long best_faces = -1;
+  for (int by = 1; by <= ranks; ++by) {
+    if (ranks % by != 0) continue;
+    const int bz = ranks / by;
+    if (Dim == 2 && bz != 1) continue;
+    if (by > n[1] || (periodic[1] && by > 1)) continue;
+    if (Dim == 3 && (bz > n[Dim - 1] || (periodic[Dim - 1] && bz > 1))) continue;
+    // Cell faces between blocks: (by - 1) planes of nx nz faces, (bz - 1) planes of nx ny.
+    const long faces = static_cast<long>(n[0]) * ((by - 1) * (Dim == 3 ? n[Dim - 1] : 1) + (Dim == 3 ? (bz - 1) * n[1] : 0));
+    if (best_faces >= 0 && faces >= best_faces) continue;
+    best_faces = faces;
+    best[0] = 1;
+    best[1] = by;
+    if constexpr (Dim == 3) best[2] = bz;
+  }
+  return best;
+}
+
+template <int Dim>
+TfmSolver<Dim>::TfmSolver(const TfmConfig& config, const Comm& comm)
+    : config_(config), comm_(comm), grid_(validated_grid<Dim>(config)), w_(std::make_unique<Work>()) {
+  if (comm.size() > 1) {
+    Index<Dim> n{};
+    for (int a = 0; a < Dim; ++a) n[a] = grid_.n(a);
+    const Index<Dim> blocks = tfm_blocks<Dim>(comm.size(), n, grid_.periodic);
+    if (blocks[0] == 0) {
+      throw_input_error(fmt::format("tfm: {} ranks cannot share this grid: the blocks span x and every periodic axis, "
+                                    "so the ranks must divide among the cells of the other axes", comm.size()));
+    }
+    if (config_.pressure_solver != PressureBackend::CgMultigrid) {
+      throw_input_error(fmt::format("tfm on {} ranks: gas.pressure_solver = \"cg-multigrid\" is the backend whose "
+                                    "answer does not depend on the ranks (the others run on one process)", comm.size()));
+    }
+    grid_.owned = block_of<Dim>(grid_.domain, blocks, comm.rank());
+    cell_boxes_ = all_boxes<Dim>(comm, grid_.owned);
+  } else {
+    cell_boxes_ = {grid_.owned};
+  }
+  for (int a = 0; a < Dim; ++a)
+    for (const IndexBox<Dim>& b : cell_boxes_) face_boxes_[static_cast<std::size_t>(a)].push_back(b.faces(a));
+  const IndexBox<Dim>& cells = grid_.owned;
   Work& w = *w_;
   // Rows numbered axis 0 fastest; neighbours low and high along each axis in turn (W, E, S, N[, B, F]).
-  w.e_solver = std::make_unique<StencilBicgstab<Dim>>(grid_, serial_comm());
+  w.e_solver = std::make_unique<StencilBicgstab<Dim>>(grid_, comm_);
   switch (config_.pressure_solver) {
     case PressureBackend::HyprePfmg: w.pressure = make_hypre_structured_solver<Dim>(grid_, kPressureTolerance); break;
     case PressureBackend::EigenCg:
@@ -282,7 +325,7 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
       break;
     case PressureBackend::CgMultigrid:
       // Line sums: the TFM's blocks span x (its BiCGSTAB needs it too), and exact terms were 12% of a 3D step.
-      w.pressure = make_multigrid_cg_solver<Dim>(grid_, serial_comm(), {.tolerance = kPressureTolerance, .line_sums = true});
+      w.pressure = make_multigrid_cg_solver<Dim>(grid_, comm_, {.tolerance = kPressureTolerance, .line_sums = true});
       break;
     case PressureBackend::Eigen:
       // The direct solve: a band factorisation where the rows couple within a narrow band (2D), else Eigen's
@@ -296,14 +339,26 @@ TfmSolver<Dim>::TfmSolver(const TfmConfig& config)
     *f = FaceFields<Dim>(cells, kGhost);
   }
   for (Field<Dim>* f : {&w.eps_s, &w.rhs_p, &w.p_corr, &p_s_, &mu_s_, &lambda_s_, &beta_c_, &dps_deps_, &s_.p,
-                        &s_.theta}) {
+                        &s_.theta, &w.e_field}) {
     *f = Field<Dim>(cells, kGhost);
   }
-  for (int a = 0; a < Dim; ++a) w.usc[a] = Field<Dim>(cells, 0);
+  for (int a = 0; a < Dim; ++a) w.usc[a] = Field<Dim>(cells, 1);  // the strain rate reads the neighbours
   s_.ug = FaceFields<Dim>(cells, kGhost);
   s_.us = FaceFields<Dim>(cells, kGhost);
-
   s_.eps = Field<Dim>(cells, kGhost, 1.0);
+  if (comm.size() > 1) {
+    // The initial bed integrates the pressure down whole columns: made on the whole grid, then each rank takes
+    // its block (the same bits as one process).
+    restore_state(TfmSolver<Dim>(config_, serial_comm()).save_state());
+  } else {
+    initial_bed();
+  }
+}
+
+template <int Dim>
+void TfmSolver<Dim>::initial_bed() {
+  const IndexBox<Dim>& cells = grid_.domain;
+  Work& w = *w_;
   const double dy = grid_.h[kUp];
   for_each(cells, [&](const Index<Dim>& c) {
     // Partly filled cells get the volume-weighted voidage, so the initial mass matches packed_height exactly.
@@ -363,14 +418,55 @@ template <int Dim>
 TfmSolver<Dim>::TfmSolver(TfmSolver&&) noexcept = default;
 
 template <int Dim>
+IndexBox<Dim> TfmSolver<Dim>::bottom_cells() const {
+  IndexBox<Dim> b = grid_.owned;
+  b.hi[kUp] = grid_.owned.lo[kUp] == grid_.domain.lo[kUp] ? b.lo[kUp] + 1 : b.lo[kUp];
+  return b;
+}
+
+template <int Dim>
 template <class F>
 void TfmSolver<Dim>::for_each_bottom(F&& f) const {
-  for_each(grid_.domain.inside(kUp, false), f);
+  for_each(bottom_cells(), f);
 }
 
 template <int Dim>
 void TfmSolver<Dim>::tie(Field<Dim>& f) const {
   if (grid_.any_periodic()) fill_periodic_ghosts(grid_, f);
+}
+
+template <int Dim>
+std::span<const IndexBox<Dim>> TfmSolver<Dim>::boxes_of(const Field<Dim>& f) const {
+  for (int a = 0; a < Dim; ++a)
+    if (f.box() == grid_.owned.faces(a)) return face_boxes_[static_cast<std::size_t>(a)];
+  return cell_boxes_;
+}
+
+template <int Dim>
+IndexBox<Dim> TfmSolver<Dim>::domain_of(const Field<Dim>& f) const {
+  for (int a = 0; a < Dim; ++a)
+    if (f.box() == grid_.owned.faces(a)) return grid_.domain.faces(a);
+  return grid_.domain;
+}
+
+template <int Dim>
+void TfmSolver<Dim>::halo(Field<Dim>& f) const {
+  if (comm_.size() > 1) comm_.exchange_halo_among(f, boxes_of(f), HaloCells::All);
+  tie(f);
+}
+
+template <int Dim>
+void TfmSolver<Dim>::fill_ghosts(Field<Dim>& f) const {
+  // The walls' zero gradient on every side of the domain (a face field's periodic sides too, as fill_face_ghosts),
+  // then the periodic images (a face field's face n is face 0: fill_periodic_ghosts knows it).
+  const bool cells = f.box() == grid_.owned;
+  fill_block_ghosts<Dim>(f, domain_of(f), cells ? grid_.periodic : std::array<bool, Dim>{}, comm_, boxes_of(f));
+  if (!cells) tie(f);
+}
+
+template <int Dim>
+void TfmSolver<Dim>::fail_together(const std::optional<std::string>& local, double key) const {
+  if (const auto first = comm_.first_failure(local, key)) throw_simulation_error(*first);
 }
 
 template <int Dim>
@@ -380,9 +476,9 @@ void TfmSolver<Dim>::tie(FaceFields<Dim>& f) const {
 
 template <int Dim>
 IndexBox<Dim> TfmSolver<Dim>::interior_faces(int a) const {
-  IndexBox<Dim> faces = grid_.domain.faces(a);
-  if (!periodic(a)) faces.lo[a] += 1;
-  faces.hi[a] -= 1;
+  IndexBox<Dim> faces = grid_.owned.faces(a);
+  if (!periodic(a)) faces.lo[a] = std::max(faces.lo[a], grid_.domain.lo[a] + 1);
+  faces.hi[a] = std::min(faces.hi[a], grid_.domain.hi[a]);  // face n: a wall, or face 0 again
   return faces;
 }
 
@@ -422,7 +518,8 @@ double TfmSolver<Dim>::advance(double t_stop) {
   face_fractions();                // section 2.2.1: TVD face voidages of the step
   // Eqs. 15 + 16: mixture volume flux divergence-free (P'); the E' rows need only the face fractions and the
   // closures, so a second thread writes them meanwhile.
-  side_by_side(two_tasks(static_cast<long>(grid_.domain.count())), [&] { correct_pressure(dt, false); },
+  // (One thread calls MPI: on several ranks the P' solve, which talks to them, runs first.)
+  side_by_side(two_tasks(static_cast<long>(grid_.owned.count())) && comm_.size() == 1, [&] { correct_pressure(dt, false); },
                [&] { solids_fraction_rows(dt); });
   correct_solids_fraction(dt);     // Eq. 16 with P_s implicit (E'), then P' once more
   solids_continuity(dt);           // Eq. 16 implicit, packing limiter eps >= eps* - max_compaction
@@ -445,7 +542,7 @@ void TfmSolver<Dim>::mask_trace_solids_velocity() {
   for (int d = 0; d < Dim; ++d) {
     Field<Dim>& u0 = w_->s0[d];  // the velocities before masking (s0 is rewritten by the predictor later)
     u0.data() = s_.us[d].data();
-    tie(u0);
+    halo(u0);
     const int n = grid_.n(d);
     const bool per = periodic(d);
     const IndexBox<Dim> faces = interior_faces(d);
@@ -486,9 +583,11 @@ void TfmSolver<Dim>::compute_closures_of() {
   const TfmConfig& c = config_;
   const GranularMaterial mat{c.d_p, c.rho_s, c.e};
   const double phi = c.phi_deg * 3.14159265358979323846 / 180.0;
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
+  const IndexBox<Dim>& dom = grid_.domain;
   CellVectorField<Dim>& usc = w_->usc;
   solids_velocity_cells(usc);
+  for (Field<Dim>& u : usc) halo(u);  // the strain rate of a cell on the block's edge reads the neighbour's
   // Velocity gradient of component `comp` along axis `along` from the cell centres: central inside, one-sided in
   // the outer layers (the strain rate's off-diagonal part).
   auto gradient = [&](const Index<Dim>& cell, int comp, int along) {
@@ -496,8 +595,8 @@ void TfmSolver<Dim>::compute_closures_of() {
       const int lo = grid_.wrap(along, cell[along] - 1), hi = grid_.wrap(along, cell[along] + 1);
       return (usc[comp][with<Dim>(cell, along, hi)] - usc[comp][with<Dim>(cell, along, lo)]) / (2 * grid_.h[along]);
     }
-    const int lo = std::max(cell[along] - 1, cells.lo[along]);
-    const int hi = std::min(cell[along] + 1, cells.hi[along] - 1);
+    const int lo = std::max(cell[along] - 1, dom.lo[along]);
+    const int hi = std::min(cell[along] + 1, dom.hi[along] - 1);
     if (!(hi > lo)) return 0.0;
     return (usc[comp][with<Dim>(cell, along, hi)] - usc[comp][with<Dim>(cell, along, lo)]) / ((hi - lo) * grid_.h[along]);
   };
@@ -558,20 +657,21 @@ void TfmSolver<Dim>::compute_closures_of() {
     });
   }
   // The faces of a periodic axis's face 0 read the closures of the cell beyond it.
-  for (Field<Dim>* f : {&beta_c_, &mu_s_, &lambda_s_, &p_s_, &dps_deps_, &s_.theta}) tie(*f);
+  for (Field<Dim>* f : {&beta_c_, &mu_s_, &lambda_s_, &p_s_, &dps_deps_, &s_.theta}) halo(*f);
 }
 
 template <int Dim>
 double TfmSolver<Dim>::choose_dt(double t_stop) const {
   double vmax = 0.0;
   for (int a = 0; a < Dim; ++a)
-    for_each(grid_.domain.faces(a), [&](const Index<Dim>& f) { vmax = std::max(vmax, std::abs(s_.ug[a][f])); });
+    for_each(grid_.owned.faces(a), [&](const Index<Dim>& f) { vmax = std::max(vmax, std::abs(s_.ug[a][f])); });
   for (int a = 0; a < Dim; ++a)
-    for_each(grid_.domain.faces(a), [&](const Index<Dim>& f) {
+    for_each(grid_.owned.faces(a), [&](const Index<Dim>& f) {
       // The ghost cell repeats the boundary cell, so a boundary face looks at its one cell twice.
       const double es = 1.0 - s_.eps[shifted<Dim>(f, a, -1)], es2 = 1.0 - s_.eps[f];
       if (std::min(es, es2) > kEpsSTrace) vmax = std::max(vmax, std::abs(s_.us[a][f]));
     });
+  vmax = comm_.max(vmax);  // a maximum: exact, whatever the ranks
   // Paper Table 3 item 5: dt < dy / V_max. The solids pressure is implicit through the coupled correction,
   // so its compaction-wave speed does not enter.
   double h_min = grid_.h[0];
@@ -602,15 +702,14 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
   }
   for_each_bottom([&](const Index<Dim>& c) { w.g0[kUp][c] = s_.ug[kUp][c] / s_.eps[c]; });
   for (int a = 0; a < Dim; ++a) {
-    fill_face_ghosts(w.g0[a]);
-    fill_face_ghosts(w.s0[a]);
-    tie(w.g0[a]);  // across a periodic axis the ghosts are the other side's faces
-    tie(w.s0[a]);
+    // The owners' faces across a cut, zero gradient beyond a wall, the other side's across a periodic axis.
+    fill_ghosts(w.g0[a]);
+    fill_ghosts(w.s0[a]);
     for (FaceFields<Dim>* f : {&w.dg, &w.ds, &w.gs, &w.ss}) (*f)[a].fill(0.0);
   }
   // The solids stresses (Eq. 19) the momentum cells of both components share: the normal stress of each cell and
   // the shear stress of each interior cell edge, computed once a step.
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
   const Vec<Dim> h = grid_.h;
   const FaceFields<Dim>& s0 = w.s0;
   if (!(w.div_s.box() == cells)) {
@@ -624,7 +723,7 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
     for (int d = 0; d < Dim; ++d)
       w.normal[d][cell] = 2.0 * mu_s_[cell] * (s0[d][shifted<Dim>(cell, d, 1)] - s0[d][cell]) / h[d] + lambda_s_[cell] * div;
   });
-  for (Field<Dim>& f : w.normal) tie(f);
+  for (Field<Dim>& f : w.normal) halo(f);
   for (int p = 0; p < Dim; ++p)
     for (int q = p + 1; q < Dim; ++q) {
       Field<Dim>& mu = w.mu_edge[static_cast<std::size_t>(edge_plane(p, q))];
@@ -636,8 +735,8 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
       }
       // Edges on a wall are the wall's business; on a periodic axis edge 0 is interior and edge n is edge 0.
       for (int a : {p, q}) {
-        if (!periodic(a)) edges.lo[a] += 1;
-        edges.hi[a] -= 1;
+        if (!periodic(a)) edges.lo[a] = std::max(edges.lo[a], grid_.domain.lo[a] + 1);
+        edges.hi[a] = std::min(edges.hi[a], grid_.domain.hi[a]);
       }
       for_each(edges, [&](const Index<Dim>& k) {
         const double mc = mu_corner(k, p, q);
@@ -649,7 +748,7 @@ void TfmSolver<Dim>::predict_momentum(double dt) {
     }
   if constexpr (Dim == 2) {
     // The two components read the same inputs and write disjoint outputs.
-    side_by_side(two_tasks(static_cast<long>(grid_.domain.count())), [&] { predict_momentum_along<0>(dt); },
+    side_by_side(two_tasks(static_cast<long>(grid_.owned.count())), [&] { predict_momentum_along<0>(dt); },
                  [&] { predict_momentum_along<1>(dt); });
   } else {
     predict_momentum_along<0>(dt);
@@ -690,7 +789,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
   // Interior faces of component d and, along the vertical when open, the top face (a ghost pressure keeps P =
   // P_top there).
   IndexBox<Dim> faces = interior_faces(d);
-  if (d == kUp && top_open) faces.hi[d] += 1;
+  if (d == kUp && top_open && grid_.owned.hi[kUp] == cells.hi[kUp]) faces.hi[d] += 1;
   // Lines along axis 0; a thread takes a contiguous block of them. The advection of a line is computed first, as
   // vectorised runs, then the faces one by one.
   const int n = faces.extent(0);
@@ -770,6 +869,7 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
 template <int Dim>
 void TfmSolver<Dim>::set_boundary_faces(double t) {
   const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& own = grid_.owned;
   const bool top_open = config_.boundary.top == TopBoundary::PressureOutlet;
   // Jets, the start-up ramp and the distributor non-uniformity, as for the CFD-DEM gas (src/fluid/gas_boundary).
   std::vector<double>& inlet = w_->inlet;
@@ -777,15 +877,18 @@ void TfmSolver<Dim>::set_boundary_faces(double t) {
   for (int a = 0; a < Dim; ++a)
     for (bool high : {false, true}) {
       if (periodic(a)) continue;  // no wall: face 0 is an unknown of the momentum step
-      IndexBox<Dim> side = cells.faces(a);
+      if (high ? own.hi[a] != cells.hi[a] : own.lo[a] != cells.lo[a]) continue;  // this block has no such side
+      IndexBox<Dim> side = own.faces(a);
       side.lo[a] = high ? cells.hi[a] : cells.lo[a];
       side.hi[a] = side.lo[a] + 1;
-      std::size_t k = 0;
       for_each(side, [&](const Index<Dim>& f) {
         if (a != kUp) {
           s_.ug[a][f] = s_.us[a][f] = 0.0;  // walls
         } else if (!high) {
-          s_.ug[a][f] = inlet[k++];  // the distributor
+          // The profile lists the domain's bottom faces x fastest (then z).
+          std::size_t k = static_cast<std::size_t>(f[0] - cells.lo[0]);
+          if constexpr (Dim == 3) k += static_cast<std::size_t>(cells.extent(0)) * static_cast<std::size_t>(f[2] - cells.lo[2]);
+          s_.ug[a][f] = inlet[k];  // the distributor
           s_.us[a][f] = 0.0;
         } else {
           s_.us[a][f] = 0.0;
@@ -802,7 +905,7 @@ void TfmSolver<Dim>::face_fractions() {
   std::vector<double>& es = w.eps_s.data();
   const std::vector<double>& e = s_.eps.data();
   for (std::size_t k = 0; k < es.size(); ++k) es[k] = 1.0 - e[k];  // the ghosts too: they repeat the boundary
-  side_by_side(two_tasks(static_cast<long>(grid_.domain.count())),
+  side_by_side(two_tasks(static_cast<long>(grid_.owned.count())),
                [&] { tvd_face_values(grid_, config_.limiter, s_.eps, FaceVelocity<Dim>{s_.ug, grid_.periodic}, w.eg); },
                [&] { tvd_face_values(grid_, config_.limiter, w.eps_s, FaceVelocity<Dim>{s_.us, grid_.periodic}, w.es); });
   for_each_bottom([&](const Index<Dim>& c) { w.eg[kUp][c] = 1.0; });  // gas enters through the distributor undiluted
@@ -812,7 +915,7 @@ template <int Dim>
 void TfmSolver<Dim>::outflow(Eigen::VectorXd& out_g, Eigen::VectorXd& out_s) const {
   // Net outflow of gas and of solids volume from every cell with the current face velocities.
   const Work& w = *w_;
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
   const int n = static_cast<int>(cells.count());
   out_g.resize(n);
   out_s.resize(n);
@@ -858,11 +961,12 @@ void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
   // fixes the gas-pressure correction P'. The second call (after the E' correction) has the same coefficients:
   // it reuses the first call's factorisation instead of factorising the same matrix again.
   Work& w = *w_;
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
   const bool top_open = config_.boundary.top == TopBoundary::PressureOutlet;
-  auto top_faces = [&]() {
+  auto top_faces = [&]() {  // the outlet's faces in this block (none below the top)
     IndexBox<Dim> top = cells.faces(kUp);
-    top.lo[kUp] = cells.hi[kUp];
+    top.lo[kUp] = grid_.domain.hi[kUp];
+    top.hi[kUp] = cells.hi[kUp] == grid_.domain.hi[kUp] ? top.lo[kUp] + 1 : top.lo[kUp];
     return top;
   };
   if (!same_matrix) {
@@ -893,7 +997,7 @@ void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
         "{}: {} (mixture volume constraint, Eqs. 15 + 16). Likely cause: face velocities that are no longer finite "
         "(a solids stress or drag that overflowed). Remedy: {}", step_label(dt), e.what(), remedy()));
   }
-  tie(w.p_corr);  // face 0 of a periodic axis reads the last cell through the ghost
+  halo(w.p_corr);  // a face on the block's edge (or a periodic face 0) reads the cell beyond through the ghost
   const Field<Dim>& pc = w.p_corr;
   for (int a = 0; a < Dim; ++a) {
     for_each(interior_faces(a), [&](const Index<Dim>& f) {
@@ -913,7 +1017,7 @@ void TfmSolver<Dim>::correct_pressure(double dt, bool same_matrix) {
     });
   }
   for_each(cells, [&](const Index<Dim>& c) { s_.p[c] += pc[c]; });
-  tie(s_.p);
+  halo(s_.p);
 }
 
 template <int Dim>
@@ -925,7 +1029,8 @@ void TfmSolver<Dim>::solids_fraction_rows(double dt) {
   // (V/dt + K_P sum_f a_f) E'_P - sum_f a_f K_nb E'_nb, a_f the face's area / distance times its solids flux
   // response, written in place into the fixed pattern.
   Work& w = *w_;
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
+  const IndexBox<Dim>& dom = grid_.domain;
   const double vol = grid_.cell_measure();
   std::array<double, Dim> ratio{};
   for (int a = 0; a < Dim; ++a) ratio[a] = face_area(grid_, a) / grid_.h[a];
@@ -933,7 +1038,7 @@ void TfmSolver<Dim>::solids_fraction_rows(double dt) {
     std::array<double, 2 * Dim> coef{}, k{};
     for (int a = 0; a < Dim; ++a) {
       const Index<Dim> hi = shifted<Dim>(cell, a, 1);
-      const bool has_lo = periodic(a) || cell[a] > cells.lo[a], has_hi = periodic(a) || cell[a] + 1 < cells.hi[a];
+      const bool has_lo = periodic(a) || cell[a] > dom.lo[a], has_hi = periodic(a) || cell[a] + 1 < dom.hi[a];
       coef[2 * a] = has_lo ? ratio[a] * w.es[a][cell] * w.ss[a][cell] : 0.0;
       coef[2 * a + 1] = has_hi ? ratio[a] * w.es[a][hi] * w.ss[a][hi] : 0.0;
       k[2 * a] = has_lo ? dps_deps_[shifted<Dim>(cell, a, -1)] : 0.0;
@@ -948,11 +1053,50 @@ void TfmSolver<Dim>::solids_fraction_rows(double dt) {
 }
 
 template <int Dim>
+void TfmSolver<Dim>::e_correction_failed(double dt, const LinearSolveOutcome& e_res) const {
+  // Name the cell: the row that is not finite (a global row), else the stiffest cell (largest dP_s/d eps_s; the
+  // smallest index among equals), found over every rank; its owner words the message.
+  const IndexBox<Dim>& dom = grid_.domain;
+  auto cell_of = [&](long row) {
+    Index<Dim> c{};
+    for (int a = 0; a < Dim; ++a) {
+      c[a] = dom.lo[a] + static_cast<int>(row % dom.extent(a));
+      row /= dom.extent(a);
+    }
+    return c;
+  };
+  double key = e_res.bad_row;
+  if (e_res.bad_row < 0) {
+    double worst = -1.0, mine = 0.0;
+    for_each(grid_.owned, [&](const Index<Dim>& x) {
+      if (dps_deps_[x] > worst) {
+        worst = dps_deps_[x];
+        mine = cell_row(dom, x);
+      }
+    });
+    const double top = comm_.max(worst);
+    key = -comm_.max(worst == top ? -mine : -1e300);
+  }
+  const Index<Dim> bad = cell_of(static_cast<long>(key));
+  std::optional<std::string> msg;
+  if (grid_.owned.contains(bad)) {
+    msg = fmt::format(
+        "{}: the solids-fraction correction (implicit solids pressure, E' equation) failed: {}. At {}: voidage "
+        "{:.4g}, solids pressure {:.4g} Pa, dP_s/d eps_s {:.4g} Pa, granular temperature {:.4g} m^2/s^2. Likely "
+        "cause: a solids pressure that is not finite or too stiff for the step (a voidage far below eps*, or a "
+        "runaway granular temperature). Remedy: {}",
+        step_label(dt), e_res.why, where(bad), s_.eps[bad], p_s_[bad], dps_deps_[bad], s_.theta[bad], remedy());
+  }
+  fail_together(msg, key);
+  throw_simulation_error("tfm: the solids-fraction correction failed");  // not reached: one rank owns the cell
+}
+
+template <int Dim>
 void TfmSolver<Dim>::correct_solids_fraction(double dt) {
   // The E' system (rows by solids_fraction_rows) with the solids outflow after the first P' correction.
   const TfmConfig& c = config_;
   Work& w = *w_;
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
   outflow(w.out_g, w.out_s);
   w.e_solver->set_tolerance(1e-12);
   w.e_solver->set_max_iterations(c.linear_max_iterations);
@@ -962,33 +1106,10 @@ void TfmSolver<Dim>::correct_solids_fraction(double dt) {
   e_corr.clear();  // a zero initial guess
   const LinearSolveOutcome e_res = w.e_solver->solve(w.e_rhs, e_corr);
   if (e_res.fell_back) ++linear_fallbacks_;
-  if (!e_res.ok) {
-    // Name the cell: the row that is not finite, else the stiffest cell (largest dP_s/d eps_s).
-    Index<Dim> bad = cells.lo;
-    if (e_res.bad_row >= 0) {
-      for_each(cells, [&](const Index<Dim>& x) {
-        if (cell_row(cells, x) == e_res.bad_row) bad = x;
-      });
-    } else {
-      double worst = -1.0;
-      for_each(cells, [&](const Index<Dim>& x) {
-        if (dps_deps_[x] > worst) {
-          worst = dps_deps_[x];
-          bad = x;
-        }
-      });
-    }
-    throw_simulation_error(fmt::format(
-        "{}: the solids-fraction correction (implicit solids pressure, E' equation) failed: {}. At {}: voidage "
-        "{:.4g}, solids pressure {:.4g} Pa, dP_s/d eps_s {:.4g} Pa, granular temperature {:.4g} m^2/s^2. Likely "
-        "cause: a solids pressure that is not finite or too stiff for the step (a voidage far below eps*, or a "
-        "runaway granular temperature). Remedy: {}",
-        step_label(dt), e_res.why, where(bad), s_.eps[bad], p_s_[bad], dps_deps_[bad], s_.theta[bad], remedy()));
-  }
-  auto wk = [&](Index<Dim> x) {
-    for (int a = 0; a < Dim; ++a) x[a] = grid_.wrap(a, x[a]);  // the cell before a periodic face 0
-    return dps_deps_[x] * e_corr[static_cast<std::size_t>(cell_row(cells, x))];
-  };
+  if (!e_res.ok) e_correction_failed(dt, e_res);  // the same outcome on every rank
+  for_each(cells, [&](const Index<Dim>& x) { w.e_field[x] = e_corr[static_cast<std::size_t>(cell_row(cells, x))]; });
+  halo(w.e_field);  // the faces on the block's edge (and a periodic face 0) read the cell beyond
+  auto wk = [&](const Index<Dim>& x) { return dps_deps_[x] * w.e_field[x]; };
   for (int a = 0; a < Dim; ++a) {
     for_each(interior_faces(a), [&](const Index<Dim>& f) {
       const double g = (wk(f) - wk(shifted<Dim>(f, a, -1))) / grid_.h[a];
@@ -1008,7 +1129,7 @@ void TfmSolver<Dim>::solids_continuity(double dt) {
   // Eq. 16, fully implicit with the limiter by deferred correction, as conservative face fluxes (per unit area).
   try {
     advance_scalar_implicit(grid_, c.limiter, w.eps_s, FaceVelocity<Dim>{s_.us, grid_.periodic}, dt, c.mass_corrections, w.fs,
-                            c.linear_max_iterations, &linear_fallbacks_, &w.transport);
+                            c.linear_max_iterations, &linear_fallbacks_, &w.transport, comm_);
   } catch (const Error& e) {
     throw_simulation_error(fmt::format("{}: {}. Remedy: {}", step_label(dt), e.what(), remedy()));
   }
@@ -1016,7 +1137,7 @@ void TfmSolver<Dim>::solids_continuity(double dt) {
   // Packing limit (docs/model-tfm.md): eps >= eps* - max_compaction exactly. The solids pressure stiffens the bed
   // only through a linearisation, so the bound is kept on the fluxes: inflows into a cell that would pass it are
   // scaled down (Zalesak-type one-sided limiter, Jacobi sweeps: no dependence on a sweep order).
-  packing_sweeps_ = limit_packing(grid_, w.eps_s, dt, 1.0 - (c.eps_star - packing_allowance(c)), w.fs).sweeps;
+  packing_sweeps_ = limit_packing(grid_, w.eps_s, dt, 1.0 - (c.eps_star - packing_allowance(c)), w.fs, 1000, comm_).sweeps;
   w.eps_s_new = conservative_update(grid_, w.eps_s, w.fs, dt);
 }
 
@@ -1029,7 +1150,7 @@ void TfmSolver<Dim>::close_gas_continuity(double dt) {
   // correction and of the implicit continuity as well as the volume the limiter held back).
   const TfmConfig& c = config_;
   Work& w = *w_;
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
   for (int a = 0; a < Dim; ++a) {
     w.fg_shift[a].fill(0.0);
     for_each(cells.faces(a), [&](const Index<Dim>& f) { w.fs_corr[a][f] = w.es[a][f] * s_.us[a][f]; });
@@ -1047,7 +1168,9 @@ void TfmSolver<Dim>::close_gas_continuity(double dt) {
     const double vol = grid_.cell_measure();
     std::array<double, Dim> area{};
     for (int a = 0; a < Dim; ++a) area[a] = face_area(grid_, a);
-    double sum = 0.0;
+    // Each x-line summed in order, the lines exactly: the same bits on any number of ranks (x is never cut).
+    ExactSum sum;
+    double line = 0.0;
     for_each(cells, [&](const Index<Dim>& x) {
       const double accumulation = vol * ((1.0 - w.eps_s_new[x]) - s_.eps[x]) / dt;
       double out = 0.0;
@@ -1056,17 +1179,21 @@ void TfmSolver<Dim>::close_gas_continuity(double dt) {
         const double t = area[a] * (w.eg[a][hi] * s_.ug[a][hi] - w.eg[a][x] * s_.ug[a][x]);
         out = a == 0 ? t : out + t;
       }
-      sum += std::abs(accumulation + out);
+      line = x[0] == cells.lo[0] ? std::abs(accumulation + out) : line + std::abs(accumulation + out);
+      if (x[0] == cells.hi[0] - 1) sum.add(line);
     });
     // Normalised as the gas solver's mass residual (src/fluid/gas_solver.cpp), in volume rather than mass:
     // by the largest of the inlet flow, the largest gas face speed times the bottom area, and a round-off floor.
-    double inflow = 0.0, speed = 0.0;
-    for_each_bottom([&](const Index<Dim>& f) { inflow += area[kUp] * s_.ug[kUp][f]; });
+    ExactSum inflow_sum;
+    double speed = 0.0;
+    for_each_bottom([&](const Index<Dim>& f) { inflow_sum.add(area[kUp] * s_.ug[kUp][f]); });
     for (int a = 0; a < Dim; ++a)
       for_each(cells.faces(a), [&](const Index<Dim>& f) { speed = std::max(speed, std::abs(s_.ug[a][f])); });
+    const double residual = comm_.sum(sum), inflow = comm_.sum(inflow_sum);
+    speed = comm_.max(speed);
     const double bottom = bottom_area();
     const double v_floor = std::max(1e-12, 1e-6 * std::sqrt(gravity_norm() * grid_.length(kUp)));
-    s_.gas_residual = sum / std::max({std::abs(inflow), speed * bottom, v_floor * bottom});
+    s_.gas_residual = residual / std::max({std::abs(inflow), speed * bottom, v_floor * bottom});
   }
 
   // eps = 1 - eps_s closes Eq. 15.
@@ -1077,8 +1204,8 @@ void TfmSolver<Dim>::close_gas_continuity(double dt) {
     if (eps_new < c.eps_star) dense_change = std::max(dense_change, s_.eps[x] - eps_new);
     s_.eps[x] = eps_new;
   });
-  fill_cell_ghosts(s_.eps, grid_.periodic);
-  w.dense_change = dense_change;
+  fill_ghosts(s_.eps);
+  w.dense_change = comm_.max(dense_change);
 }
 
 template <int Dim>
@@ -1116,13 +1243,22 @@ std::string TfmSolver<Dim>::remedy() const {
 
 template <int Dim>
 void TfmSolver<Dim>::check_health(double dt) const {
-  const IndexBox<Dim>& cells = grid_.domain;
+  const IndexBox<Dim>& cells = grid_.owned;
+  const IndexBox<Dim>& dom = grid_.domain;
   const double t = s_.time;
-  auto fail = [&](const std::string& what, const Index<Dim>& c, const std::string& cause) {
-    throw_simulation_error(fmt::format("tfm: the run went bad at t = {:.6g} s (step {}, dt = {:.3g} s): {} in {}. "
-                                       "Likely cause: {}. Remedy: {}",
-                                       t, s_.steps, dt, what, where(c), cause, remedy()));
+  // The first failure in the order one process scans the domain (cells, then the faces axis by axis, then Theta):
+  // each rank keeps its first with that position as key, and every rank reports the smallest (fail_together).
+  std::optional<std::string> first;
+  double first_key = 0.0;
+  auto fail = [&](const std::string& what, const Index<Dim>& c, const std::string& cause, double key) {
+    if (first) return;
+    first = fmt::format("tfm: the run went bad at t = {:.6g} s (step {}, dt = {:.3g} s): {} in {}. Likely cause: {}. "
+                        "Remedy: {}", t, s_.steps, dt, what, where(c), cause, remedy());
+    first_key = key;
   };
+  const double n_cells = static_cast<double>(dom.count());
+  double n_faces = 0.0;
+  for (int a = 0; a < Dim; ++a) n_faces = std::max(n_faces, static_cast<double>(dom.faces(a).count()));
   const char* overflow = "a solids pressure or viscosity that overflowed, or a linear solve fed with such values";
   // The deferred TVD correction of the implicit continuity undershoots a little at the bed surface (solids
   // fractions down to -1e-5 in the paper's case); below the trace level that carries no momentum it is a defect.
@@ -1131,11 +1267,12 @@ void TfmSolver<Dim>::check_health(double dt) const {
     const double e = s_.eps[c];
     if (!std::isfinite(e) || !std::isfinite(s_.p[c]) || !std::isfinite(s_.theta[c])) {
       fail(fmt::format("a non-finite value (voidage {}, pressure {}, granular temperature {})", e, s_.p[c],
-                       s_.theta[c]), c, overflow);
+                       s_.theta[c]), c, overflow, cell_row(dom, c));
     }
     if (e < -kVoidageSlack || e > 1.0 + kVoidageSlack) {
       fail(fmt::format("the voidage is {:.9g}, outside [0, 1]", e), c,
-           "a solids flux out of a cell larger than its content: the time step outran the solids velocity");
+           "a solids flux out of a cell larger than its content: the time step outran the solids velocity",
+           cell_row(dom, c));
     }
   });
   const double v_ref = reference_speed();
@@ -1144,54 +1281,58 @@ void TfmSolver<Dim>::check_health(double dt) const {
     for_each(cells.faces(a), [&](const Index<Dim>& f) {
       const double ug = s_.ug[a][f], us = s_.us[a][f];
       // The common case first: finite and slower than both limits (no cell needs to be looked at).
-      if (std::abs(us) <= v_ref && std::abs(ug) <= v_gas_max) return;
+      if (first || (std::abs(us) <= v_ref && std::abs(ug) <= v_gas_max)) return;
+      const double key = n_cells + a * n_faces + cell_row(dom.faces(a), f);
       // The cell on the inner side of the face (the last cell for the high boundary face).
-      const Index<Dim> ci = with<Dim>(f, a, std::min(f[a], cells.hi[a] - 1));
+      const Index<Dim> ci = with<Dim>(f, a, std::min(f[a], dom.hi[a] - 1));
       if (!std::isfinite(ug) || !std::isfinite(us)) {
-        fail(fmt::format("a non-finite face velocity (gas {}, solids {} m/s)", ug, us), ci, overflow);
+        fail(fmt::format("a non-finite face velocity (gas {}, solids {} m/s)", ug, us), ci, overflow, key);
       }
       // The ghost cell repeats the boundary cell, so a boundary face looks at its one cell twice.
       const bool carries = std::min(1.0 - s_.eps[shifted<Dim>(f, a, -1)], 1.0 - s_.eps[f]) > kEpsSTrace;
       if (carries && std::abs(us) > v_ref) {
         fail(fmt::format("the solids move at {:.4g} m/s, faster than anything that drives them ({:.3g} m/s: the "
                          "fastest interstitial inflow plus free fall over the domain height)", std::abs(us), v_ref),
-             ci, "an instability of the solids momentum");
+             ci, "an instability of the solids momentum", key);
       }
       if (std::abs(ug) > v_gas_max) {
         fail(fmt::format("the gas moves at {:.4g} m/s, ten times the fastest interstitial inflow plus free fall "
                          "({:.3g} m/s)", std::abs(ug), v_ref), ci,
-             "an instability of the coupled gas-solids momentum");
+             "an instability of the coupled gas-solids momentum", key);
       }
     });
   // Theta is the mean square fluctuation velocity per direction: its root cannot exceed the speed scale either.
   for_each(cells, [&](const Index<Dim>& c) {
-    if (1.0 - s_.eps[c] < kBedSolidsFraction) return;
-    if (s_.theta[c] > v_ref * v_ref) {
+    if (1.0 - s_.eps[c] < kBedSolidsFraction || !(s_.theta[c] > v_ref * v_ref)) return;
+    {
       fail(fmt::format("the granular temperature is {:.4g} m^2/s^2 (fluctuation speed {:.4g} m/s, above the {:.3g} "
                        "m/s that drives the bed) at solids fraction {:.3g}",
                        s_.theta[c], std::sqrt(s_.theta[c]), v_ref, 1.0 - s_.eps[c]),
-           c, "a runaway granular temperature: production by shear outgrows the collisional dissipation");
+           c, "a runaway granular temperature: production by shear outgrows the collisional dissipation",
+           n_cells + Dim * n_faces + cell_row(dom, c));
     }
   });
+  fail_together(first, first_key);
 }
 
 template <int Dim>
 double TfmSolver<Dim>::bed_granular_temperature_max() const {
   double m = 0.0;
-  for_each(grid_.domain, [&](const Index<Dim>& c) {
+  for_each(grid_.owned, [&](const Index<Dim>& c) {
     if (1.0 - s_.eps[c] >= kBedSolidsFraction) m = std::max(m, s_.theta[c]);
   });
-  return m;
+  return comm_.max(m);
 }
 
 template <int Dim>
 double TfmSolver<Dim>::solids_mean_granular_temperature() const {
-  double num = 0.0, den = 0.0;
-  for_each(grid_.domain, [&](const Index<Dim>& c) {
+  ExactSum num_sum, den_sum;  // the same bits on any number of ranks
+  for_each(grid_.owned, [&](const Index<Dim>& c) {
     const double es = 1.0 - s_.eps[c];
-    num += es * s_.theta[c];
-    den += es;
+    num_sum.add(es * s_.theta[c]);
+    den_sum.add(es);
   });
+  const double num = comm_.sum(num_sum), den = comm_.sum(den_sum);
   return den > 0.0 ? num / den : 0.0;
 }
 
@@ -1203,34 +1344,35 @@ void TfmSolver<Dim>::advance_to(double t) {
 
 template <int Dim>
 double TfmSolver<Dim>::solids_mass() const {
-  double sum = 0.0;
-  for_each(grid_.domain, [&](const Index<Dim>& c) { sum += 1.0 - s_.eps[c]; });
-  double m = sum * config_.rho_s;
+  ExactSum solids;
+  for_each(grid_.owned, [&](const Index<Dim>& c) { solids.add(1.0 - s_.eps[c]); });
+  double m = comm_.sum(solids) * config_.rho_s;
   for (int a = 0; a < Dim; ++a) m *= grid_.h[a];
   return m;
 }
 
 template <int Dim>
 double TfmSolver<Dim>::pressure_drop() const {
-  double sum = 0.0;
+  ExactSum bottom;
   const int ny = grid_.n(kUp);
-  double count = 0.0;
   for_each_bottom([&](const Index<Dim>& c) {
-    sum += ny > 1 ? 1.5 * s_.p[c] - 0.5 * s_.p[shifted<Dim>(c, kUp, 1)] : s_.p[c];
-    count += 1.0;
+    bottom.add(ny > 1 ? 1.5 * s_.p[c] - 0.5 * s_.p[shifted<Dim>(c, kUp, 1)] : s_.p[c]);
   });
+  double count = 1.0;  // the bottom faces: nx (nz)
+  for (int a = 0; a < Dim; ++a)
+    if (a != kUp) count *= grid_.n(a);
   const double top = (config_.boundary.top == TopBoundary::PressureOutlet) ? config_.boundary.top_pressure : 0.0;
-  return sum / count - top;
+  return comm_.sum(bottom) / count - top;
 }
 
 template <int Dim>
 double TfmSolver<Dim>::contents_weight_per_area() const {
-  double sum = 0.0;
-  for_each(grid_.domain, [&](const Index<Dim>& c) {
+  ExactSum contents;
+  for_each(grid_.owned, [&](const Index<Dim>& c) {
     const double e = s_.eps[c];
-    sum += e * config_.rho_g + (1.0 - e) * config_.rho_s;
+    contents.add(e * config_.rho_g + (1.0 - e) * config_.rho_s);
   });
-  double m = sum;
+  double m = comm_.sum(contents);
   for (int a = 0; a < Dim; ++a) m *= grid_.h[a];
   return m * std::abs(config_.domain.gravity.y) / bottom_area();
 }
@@ -1245,21 +1387,21 @@ double TfmSolver<Dim>::max_solids_speed() const {
       }
     });
   }
-  return vmax;
+  return comm_.max(vmax);
 }
 
 template <int Dim>
 double TfmSolver<Dim>::min_voidage() const {
-  double m = s_.eps[grid_.domain.lo];
-  for_each(grid_.domain, [&](const Index<Dim>& c) { m = std::min(m, s_.eps[c]); });
-  return m;
+  double m = s_.eps[grid_.owned.lo];
+  for_each(grid_.owned, [&](const Index<Dim>& c) { m = std::min(m, s_.eps[c]); });
+  return comm_.min(m);
 }
 
 template <int Dim>
 void TfmSolver<Dim>::gas_velocity_cells(CellVectorField<Dim>& u) const {
   for (int a = 0; a < Dim; ++a) {
-    if (!(u[a].box() == grid_.domain)) u[a] = Field<Dim>(grid_.domain, 0);
-    for_each(grid_.domain, [&](const Index<Dim>& c) {
+    if (!(u[a].box() == grid_.owned)) u[a] = Field<Dim>(grid_.owned, 1);
+    for_each(grid_.owned, [&](const Index<Dim>& c) {
       const double low = a == kUp ? vg_interstitial(c) : s_.ug[a][c];
       u[a][c] = 0.5 * (low + s_.ug[a][shifted<Dim>(c, a, 1)]);
     });
@@ -1269,8 +1411,8 @@ void TfmSolver<Dim>::gas_velocity_cells(CellVectorField<Dim>& u) const {
 template <int Dim>
 void TfmSolver<Dim>::solids_velocity_cells(CellVectorField<Dim>& u) const {
   for (int a = 0; a < Dim; ++a) {
-    if (!(u[a].box() == grid_.domain)) u[a] = Field<Dim>(grid_.domain, 0);
-    for_each(grid_.domain, [&](const Index<Dim>& c) { u[a][c] = 0.5 * (s_.us[a][c] + s_.us[a][shifted<Dim>(c, a, 1)]); });
+    if (!(u[a].box() == grid_.owned)) u[a] = Field<Dim>(grid_.owned, 1);
+    for_each(grid_.owned, [&](const Index<Dim>& c) { u[a][c] = 0.5 * (s_.us[a][c] + s_.us[a][shifted<Dim>(c, a, 1)]); });
   }
 }
 
@@ -1285,14 +1427,34 @@ NamedArray named(const char* name, const Field<Dim>& f) {
   return a;
 }
 NamedArray scalar(const char* name, double v) { return NamedArray{name, 1, 1, {v}, 1}; }
+
+
+// The field over the whole domain (`whole`: its kind's domain box) from every rank's part of it (a face plane shared
+// by two blocks holds the same bits on both).
+template <int Dim>
+Field<Dim> gathered(const Comm& comm, const Field<Dim>& f, const IndexBox<Dim>& whole) {
+  Field<Dim> all(whole, 0);
+  Bytes mine;
+  pack(mine, f.box());
+  for_each(f.box(), [&](const Index<Dim>& c) { pack(mine, f[c]); });
+  for (const Bytes& from : comm.allgather(mine)) {
+    Unpacker in(from);
+    const auto box = in.get<IndexBox<Dim>>();
+    for_each(box, [&](const Index<Dim>& c) { all[c] = in.get<double>(); });
+  }
+  return all;
+}
 }  // namespace
 
 template <int Dim>
 std::vector<NamedArray> TfmSolver<Dim>::save_state() const {
-  std::vector<NamedArray> out{named("eps", s_.eps), named("p", s_.p)};
-  for (int a = 0; a < Dim; ++a) out.push_back(named(kGasNames[a], s_.ug[a]));
-  for (int a = 0; a < Dim; ++a) out.push_back(named(kSolidsNames[a], s_.us[a]));
-  out.push_back(named("theta", s_.theta));
+  auto whole = [&](const char* name, const Field<Dim>& f) {
+    return comm_.size() == 1 ? named(name, f) : named(name, gathered(comm_, f, domain_of(f)));
+  };
+  std::vector<NamedArray> out{whole("eps", s_.eps), whole("p", s_.p)};
+  for (int a = 0; a < Dim; ++a) out.push_back(whole(kGasNames[a], s_.ug[a]));
+  for (int a = 0; a < Dim; ++a) out.push_back(whole(kSolidsNames[a], s_.us[a]));
+  out.push_back(whole("theta", s_.theta));
   out.push_back(scalar("time", s_.time));
   out.push_back(scalar("dt", s_.dt));
   out.push_back(scalar("steps", static_cast<double>(s_.steps)));
@@ -1316,8 +1478,14 @@ void TfmSolver<Dim>::restore_state(const std::vector<NamedArray>& arrays) {
     throw_input_error(std::string("tfm restart: array '") + name + "' is missing");
   };
   auto load = [&](const char* name, Field<Dim>& f) {
-    const IndexBox<Dim>& b = f.box();
-    f.set_interior(find(name, b.extent(0), b.extent(1), Dim == 3 ? b.extent(Dim - 1) : 1).values);
+    // The arrays cover the domain; a rank takes its block.
+    const IndexBox<Dim> b = domain_of(f);
+    const std::vector<double>& v = find(name, b.extent(0), b.extent(1), Dim == 3 ? b.extent(Dim - 1) : 1).values;
+    if (f.box() == b) {
+      f.set_interior(v);
+      return;
+    }
+    for_each(f.box(), [&](const Index<Dim>& c) { f[c] = v[static_cast<std::size_t>(cell_row(b, c))]; });
   };
   load("eps", next.eps);
   load("p", next.p);
@@ -1333,11 +1501,12 @@ void TfmSolver<Dim>::restore_state(const std::vector<NamedArray>& arrays) {
   for (const NamedArray& a : arrays) {
     if (a.name == "gas_residual" && a.values.size() == 1) next.gas_residual = a.values[0];
   }
-  fill_cell_ghosts(next.eps, grid_.periodic);
   s_ = std::move(next);
-  // Checkpoints hold the domain only: the periodic images the step reads are rebuilt from it.
-  tie(s_.p);
-  tie(s_.theta);
+  // Checkpoints hold the domain only: the ghosts the step reads (the neighbours' and the periodic images) are
+  // rebuilt from it.
+  fill_ghosts(s_.eps);
+  halo(s_.p);
+  halo(s_.theta);
   tie(s_.ug);
   tie(s_.us);
 }

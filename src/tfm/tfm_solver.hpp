@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <array>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "core/grid.hpp"
 #include "numerics/pressure_correction.hpp"
 #include "numerics/stencil_matrix.hpp"
+#include "parallel/comm.hpp"
 #include "tfm/tfm_config.hpp"
 #include "tfm/tvd_convection.hpp"
 
@@ -29,6 +32,12 @@ struct NamedArray {
 };
 
 /// The complete state: fields plus time, last time step and step count.
+/// The blocks per axis of a TFM grid of n cells on `ranks` ranks: x never cut (the inner products of the solves sum
+/// whole x-lines), a periodic axis never cut (its images stay on the rank), of the rest the cut with the fewest cell
+/// faces between blocks; all zeros when the ranks cannot be placed so.
+template <int Dim>
+Index<Dim> tfm_blocks(int ranks, const Index<Dim>& n, const std::array<bool, Dim>& periodic);
+
 template <int Dim>
 struct TfmState {
   Field<Dim> eps;        ///< voidage (gas volume fraction), cells
@@ -57,8 +66,10 @@ class TfmSolver {
 
   /// Validates the config (its domain must have this Dim), sets up the grid and the initial bed: uniform
   /// eps_initial below packed_height, gas above, gas at the background inflow, P from the steady gas momentum
-  /// balance. Throws an input error.
-  explicit TfmSolver(const TfmConfig& config);
+  /// balance. Throws an input error. On the ranks of `comm` (which must outlive the solver) each holds a block of
+  /// the grid (tfm_blocks: x never cut) and the run is the same bits as on one process; above one rank the pressure
+  /// backend must be cg-multigrid (refused by name otherwise).
+  explicit TfmSolver(const TfmConfig& config, const Comm& comm = serial_comm());
   ~TfmSolver();
   TfmSolver(TfmSolver&&) noexcept;
 
@@ -116,14 +127,21 @@ class TfmSolver {
   void gas_velocity_cells(CellVectorField<Dim>& u) const;
   void solids_velocity_cells(CellVectorField<Dim>& u) const;
 
-  /// The complete state as named arrays, for checkpoints; restoring it gives a bit-identical continuation.
+  /// The complete state as named arrays over the whole domain (gathered from every rank's block, on every rank),
+  /// for checkpoints; restoring it gives a bit-identical continuation, on any number of ranks.
   std::vector<NamedArray> save_state() const;
-  /// Restores save_state() output; throws an input error if a name or a size does not match this grid.
+  /// Restores save_state() output (each rank takes its block); throws an input error if a name or a size does not
+  /// match this grid.
   void restore_state(const std::vector<NamedArray>& arrays);
+  /// The ranks this solver runs on.
+  const Comm& comm() const { return comm_; }
 
  private:
   struct Work;
 
+  /// The bed at t = 0 on one process (the whole grid): eps_initial below packed_height (with the seeded noise),
+  /// the background inflow, the pressure of the steady gas momentum balance integrated down each column.
+  void initial_bed();
   // The stages of advance(), in order.
   void mask_trace_solids_velocity();
   void compute_closures();
@@ -138,6 +156,7 @@ class TfmSolver {
   void correct_pressure(double dt, bool same_matrix);
   void solids_fraction_rows(double dt);
   void correct_solids_fraction(double dt);
+  [[noreturn]] void e_correction_failed(double dt, const LinearSolveOutcome& outcome) const;
   void solids_continuity(double dt);
   void close_gas_continuity(double dt);
 
@@ -158,14 +177,32 @@ class TfmSolver {
   /// The ghosts of f along the periodic axes (face n of a face field included) from their images in the domain.
   void tie(Field<Dim>& f) const;
   void tie(FaceFields<Dim>& f) const;
-  /// The faces of axis a between two cells: 1 .. n - 1 on a walled axis, 0 .. n - 1 on a periodic one (face 0
-  /// joins the last cell to the first; face n is face 0 and is set by tie()).
+  /// The faces of axis a between two cells, of this rank's block: 1 .. n - 1 on a walled axis, 0 .. n - 1 on a
+  /// periodic one (face 0 joins the last cell to the first; face n is face 0 and is set by tie()), within the
+  /// block's faces (a face plane shared with a neighbour rank is computed by both, from the same ghosts).
   IndexBox<Dim> interior_faces(int a) const;
+  /// tie(f) after the ghosts inside the domain came from the ranks that own them (f: cells or faces of the block).
+  void halo(Field<Dim>& f) const;
+  /// The ghosts of a cell or face field of the block: the owners', then the walls' zero gradient and the periodic
+  /// images (the voidage, the velocities entering the step).
+  void fill_ghosts(Field<Dim>& f) const;
+  /// Every rank's box of a field of the kind of f (cells, or the faces of one axis).
+  std::span<const IndexBox<Dim>> boxes_of(const Field<Dim>& f) const;
+  /// The domain's box of f's kind.
+  IndexBox<Dim> domain_of(const Field<Dim>& f) const;
+  /// The cells of the domain's bottom row in this rank's block (empty when the block does not reach the bottom).
+  IndexBox<Dim> bottom_cells() const;
+  /// A failure some ranks may have found, reported alike on every rank: the message of the smallest key (the global
+  /// index of the cell) wins.
+  void fail_together(const std::optional<std::string>& local, double key) const;
   template <class F>
   void for_each_bottom(F&& f) const;
 
   TfmConfig config_;
+  const Comm& comm_;
   Grid<Dim> grid_;
+  std::vector<IndexBox<Dim>> cell_boxes_;                  ///< every rank's block
+  std::array<std::vector<IndexBox<Dim>>, Dim> face_boxes_;  ///< every rank's faces of each axis
   TfmState<Dim> s_;
   // Closures of the step (derived each step, not state).
   Field<Dim> p_s_, mu_s_, lambda_s_, beta_c_, dps_deps_;

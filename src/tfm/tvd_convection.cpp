@@ -72,10 +72,20 @@ void fill_block_ghosts(Field<Dim>& f, const IndexBox<Dim>& domain, const std::ty
       IndexBox<Dim> side = f.allocated();
       side.lo[a] = high ? b.hi[a] : b.lo[a] - g;
       side.hi[a] = high ? b.hi[a] + g : b.lo[a];
-      for_each(side, [&](const Index<Dim>& c) {
+      auto source = [&](int i) { return per ? domain.lo[a] + ((i - domain.lo[a]) % n + n) % n : (high ? b.hi[a] - 1 : b.lo[a]); };
+      double* v = f.data().data();
+      IndexBox<Dim> lines = side;
+      lines.hi[0] = lines.lo[0] + 1;
+      const int len = side.extent(0);
+      for_each(lines, [&](const Index<Dim>& c) {
+        double* line = v + f.index(c);  // line[i]: the entry at c[0] + i (axis 0 has unit stride)
+        if (a == 0) {
+          for (int i = 0; i < len; ++i) line[i] = line[source(c[0] + i) - c[0]];
+          return;
+        }
         Index<Dim> src = c;
-        src[a] = per ? domain.lo[a] + ((c[a] - domain.lo[a]) % n + n) % n : (high ? b.hi[a] - 1 : b.lo[a]);
-        f[c] = f[src];
+        src[a] = source(c[a]);
+        std::copy_n(v + f.index(src), len, line);
       });
     }
   }
