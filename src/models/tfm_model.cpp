@@ -16,7 +16,7 @@ namespace {
 template <int Dim>
 class TfmModel final : public ModelRun {
  public:
-  explicit TfmModel(const CaseConfig& c) : config_(c), solver_(c.tfm) { refresh(); }
+  TfmModel(const CaseConfig& c, const Comm& comm) : config_(c), comm_(comm), solver_(c.tfm, comm) { refresh(); }
 
   double time() const override { return solver_.time(); }
   double last_step() const override { return last_dt_; }
@@ -85,10 +85,12 @@ class TfmModel final : public ModelRun {
   }
 
   void save(Hdf5File* file) const override {
+    // Gathered by every rank (a collective), written by the one that holds the file.
+    const std::vector<tfm::NamedArray> state = solver_.save_state();
     if (file == nullptr) return;
     Hdf5File& f = *file;
     f.create_group("tfm");
-    for (const tfm::NamedArray& a : solver_.save_state()) {
+    for (const tfm::NamedArray& a : state) {
       f.write("tfm/" + a.name, a.values);
       f.set_attribute("tfm/" + a.name, "nx", static_cast<std::int64_t>(a.nx));
       f.set_attribute("tfm/" + a.name, "ny", static_cast<std::int64_t>(a.ny));
@@ -126,9 +128,15 @@ class TfmModel final : public ModelRun {
   }
 
  private:
-  // The observers read contiguous cell arrays (axis 0 fastest), the solver's fields carry ghost layers.
+  // The observers read contiguous cell arrays (axis 0 fastest), the solver's fields carry ghost layers. On several
+  // ranks they are rank 0's (the observers and writers are), gathered there after every step: every rank takes
+  // part in a step, while only rank 0 asks for the fields.
   void refresh() {
     const tfm::TfmState<Dim>& s = solver_.state();
+    if (comm_.size() > 1) {
+      gather_on_root(s);
+      return;
+    }
     eps_ = s.eps.interior();
     p_ = s.p.interior();
     theta_ = s.theta.interior();
@@ -140,7 +148,33 @@ class TfmModel final : public ModelRun {
     }
   }
 
+  void gather_on_root(const tfm::TfmState<Dim>& s) {
+    solver_.gas_velocity_cells(ug_cells_);
+    solver_.solids_velocity_cells(us_cells_);
+    std::vector<const Field<Dim>*> fields{&s.eps, &s.p, &s.theta};
+    for (int a = 0; a < Dim; ++a) fields.push_back(&ug_cells_[a]);
+    for (int a = 0; a < Dim; ++a) fields.push_back(&us_cells_[a]);
+    const IndexBox<Dim>& own = solver_.grid().owned;
+    Bytes mine;
+    pack(mine, own);
+    for (const Field<Dim>* f : fields) for_each(own, [&](const Index<Dim>& c) { pack(mine, (*f)[c]); });
+    const std::vector<Bytes> all = comm_.gather(mine, 0);
+    if (comm_.rank() != 0) return;
+    const IndexBox<Dim>& dom = solver_.grid().domain;
+    std::vector<std::vector<double>*> out{&eps_, &p_, &theta_};
+    for (int a = 0; a < Dim; ++a) out.push_back(&ug_[a]);
+    for (int a = 0; a < Dim; ++a) out.push_back(&us_[a]);
+    for (std::vector<double>* v : out) v->resize(dom.count());
+    for (const Bytes& from : all) {
+      Unpacker in(from);
+      const auto box = in.get<IndexBox<Dim>>();
+      for (std::vector<double>* v : out)
+        for_each(box, [&](const Index<Dim>& c) { (*v)[static_cast<std::size_t>(tfm::cell_row(dom, c))] = in.get<double>(); });
+    }
+  }
+
   CaseConfig config_;
+  const Comm& comm_;
   tfm::TfmSolver<Dim> solver_;
   tfm::CellVectorField<Dim> ug_cells_, us_cells_;
   std::vector<double> eps_, p_, theta_;
@@ -150,9 +184,9 @@ class TfmModel final : public ModelRun {
 
 }  // namespace
 
-std::unique_ptr<ModelRun> make_tfm_model(const CaseConfig& config) {
-  if (config.domain.dimension == 3) return std::make_unique<TfmModel<3>>(config);
-  return std::make_unique<TfmModel<2>>(config);
+std::unique_ptr<ModelRun> make_tfm_model(const CaseConfig& config, const Comm& comm) {
+  if (config.domain.dimension == 3) return std::make_unique<TfmModel<3>>(config, comm);
+  return std::make_unique<TfmModel<2>>(config, comm);
 }
 
 }  // namespace fluidbed

@@ -457,12 +457,7 @@ class Run {
   void build_model() {
     try {
       if (cfg_.model == Model::Tfm) {
-        if (comm_.size() > 1) {
-          throw_input_error(fmt::format("{}: the two-fluid model runs on one rank in this version (started on {} "
-                                        "ranks); run it without mpirun, with --threads N", cfg_.source_path,
-                                        comm_.size()));
-        }
-        model_ = make_tfm_model(cfg_);
+        model_ = make_tfm_model(cfg_, comm_);
       } else {
         model_ = make_dem_model(cfg_, out_.string(), !restart_, log(), comm_);
       }

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# The two-fluid model across ranks (issue 30, item 4; docs/parallel.md): a case gives the same bytes on 1, 2, 3 and 4
+# ranks in every output a run writes (monitor.csv without wall_s, bubble*.csv, field .vti frames, tracers, the .pvd
+# series): the paper's TFM case to 0.2 s, the 3D column to 0.05 s, a 3D bed periodic in x and z; a checkpoint written
+# on 3 ranks continues on 2 and on 1 to the uninterrupted run's bits. The runs take gas.pressure_solver =
+# "cg-multigrid", the backend whose answer does not depend on the ranks. CI runs as root on 2 cores, hence Open MPI's
+# root permission and oversubscription.
+source "$(dirname "$0")/lib.sh"
+source "$(dirname "$0")/reliability.bash"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+check "mpiexec is installed (make deps)" command -v mpiexec
+mg=(--set gas.pressure_solver='"cg-multigrid"')
+
+mpi_ok() {  # mpi_ok NAME RANKS fluidbed-run-arguments...
+  local name=$1 n=$2
+  shift 2
+  expect 0 "" "$name" mpiexec -n "$n" --oversubscribe "$FLUIDBED" run "$@" --quiet
+}
+
+ranks_agree() {  # ranks_agree NAME CASE EXTRA...: one process, then 2, 3 and 4 ranks, all the same bytes
+  local name=$1 case_file=$2
+  shift 2
+  run_ok "$name: one process" run "$case_file" --out "$WORK/$name-1" --threads 1 "${mg[@]}" "$@"
+  local n
+  for n in 2 3 4; do
+    mpi_ok "$name: $n ranks" "$n" "$case_file" --out "$WORK/$name-$n" --threads 1 "${mg[@]}" "$@"
+    same_results "$name: $n ranks vs one process" "$WORK/$name-1" "$WORK/$name-$n"
+  done
+}
+
+ranks_agree paper "$ROOT/cases/gera1998/tfm.toml" --end-time 0.2 --set output.checkpoint_interval=0.0
+check "paper: the jet bubble was tracked" test "$(wc -l < "$WORK/paper-1/bubble.csv")" -gt 5
+ranks_agree column "$ROOT/cases/tfm3d/column.toml" --end-time 0.05 --set output.interval=0.025 \
+  --set output.checkpoint_interval=0.0
+
+# Periodic in x and z, the jet in the corner at the periodic planes (tests/cli/periodic_tfm.sh's bed).
+cat >"$WORK/ptfm.toml" <<'TOML'
+case.name = "ptfm"
+case.model = "tfm"
+case.dimension = 3
+case.end_time = 0.03
+domain.width = 0.2
+domain.height = 0.4
+domain.depth = 0.08
+domain.gravity = [0.0, -9.81, 0.0]
+domain.periodic = ["x", "z"]
+grid.cell_width = 0.02
+grid.cell_height = 0.02
+grid.cell_depth = 0.02
+inlet.velocity = 1.8
+[[inlet.jet]]
+shape = "rectangle"
+centre = 0.03
+centre_z = 0.03
+width = 0.04
+depth = 0.04
+velocity = 20.0
+start = 0.0
+end = 1.0
+[tfm]
+packed_height = 0.2
+[output]
+interval = 0.01
+monitor_interval = 0.002
+checkpoint_interval = 0.0
+TOML
+ranks_agree periodic "$WORK/ptfm.toml"
+
+# Restart across rank counts: 3 ranks to 0.1 s, then 2 ranks and 1 rank from its checkpoint to 0.2 s.
+mpi_ok "restart: 3 ranks to 0.1 s" 3 "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/split" --end-time 0.1 --threads 1 \
+  "${mg[@]}" --set output.checkpoint_interval=0.0
+cp -r "$WORK/split" "$WORK/split1"
+mpi_ok "restart: continued on 2 ranks to 0.2 s" 2 "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/split" --end-time 0.2 \
+  --threads 1 "${mg[@]}" --set output.checkpoint_interval=0.0 --restart "$WORK/split/checkpoints/final.h5"
+same_results "3 ranks then 2" "$WORK/paper-1" "$WORK/split"
+run_ok "restart: continued on 1 process to 0.2 s" run "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/split1" \
+  --end-time 0.2 --threads 1 "${mg[@]}" --set output.checkpoint_interval=0.0 --restart "$WORK/split1/checkpoints/final.h5"
+same_results "3 ranks then 1" "$WORK/paper-1" "$WORK/split1"
+finish
