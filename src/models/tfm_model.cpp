@@ -1,5 +1,6 @@
 #include "models/tfm_model.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <utility>
@@ -28,8 +29,35 @@ class TfmModel final : public ModelRun {
     for (double interval : {config_.output.monitor_interval, config_.output.interval, config_.output.checkpoint_interval}) {
       if (interval > 0.0) t_stop = std::min(t_stop, (std::floor(t / interval + 1e-9) + 1.0) * interval);
     }
+    const double c0 = comm_.seconds_communicating();
+    const auto w0 = std::chrono::steady_clock::now();
     last_dt_ = solver_.advance(t_stop);
+    const double c1 = comm_.seconds_communicating();
+    const auto w1 = std::chrono::steady_clock::now();
     refresh();
+    step_s_ += std::chrono::duration<double>(w1 - w0).count();
+    step_comm_s_ += c1 - c0;
+    gather_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - w1).count();
+    ++steps_;
+  }
+  /// On several ranks: the blocks, and where a rank's time went (the solver's step, its communication with the
+  /// waits for the other ranks, the observers' gather on rank 0), the most and the least of any rank.
+  std::string parallel_summary() const override {
+    if (comm_.size() == 1) return {};
+    const IndexBox<Dim>& own = solver_.grid().owned;
+    double v[8] = {static_cast<double>(own.count()), -static_cast<double>(own.count()), step_s_, -step_s_,
+                   step_comm_s_, -step_comm_s_, gather_s_, -gather_s_};
+    comm_.max(std::span<double>(v));
+    const Grid<Dim>& g = solver_.grid();
+    std::string blocks;
+    for (int a = 0; a < Dim; ++a) blocks += (a ? " x " : "") + std::to_string(g.n(a) / std::max(1, own.extent(a)));
+    const double steps = std::max(1.0, static_cast<double>(steps_));
+    return fmt::format("decomposition: the TFM grid cut {} over {} ranks (x never cut), cells per rank "
+                       "{:.0f}-{:.0f}; over {} steps, per rank: the step {:.2f}-{:.2f} s, of it inside communication "
+                       "(waits for the other ranks included) {:.3f}-{:.3f} s ({:.2f}-{:.2f} ms a step), the observers' "
+                       "gather on rank 0 {:.3f}-{:.3f} s",
+                       blocks, comm_.size(), -v[1], v[0], steps_, -v[3], v[2], -v[5], v[4], -v[5] / steps * 1e3,
+                       v[4] / steps * 1e3, -v[7], v[6]);
   }
   /// The step is adaptive and lands on the output times: no scheduling slack is needed.
   double macro_dt() const override { return 0.0; }
@@ -176,6 +204,8 @@ class TfmModel final : public ModelRun {
   CaseConfig config_;
   const Comm& comm_;
   tfm::TfmSolver<Dim> solver_;
+  double step_s_ = 0.0, step_comm_s_ = 0.0, gather_s_ = 0.0;  // this process's time in steps, their MPI, the gather
+  long steps_ = 0;
   tfm::CellVectorField<Dim> ug_cells_, us_cells_;
   std::vector<double> eps_, p_, theta_;
   std::array<std::vector<double>, Dim> ug_, us_;
