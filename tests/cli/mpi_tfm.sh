@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The two-fluid model across ranks (issue 30, item 4; docs/parallel.md): a case gives the same bytes on 1, 2, 3 and 4
 # ranks in every output a run writes (monitor.csv without wall_s, bubble*.csv, field .vti frames, tracers, the .pvd
-# series): the paper's TFM case to 0.2 s, the 3D column to 0.05 s, a 3D bed periodic in x and z; a checkpoint written
+# series): the paper's TFM case to 0.2 s, the 3D column to 0.05 s, a 3D bed periodic in x and z; the other two
+# rheologies with other limiters, drag laws and a pulsed inlet on 3 ranks; 2 ranks x 2 threads; a checkpoint written
 # on 3 ranks continues on 2 and on 1 to the uninterrupted run's bits. The runs take gas.pressure_solver =
 # "cg-multigrid", the backend whose answer does not depend on the ranks. CI runs as root on 2 cores, hence Open MPI's
 # root permission and oversubscription.
@@ -66,6 +67,25 @@ monitor_interval = 0.002
 checkpoint_interval = 0.0
 TOML
 ranks_agree periodic "$WORK/ptfm.toml"
+
+# The other rheologies, limiters, drag laws and an inlet schedule, and two threads a rank (hybrid MPI x OpenMP):
+# one process against 3 ranks, and against 2 ranks x 2 threads.
+variant() {  # variant NAME CASE EXTRA...
+  local name=$1 case_file=$2
+  shift 2
+  run_ok "$name: one process" run "$case_file" --out "$WORK/$name-1" --threads 1 "${mg[@]}" "$@"
+  mpi_ok "$name: 3 ranks" 3 "$case_file" --out "$WORK/$name-3" --threads 1 "${mg[@]}" "$@"
+  same_results "$name: 3 ranks vs one process" "$WORK/$name-1" "$WORK/$name-3"
+}
+variant viscous "$ROOT/cases/gera1998/tfm-constant-viscosity.toml" --end-time 0.1 --set tfm.limiter='"van_leer"' \
+  --set coupling.drag_law='"gidaspow"' --set output.checkpoint_interval=0.0
+variant inviscid "$ROOT/cases/gera1998/tfm-inviscid.toml" --end-time 0.1 --set tfm.limiter='"minmod"' \
+  --set coupling.drag_law='"di-felice"' --set inlet.schedule='"sine"' --set inlet.amplitude=0.3 \
+  --set inlet.frequency=10 --set output.checkpoint_interval=0.0
+expect 0 "" "paper: 2 ranks x 2 threads" env OMP_NUM_THREADS=2 mpiexec -n 2 --oversubscribe "$FLUIDBED" run \
+  "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/paper-2x2" --threads 2 --end-time 0.2 "${mg[@]}" \
+  --set output.checkpoint_interval=0.0 --quiet
+same_results "paper: 2 ranks x 2 threads vs one process" "$WORK/paper-1" "$WORK/paper-2x2"
 
 # Restart across rank counts: 3 ranks to 0.1 s, then 2 ranks and 1 rank from its checkpoint to 0.2 s.
 mpi_ok "restart: 3 ranks to 0.1 s" 3 "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/split" --end-time 0.1 --threads 1 \
