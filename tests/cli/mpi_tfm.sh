@@ -2,7 +2,8 @@
 # The two-fluid model across ranks (issue 30, item 4; docs/parallel.md): a case gives the same bytes on 1, 2, 3 and 4
 # ranks in every output a run writes (monitor.csv without wall_s, bubble*.csv, field .vti frames, tracers, the .pvd
 # series): the paper's TFM case to 0.2 s, the 3D column to 0.05 s, a 3D bed periodic in x and z; the other two
-# rheologies with other limiters, drag laws and a pulsed inlet on 3 ranks; 2 ranks x 2 threads; a checkpoint written
+# rheologies with other limiters, drag laws and a pulsed inlet on 3 ranks; 2 ranks x 2 threads; probes after every
+# step and time averages on 2 ranks; a checkpoint written
 # on 3 ranks continues on 2 and on 1 to the uninterrupted run's bits. The runs take gas.pressure_solver =
 # "cg-multigrid", the backend whose answer does not depend on the ranks. CI runs as root on 2 cores, hence Open MPI's
 # root permission and oversubscription.
@@ -86,6 +87,42 @@ expect 0 "" "paper: 2 ranks x 2 threads" env OMP_NUM_THREADS=2 mpiexec -n 2 --ov
   "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/paper-2x2" --threads 2 --end-time 0.2 "${mg[@]}" \
   --set output.checkpoint_interval=0.0 --quiet
 same_results "paper: 2 ranks x 2 threads vs one process" "$WORK/paper-1" "$WORK/paper-2x2"
+
+# Probes after every step and time averages (rank 0's observers, on the fields gathered from the blocks).
+cp "$ROOT/cases/gera1998/tfm.toml" "$WORK/obs.toml"
+cat >> "$WORK/obs.toml" <<'TOML'
+
+[probes]
+interval = 0
+
+[[probe]]
+name = "tap"
+position = [0.15, 0.1]
+
+[[probe]]
+kind = "plane"
+name = "h20"
+height = 0.2
+
+[[probe]]
+kind = "pressure_drop"
+name = "bed"
+height = 0.02
+height_top = 0.5
+
+[averages]
+t_start = 0.02
+t_end = 0.08
+interval = 0.005
+TOML
+run_ok "observers: one process" run "$WORK/obs.toml" --out "$WORK/obs-1" --threads 1 --end-time 0.1 "${mg[@]}" \
+  --set output.checkpoint_interval=0.0
+mpi_ok "observers: 2 ranks" 2 "$WORK/obs.toml" --out "$WORK/obs-2" --threads 1 --end-time 0.1 "${mg[@]}" \
+  --set output.checkpoint_interval=0.0
+for f in probes.csv averages.csv averages.vti; do
+  check "observers: $f exists" test -s "$WORK/obs-1/$f"
+  check "observers: $f identical on 2 ranks" cmp "$WORK/obs-1/$f" "$WORK/obs-2/$f"
+done
 
 # Restart across rank counts: 3 ranks to 0.1 s, then 2 ranks and 1 rank from its checkpoint to 0.2 s.
 mpi_ok "restart: 3 ranks to 0.1 s" 3 "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/split" --end-time 0.1 --threads 1 \
