@@ -1513,5 +1513,7 @@ void TfmSolver<Dim>::restore_state(const std::vector<NamedArray>& arrays) {
 
 template class TfmSolver<2>;
 template class TfmSolver<3>;
+template Index<2> tfm_blocks<2>(int, const Index<2>&, const std::array<bool, 2>&);
+template Index<3> tfm_blocks<3>(int, const Index<3>&, const std::array<bool, 3>&);
 
 }  // namespace fluidbed::tfm
