@@ -3,6 +3,7 @@
 // rank owns, the range a kernel loops over. Loops run with axis 0 fastest, the storage order of Field<Dim>.
 #include <array>
 #include <cstddef>
+#include <type_traits>
 
 namespace fluidbed {
 
@@ -109,6 +110,28 @@ inline void for_each(const IndexBox<Dim>& b, F&& f) {
       }
     }
   }
+}
+
+/// Position of index c among the box's indices counted axis 0 fastest (the row numbering of every linear system).
+template <int Dim>
+constexpr int cell_row(const IndexBox<Dim>& b, const std::type_identity_t<Index<Dim>>& c) {
+  int r = 0, stride = 1;
+  for (int a = 0; a < Dim; ++a) {
+    r += (c[a] - b.lo[a]) * stride;
+    stride *= b.extent(a);
+  }
+  return r;
+}
+
+/// The index at position `row` of the box (the inverse of cell_row).
+template <int Dim>
+constexpr Index<Dim> cell_at(const IndexBox<Dim>& b, long row) {
+  Index<Dim> c{};
+  for (int a = 0; a < Dim; ++a) {
+    c[a] = b.lo[a] + static_cast<int>(row % b.extent(a));
+    row /= b.extent(a);
+  }
+  return c;
 }
 
 /// The index one step along axis a (s = +1 or -1).

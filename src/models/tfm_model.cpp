@@ -182,23 +182,18 @@ class TfmModel final : public ModelRun {
     std::vector<const Field<Dim>*> fields{&s.eps, &s.p, &s.theta};
     for (int a = 0; a < Dim; ++a) fields.push_back(&ug_cells_[a]);
     for (int a = 0; a < Dim; ++a) fields.push_back(&us_cells_[a]);
-    const IndexBox<Dim>& own = solver_.grid().owned;
-    Bytes mine;
-    pack(mine, own);
-    for (const Field<Dim>* f : fields) for_each(own, [&](const Index<Dim>& c) { pack(mine, (*f)[c]); });
-    const std::vector<Bytes> all = comm_.gather(mine, 0);
-    if (comm_.rank() != 0) return;
-    const IndexBox<Dim>& dom = solver_.grid().domain;
+    // Rank 0 receives every block into fields over the domain without ghosts (their storage is the observers'
+    // layout); the others receive nothing.
+    const bool root = comm_.rank() == 0;
+    if (root && whole_.empty()) whole_.assign(fields.size(), Field<Dim>(solver_.grid().domain, 0));
+    std::vector<Field<Dim>*> into;
+    for (Field<Dim>& f : whole_) into.push_back(&f);
+    gather_parts<Dim>(comm_, solver_.grid().owned, fields, into, 0);
+    if (!root) return;
     std::vector<std::vector<double>*> out{&eps_, &p_, &theta_};
     for (int a = 0; a < Dim; ++a) out.push_back(&ug_[a]);
     for (int a = 0; a < Dim; ++a) out.push_back(&us_[a]);
-    for (std::vector<double>* v : out) v->resize(dom.count());
-    for (const Bytes& from : all) {
-      Unpacker in(from);
-      const auto box = in.get<IndexBox<Dim>>();
-      for (std::vector<double>* v : out)
-        for_each(box, [&](const Index<Dim>& c) { (*v)[static_cast<std::size_t>(tfm::cell_row(dom, c))] = in.get<double>(); });
-    }
+    for (std::size_t k = 0; k < out.size(); ++k) *out[k] = whole_[k].data();
   }
 
   CaseConfig config_;
@@ -207,6 +202,7 @@ class TfmModel final : public ModelRun {
   double step_s_ = 0.0, step_comm_s_ = 0.0, gather_s_ = 0.0;  // this process's time in steps, their MPI, the gather
   long steps_ = 0;
   tfm::CellVectorField<Dim> ug_cells_, us_cells_;
+  std::vector<Field<Dim>> whole_;  // rank 0, several ranks: the gathered fields (eps, p, Theta, u_g, u_s)
   std::vector<double> eps_, p_, theta_;
   std::array<std::vector<double>, Dim> ug_, us_;
   double last_dt_ = 0.0;

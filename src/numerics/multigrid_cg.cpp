@@ -309,15 +309,8 @@ void MultigridCg<Dim>::gather_redundant(const Level<Dim>& fine, const Level<Dim>
   // Each rank computed the coarse cells of its first children; where the coarse level is not shared every rank
   // receives them all, so it and the levels below are the same on every rank.
   if (!fine.shared || coarse.shared) return;
-  const IndexBox<Dim> mine = first_children_box(fine);
-  Bytes msg;
-  pack(msg, mine);
-  for (Field<Dim>* f : fields) for_each(mine, [&](const Index<Dim>& c) { pack(msg, (*f)[c]); });
-  for (const Bytes& from : comm_.allgather(msg)) {
-    Unpacker in(from);
-    const auto box = in.get<IndexBox<Dim>>();
-    for (Field<Dim>* f : fields) for_each(box, [&](const Index<Dim>& c) { (*f)[c] = in.get<double>(); });
-  }
+  const std::vector<const Field<Dim>*> mine(fields.begin(), fields.end());
+  gather_parts<Dim>(comm_, first_children_box(fine), mine, fields);
 }
 
 template <int Dim>
@@ -325,14 +318,7 @@ void MultigridCg<Dim>::factorise_coarsest() {
   const Level<Dim>& l = levels_.back();
   const IndexBox<Dim>& box = l.grid.owned;
   const auto m = static_cast<Eigen::Index>(box.count());
-  auto row = [&](const Index<Dim>& c) {
-    Eigen::Index r = 0, stride = 1;
-    for (int a = 0; a < Dim; ++a) {
-      r += (c[a] - box.lo[a]) * stride;
-      stride *= box.extent(a);
-    }
-    return r;
-  };
+  auto row = [&](const Index<Dim>& c) { return static_cast<Eigen::Index>(cell_row(box, c)); };
   Eigen::MatrixXd a_mat = Eigen::MatrixXd::Zero(m, m);
   for_each(box, [&](const Index<Dim>& c) {
     const Eigen::Index i = row(c);

@@ -84,16 +84,7 @@ StencilBicgstab<Dim>::StencilBicgstab(const Grid<Dim>& grid, const Comm& comm) :
 
 template <int Dim>
 int StencilBicgstab<Dim>::global_row(int row) const {
-  const IndexBox<Dim>& own = grid_.owned;
-  const IndexBox<Dim>& dom = grid_.domain;
-  long g = 0, stride = 1;
-  for (int a = 0; a < Dim; ++a) {
-    const int c = own.lo[a] + row % own.extent(a);
-    row /= own.extent(a);
-    g += (c - dom.lo[a]) * stride;
-    stride *= dom.extent(a);
-  }
-  return static_cast<int>(g);
+  return cell_row(grid_.domain, cell_at(grid_.owned, row));
 }
 
 template <int Dim>
@@ -267,12 +258,7 @@ void StencilBicgstab<Dim>::direct(std::span<const double> b, std::vector<double>
   Unpacker u(all);
   while (!u.done()) {
     const auto g = u.get<std::int64_t>();
-    Index<Dim> c{};
-    long rest = g;
-    for (int a = 0; a < Dim; ++a) {
-      c[a] = dom.lo[a] + static_cast<int>(rest % dom.extent(a));
-      rest /= dom.extent(a);
-    }
+    const Index<Dim> c = cell_at(dom, g);
     trip.emplace_back(g, g, u.get<double>());
     for (int k = 0; k < kSlots; ++k) {
       const double value = u.get<double>();
@@ -281,12 +267,7 @@ void StencilBicgstab<Dim>::direct(std::span<const double> b, std::vector<double>
       nb[a] += (k % 2 == 0) ? -1 : 1;
       nb[a] = grid_.wrap(a, nb[a]);
       if (value == 0.0 || nb[a] < dom.lo[a] || nb[a] >= dom.hi[a]) continue;  // a wall has no neighbour
-      long col = 0, stride = 1;
-      for (int e = 0; e < Dim; ++e) {
-        col += (nb[e] - dom.lo[e]) * stride;
-        stride *= dom.extent(e);
-      }
-      trip.emplace_back(g, col, value);
+      trip.emplace_back(g, cell_row(dom, nb), value);
     }
     rhs[g] = u.get<double>();
   }

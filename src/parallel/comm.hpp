@@ -191,6 +191,22 @@ std::vector<IndexBox<Dim>> all_boxes(const Comm& comm, const IndexBox<Dim>& mine
   return out;
 }
 
+/// Every rank's part `mine` of the fields `from` (packed together, field by field), written into `into` at the same
+/// indices: on every rank (root < 0) or on rank `root` only (the others receive nothing). `into` may be `from`, each
+/// rank completing its own fields, or fields over a larger box (the whole domain) that holds every rank's part.
+template <int Dim>
+void gather_parts(const Comm& comm, const IndexBox<Dim>& mine, std::span<const Field<Dim>* const> from,
+                  std::span<Field<Dim>* const> into, int root = -1) {
+  Bytes msg;
+  pack(msg, mine);
+  for (const Field<Dim>* f : from) for_each(mine, [&](const Index<Dim>& c) { pack(msg, (*f)[c]); });
+  for (const Bytes& part : root < 0 ? comm.allgather(msg) : comm.gather(msg, root)) {
+    Unpacker in(part);
+    const auto box = in.get<IndexBox<Dim>>();
+    for (Field<Dim>* f : into) for_each(box, [&](const Index<Dim>& c) { (*f)[c] = in.get<double>(); });
+  }
+}
+
 /// The communicator of a run on one process.
 inline const Comm& serial_comm() {
   static const SerialComm comm;

@@ -1057,14 +1057,6 @@ void TfmSolver<Dim>::e_correction_failed(double dt, const LinearSolveOutcome& e_
   // Name the cell: the row that is not finite (a global row), else the stiffest cell (largest dP_s/d eps_s; the
   // smallest index among equals), found over every rank; its owner words the message.
   const IndexBox<Dim>& dom = grid_.domain;
-  auto cell_of = [&](long row) {
-    Index<Dim> c{};
-    for (int a = 0; a < Dim; ++a) {
-      c[a] = dom.lo[a] + static_cast<int>(row % dom.extent(a));
-      row /= dom.extent(a);
-    }
-    return c;
-  };
   double key = e_res.bad_row;
   if (e_res.bad_row < 0) {
     double worst = -1.0, mine = 0.0;
@@ -1077,7 +1069,7 @@ void TfmSolver<Dim>::e_correction_failed(double dt, const LinearSolveOutcome& e_
     const double top = comm_.max(worst);
     key = -comm_.max(worst == top ? -mine : -1e300);
   }
-  const Index<Dim> bad = cell_of(static_cast<long>(key));
+  const Index<Dim> bad = cell_at(dom, static_cast<long>(key));
   std::optional<std::string> msg;
   if (grid_.owned.contains(bad)) {
     msg = fmt::format(
@@ -1434,14 +1426,9 @@ NamedArray scalar(const char* name, double v) { return NamedArray{name, 1, 1, {v
 template <int Dim>
 Field<Dim> gathered(const Comm& comm, const Field<Dim>& f, const IndexBox<Dim>& whole) {
   Field<Dim> all(whole, 0);
-  Bytes mine;
-  pack(mine, f.box());
-  for_each(f.box(), [&](const Index<Dim>& c) { pack(mine, f[c]); });
-  for (const Bytes& from : comm.allgather(mine)) {
-    Unpacker in(from);
-    const auto box = in.get<IndexBox<Dim>>();
-    for_each(box, [&](const Index<Dim>& c) { all[c] = in.get<double>(); });
-  }
+  const Field<Dim>* from = &f;
+  Field<Dim>* into = &all;
+  gather_parts<Dim>(comm, f.box(), std::span(&from, 1), std::span(&into, 1));
   return all;
 }
 }  // namespace

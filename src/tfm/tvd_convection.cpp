@@ -15,38 +15,8 @@ namespace fluidbed::tfm {
 
 template <int Dim>
 void fill_cell_ghosts(Field<Dim>& phi, const std::type_identity_t<std::array<bool, Dim>>& periodic) {
-  const IndexBox<Dim>& b = phi.box();
-  const int g = phi.ghost();
-  double* v = phi.data().data();
-  // Axis by axis over the layers already filled along the earlier axes, so that edges and corners are filled too.
-  // Each ghost line along axis 0 is copied from its source line (axis 0 has unit stride); along axis 0 itself the
-  // ghosts of each line are set from the line's own cells.
-  IndexBox<Dim> span = b;
-  for (int a = 0; a < Dim; ++a) {
-    const int n = b.extent(a);
-    for (bool high : {false, true}) {
-      const IndexBox<Dim> out = span.outside(a, high, g);
-      IndexBox<Dim> lines = out;
-      lines.hi[0] = lines.lo[0] + 1;
-      const int len = out.extent(0);
-      if (out.empty()) continue;
-      for_each(lines, [&](const Index<Dim>& c) {
-        if (a == 0) {
-          double* line = v + phi.index(c);  // line[i] is the entry at c[0] + i
-          for (int i = 0; i < len; ++i) {
-            const int ci = c[0] + i;
-            const int src = periodic[a] ? b.lo[0] + ((ci - b.lo[0]) % n + n) % n : (high ? b.hi[0] - 1 : b.lo[0]);
-            line[i] = line[src - c[0]];
-          }
-          return;
-        }
-        Index<Dim> src = c;
-        src[a] = periodic[a] ? b.lo[a] + ((c[a] - b.lo[a]) % n + n) % n : (high ? b.hi[a] - 1 : b.lo[a]);
-        std::copy_n(v + phi.index(src), len, v + phi.index(c));
-      });
-    }
-    span = span.grown(a, g);
-  }
+  // One process holding the whole box: the block fill with no owner to ask.
+  fill_block_ghosts<Dim>(phi, phi.box(), periodic, serial_comm(), {});
 }
 
 template <int Dim>
@@ -335,12 +305,9 @@ template <int Dim>
 [[noreturn]] void transport_failed(const IndexBox<Dim>& box, const LinearSolveOutcome& res, int pass) {
   std::string cell;
   if (res.bad_row >= 0) {
-    int r = res.bad_row;
+    const Index<Dim> c = cell_at(box, res.bad_row);
     cell = " (cell (";
-    for (int a = 0; a < Dim; ++a) {
-      cell += (a > 0 ? ", " : "") + std::to_string(box.lo[a] + r % box.extent(a));
-      r /= box.extent(a);
-    }
+    for (int a = 0; a < Dim; ++a) cell += (a > 0 ? ", " : "") + std::to_string(c[a]);
     cell += "))";
   }
   throw_simulation_error("implicit transport of the solids fraction (Eq. 16), pass " + std::to_string(pass) + ": " +
@@ -388,14 +355,9 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& g, Limiter limiter, const Fi
   ImplicitTransportWork<Dim>& w = *work;
   Eigen::SparseMatrix<double, Eigen::RowMajor> tmat;
   const bool stencil = upwind_rows<Dim>(g, vel, dt, w, tmat, comm);
-  // The solution's ghosts: from the ranks that own them, else the walls' zero gradient or the periodic image.
-  auto fill = [&](Field<Dim>& f) {
-    if (stencil) {
-      fill_block_ghosts<Dim>(f, g.domain, vel.periodic, comm, w.cell_boxes);
-    } else {
-      fill_cell_ghosts(f, vel.periodic);
-    }
-  };
+  // The solution's ghosts: from the ranks that own them, else the walls' zero gradient or the periodic image (one
+  // process without the stencil solver: no owner to ask).
+  auto fill = [&](Field<Dim>& f) { fill_block_ghosts<Dim>(f, g.domain, vel.periodic, comm, w.cell_boxes); };
   if (stencil) {
     w.stencil->set_tolerance(1e-12);
     w.stencil->set_max_iterations(linear_max_iterations);

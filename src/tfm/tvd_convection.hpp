@@ -53,7 +53,7 @@ void fill_face_ghosts(Field<Dim>& f);
 /// faces of an axis), `domain` that kind's box over the whole domain and boxes[r] rank r's. First the ghosts inside
 /// the domain from the ranks that own them, then, axis by axis over the whole span of the other axes (their ghosts
 /// included), the wall's zero gradient or the periodic image; a periodic axis must span the block (else an input
-/// error). On one process with f.box() = domain it gives what fill_cell_ghosts gives.
+/// error). fill_cell_ghosts is this on one process with f.box() = domain.
 template <int Dim>
 void fill_block_ghosts(Field<Dim>& f, const IndexBox<Dim>& domain, const std::type_identity_t<std::array<bool, Dim>>& periodic,
                        const Comm& comm, std::span<const IndexBox<Dim>> boxes);
@@ -115,17 +115,6 @@ Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const
 template <int Dim>
 Field<Dim> advance_scalar_implicit(const Grid<Dim>& grid, Limiter limiter, const Field<Dim>& phi_old,
                                    const FaceVelocity<Dim>& vel, double dt, int corrections = 2);
-
-/// Row of cell c in a vector over the box's cells, axis 0 fastest (the numbering of every linear system here).
-template <int Dim>
-inline int cell_row(const IndexBox<Dim>& b, const std::type_identity_t<Index<Dim>>& c) {
-  int r = 0, stride = 1;
-  for (int a = 0; a < Dim; ++a) {
-    r += (c[a] - b.lo[a]) * stride;
-    stride *= b.extent(a);
-  }
-  return r;
-}
 
 /// Area of a face normal to axis a (a length per metre of depth in 2D): the other cell sizes multiplied in axis
 /// order, so that 2D keeps its single factor exactly.
