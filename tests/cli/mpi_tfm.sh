@@ -36,38 +36,8 @@ check "paper: the jet bubble was tracked" test "$(wc -l < "$WORK/paper-1/bubble.
 ranks_agree column "$ROOT/cases/tfm3d/column.toml" --end-time 0.05 --set output.interval=0.025 \
   --set output.checkpoint_interval=0.0
 
-# Periodic in x and z, the jet in the corner at the periodic planes (tests/cli/periodic_tfm.sh's bed).
-cat >"$WORK/ptfm.toml" <<'TOML'
-case.name = "ptfm"
-case.model = "tfm"
-case.dimension = 3
-case.end_time = 0.03
-domain.width = 0.2
-domain.height = 0.4
-domain.depth = 0.08
-domain.gravity = [0.0, -9.81, 0.0]
-domain.periodic = ["x", "z"]
-grid.cell_width = 0.02
-grid.cell_height = 0.02
-grid.cell_depth = 0.02
-inlet.velocity = 1.8
-[[inlet.jet]]
-shape = "rectangle"
-centre = 0.03
-centre_z = 0.03
-width = 0.04
-depth = 0.04
-velocity = 20.0
-start = 0.0
-end = 1.0
-[tfm]
-packed_height = 0.2
-[output]
-interval = 0.01
-monitor_interval = 0.002
-checkpoint_interval = 0.0
-TOML
-ranks_agree periodic "$WORK/ptfm.toml"
+# Periodic in x and z, the jet in the corner at the periodic planes.
+ranks_agree periodic "$ROOT/tests/cli/periodic_tfm.toml" --end-time 0.03
 
 # The other rheologies, limiters, drag laws and an inlet schedule, and two threads a rank (hybrid MPI x OpenMP):
 # one process against 3 ranks, and against 2 ranks x 2 threads.
