@@ -57,6 +57,10 @@ struct CostInfo {
   std::uint64_t time_steps = 0;  ///< DEM steps, or TFM/gas steps
 };
 
+/// What the observers will read of a model's fields after a step: nothing, the solids velocity (the cell tracers
+/// of every step), or every field (frames, probes, averages). The runner decides it alike on every rank.
+enum class FieldNeed { None = 0, SolidsVelocity = 1, All = 2 };
+
 class ModelRun {
  public:
   virtual ~ModelRun() = default;
@@ -74,6 +78,10 @@ class ModelRun {
   virtual std::vector<std::string> monitor_columns() const = 0;
   virtual std::vector<std::optional<double>> monitor_values() = 0;
   virtual FieldView fields() = 0;
+  /// Makes fields() current for `need` after an advance(): collective on several ranks, where a model whose fields
+  /// are spread over the ranks gathers on rank 0 what is needed and no more (a model whose fields are whole on every
+  /// rank has nothing to do). Before the first advance() every field is current.
+  virtual void share_fields(FieldNeed need) { (void)need; }
   /// The particles as plain arrays (either dimension), valid until the next advance(); empty for a model without
   /// particles.
   virtual std::optional<ParticleArrays> particles() const { return std::nullopt; }

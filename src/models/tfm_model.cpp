@@ -17,7 +17,9 @@ namespace {
 template <int Dim>
 class TfmModel final : public ModelRun {
  public:
-  TfmModel(const CaseConfig& c, const Comm& comm) : config_(c), comm_(comm), solver_(c.tfm, comm) { refresh(); }
+  TfmModel(const CaseConfig& c, const Comm& comm) : config_(c), comm_(comm), solver_(c.tfm, comm) {
+    refresh(FieldNeed::All);
+  }
 
   double time() const override { return solver_.time(); }
   double last_step() const override { return last_dt_; }
@@ -32,13 +34,14 @@ class TfmModel final : public ModelRun {
     const double c0 = comm_.seconds_communicating();
     const auto w0 = std::chrono::steady_clock::now();
     last_dt_ = solver_.advance(t_stop);
-    const double c1 = comm_.seconds_communicating();
-    const auto w1 = std::chrono::steady_clock::now();
-    refresh();
-    step_s_ += std::chrono::duration<double>(w1 - w0).count();
-    step_comm_s_ += c1 - c0;
-    gather_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - w1).count();
+    step_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    step_comm_s_ += comm_.seconds_communicating() - c0;
     ++steps_;
+  }
+  void share_fields(FieldNeed need) override {
+    const auto w0 = std::chrono::steady_clock::now();
+    refresh(need);
+    gather_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   }
   /// On several ranks: the blocks, and where a rank's time went (the solver's step, its communication with the
   /// waits for the other ranks, the observers' gather on rank 0), the most and the least of any rank.
@@ -72,16 +75,8 @@ class TfmModel final : public ModelRun {
             "linear_solver_fallbacks", "inlet_velocity_m_s"};
   }
   std::vector<std::optional<double>> monitor_values() override {
-    // Kinetic energy of the solids' mean motion, from cell-centred velocities.
     const Grid<Dim>& g = solver_.grid();
-    double ke = 0.0;
-    for (std::size_t c = 0; c < eps_.size(); ++c) {
-      double sq = us_[0][c] * us_[0][c];
-      for (int a = 1; a < Dim; ++a) sq += us_[a][c] * us_[a][c];
-      double e = 0.5 * config_.tfm.rho_s * (1.0 - eps_[c]) * sq;
-      for (int a = 0; a < Dim; ++a) e *= g.h[a];
-      ke += e;
-    }
+    const double ke = solver_.solids_kinetic_energy();
     const double mass = solver_.solids_mass();
     // 2D: per metre of depth, and for the slab of coupling.depth; 3D: the box, and per metre of its depth.
     const double depth = Dim == 2 ? config_.coupling.depth : 1.0;
@@ -141,7 +136,7 @@ class TfmModel final : public ModelRun {
     }
     solver_.restore_state(arrays);
     last_dt_ = f.attribute_double("tfm", "last_dt");
-    refresh();
+    refresh(FieldNeed::All);
   }
 
   CostInfo cost() const override { return {0, solver_.grid().cells(), static_cast<std::uint64_t>(solver_.state().steps)}; }
@@ -157,42 +152,51 @@ class TfmModel final : public ModelRun {
 
  private:
   // The observers read contiguous cell arrays (axis 0 fastest), the solver's fields carry ghost layers. On several
-  // ranks they are rank 0's (the observers and writers are), gathered there after every step: every rank takes
-  // part in a step, while only rank 0 asks for the fields.
-  void refresh() {
+  // ranks they are rank 0's (the observers and writers are), gathered there when the runner says they will be read:
+  // every rank takes part, while only rank 0 asks for the fields.
+  void refresh(FieldNeed need) {
+    if (need == FieldNeed::None) return;
     const tfm::TfmState<Dim>& s = solver_.state();
+    const bool all = need == FieldNeed::All;
+    if (all) solver_.gas_velocity_cells(ug_cells_);
+    solver_.solids_velocity_cells(us_cells_);
     if (comm_.size() > 1) {
-      gather_on_root(s);
+      gather_on_root(s, all);
       return;
     }
+    for (int a = 0; a < Dim; ++a) us_[a] = us_cells_[a].interior();
+    if (!all) return;
     eps_ = s.eps.interior();
     p_ = s.p.interior();
     theta_ = s.theta.interior();
-    solver_.gas_velocity_cells(ug_cells_);
-    solver_.solids_velocity_cells(us_cells_);
-    for (int a = 0; a < Dim; ++a) {
-      ug_[a] = ug_cells_[a].interior();
-      us_[a] = us_cells_[a].interior();
-    }
+    for (int a = 0; a < Dim; ++a) ug_[a] = ug_cells_[a].interior();
   }
 
-  void gather_on_root(const tfm::TfmState<Dim>& s) {
-    solver_.gas_velocity_cells(ug_cells_);
-    solver_.solids_velocity_cells(us_cells_);
-    std::vector<const Field<Dim>*> fields{&s.eps, &s.p, &s.theta};
-    for (int a = 0; a < Dim; ++a) fields.push_back(&ug_cells_[a]);
-    for (int a = 0; a < Dim; ++a) fields.push_back(&us_cells_[a]);
-    // Rank 0 receives every block into fields over the domain without ghosts (their storage is the observers'
-    // layout); the others receive nothing.
+  // Rank 0 receives every block into fields over the domain without ghosts (their storage is the observers'
+  // layout); the others receive nothing. The solids velocity first, then (all) the voidage, pressure, Theta and gas
+  // velocity.
+  void gather_on_root(const tfm::TfmState<Dim>& s, bool all) {
+    std::vector<const Field<Dim>*> fields;
+    std::vector<std::vector<double>*> out;
+    for (int a = 0; a < Dim; ++a) {
+      fields.push_back(&us_cells_[a]);
+      out.push_back(&us_[a]);
+    }
+    if (all) {
+      for (const Field<Dim>* f : {&s.eps, &s.p, &s.theta}) fields.push_back(f);
+      for (std::vector<double>* v : {&eps_, &p_, &theta_}) out.push_back(v);
+      for (int a = 0; a < Dim; ++a) {
+        fields.push_back(&ug_cells_[a]);
+        out.push_back(&ug_[a]);
+      }
+    }
     const bool root = comm_.rank() == 0;
-    if (root && whole_.empty()) whole_.assign(fields.size(), Field<Dim>(solver_.grid().domain, 0));
+    if (root && whole_.size() < fields.size()) whole_.assign(fields.size(), Field<Dim>(solver_.grid().domain, 0));
     std::vector<Field<Dim>*> into;
-    for (Field<Dim>& f : whole_) into.push_back(&f);
+    for (std::size_t k = 0; k < fields.size(); ++k) into.push_back(&whole_[k]);
+    if (!root) into.clear();
     gather_parts<Dim>(comm_, solver_.grid().owned, fields, into, 0);
     if (!root) return;
-    std::vector<std::vector<double>*> out{&eps_, &p_, &theta_};
-    for (int a = 0; a < Dim; ++a) out.push_back(&ug_[a]);
-    for (int a = 0; a < Dim; ++a) out.push_back(&us_[a]);
     for (std::size_t k = 0; k < out.size(); ++k) *out[k] = whole_[k].data();
   }
 

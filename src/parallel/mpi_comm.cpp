@@ -18,15 +18,6 @@
 
 namespace fluidbed {
 
-struct MpiComm::Impl {
-  MPI_Comm comm = MPI_COMM_NULL;
-  MPI_Comm control = MPI_COMM_NULL;  // failure verdicts only (all_arrive_within)
-  bool own_mpi = false;
-  int rank = 0;
-  int size = 1;
-  double inside_s = 0.0;  // seconds inside the calls below (seconds_communicating)
-};
-
 namespace {
 
 // Adds the time of the enclosing call to the process's communication seconds.
@@ -57,46 +48,122 @@ void for_each_outside(const IndexBox<Dim>& region, const IndexBox<Dim>& own, Hal
   });
 }
 
-// Fills f's ghosts inside the domain from the ranks whose boxes (boxes[q], the same kind of field and ghost width
-// on every rank) hold them.
-template <int Dim>
-void exchange_field(MPI_Comm comm, int me, int ranks, Field<Dim>& f, std::span<const IndexBox<Dim>> boxes,
-                    HaloCells cells) {
-  if (ranks == 1) return;
-  auto box_of = [&](int q) { return boxes[static_cast<std::size_t>(q)]; };
-  const int g = f.ghost();
-  std::vector<std::vector<double>> in(static_cast<std::size_t>(ranks)), out(static_cast<std::size_t>(ranks));
-  std::vector<MPI_Request> requests;
-  for (int q = 0; q < ranks; ++q) {
-    if (q == me) continue;
-    const IndexBox<Dim> bq = box_of(q);
-    std::size_t n_in = 0;
-    for_each_outside<Dim>(intersect(f.allocated(), bq), f.box(), cells, [&](const Index<Dim>&) { ++n_in; });
-    std::vector<double>& send = out[static_cast<std::size_t>(q)];
-    for_each_outside<Dim>(intersect(bq.grown(g), f.box()), bq, cells, [&](const Index<Dim>& c) { send.push_back(f[c]); });
-    if (n_in > 0) {
-      in[static_cast<std::size_t>(q)].resize(n_in);
-      requests.emplace_back();
-      check(MPI_Irecv(in[static_cast<std::size_t>(q)].data(), static_cast<int>(n_in), MPI_DOUBLE, q, 0, comm,
-                      &requests.back()),
-            "receive of a halo");
-    }
-    if (!send.empty()) {
-      requests.emplace_back();
-      check(MPI_Isend(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, q, 0, comm, &requests.back()),
-            "send of a halo");
-    }
-  }
-  check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "halo exchange");
-  for (int q = 0; q < ranks; ++q) {
-    if (q == me || in[static_cast<std::size_t>(q)].empty()) continue;
-    std::size_t k = 0;
-    const std::vector<double>& got = in[static_cast<std::size_t>(q)];
-    for_each_outside<Dim>(intersect(f.allocated(), box_of(q)), f.box(), cells, [&](const Index<Dim>& c) { f[c] = got[k++]; });
+// A contiguous stretch of a field's storage: what a halo copies with one memcpy (a line along axis 0 at least).
+struct Run {
+  std::size_t offset = 0, length = 0;
+};
+
+// Appends offset k to runs, extending the last run where k follows it.
+void add_to_runs(std::vector<Run>& runs, std::size_t k) {
+  if (!runs.empty() && runs.back().offset + runs.back().length == k) {
+    ++runs.back().length;
+  } else {
+    runs.push_back({k, 1});
   }
 }
 
+// What one kind of halo exchange (a field's layout, every rank's box, the cells wanted) sends to and receives from
+// each other rank, worked out once: the per-cell enumeration of the boxes is then no longer in the step's path,
+// and a field's halo is a few memcpy's and one message per neighbour.
+template <int Dim>
+struct HaloPlan {
+  IndexBox<Dim> allocated, box;
+  HaloCells cells = HaloCells::All;
+  std::vector<IndexBox<Dim>> boxes;
+  struct Peer {
+    int rank = 0;
+    std::vector<Run> send, receive;
+    std::vector<double> send_buffer, receive_buffer;
+  };
+  std::vector<Peer> peers;  // the ranks with something to send or receive, in rank order
+  std::vector<MPI_Request> requests;
+
+  bool fits(const Field<Dim>& f, std::span<const IndexBox<Dim>> b, HaloCells c) const {
+    return f.allocated() == allocated && f.box() == box && c == cells && std::ranges::equal(b, boxes);
+  }
+
+  HaloPlan(const Field<Dim>& f, std::span<const IndexBox<Dim>> b, HaloCells c, int me)
+      : allocated(f.allocated()), box(f.box()), cells(c), boxes(b.begin(), b.end()) {
+    const int g = f.ghost();
+    for (int q = 0; q < static_cast<int>(boxes.size()); ++q) {
+      if (q == me) continue;
+      const IndexBox<Dim>& bq = boxes[static_cast<std::size_t>(q)];
+      Peer peer;
+      peer.rank = q;
+      for_each_outside<Dim>(intersect(bq.grown(g), f.box()), bq, cells,
+                            [&](const Index<Dim>& i) { add_to_runs(peer.send, f.index(i)); });
+      for_each_outside<Dim>(intersect(f.allocated(), bq), f.box(), cells,
+                            [&](const Index<Dim>& i) { add_to_runs(peer.receive, f.index(i)); });
+      if (peer.send.empty() && peer.receive.empty()) continue;
+      auto total = [](const std::vector<Run>& runs) {
+        std::size_t n = 0;
+        for (const Run& r : runs) n += r.length;
+        return n;
+      };
+      peer.send_buffer.resize(total(peer.send));
+      peer.receive_buffer.resize(total(peer.receive));
+      peers.push_back(std::move(peer));
+    }
+    requests.reserve(2 * peers.size());
+  }
+
+  // Fills f's ghosts inside the domain from the ranks whose boxes hold them (the same kind of field and ghost
+  // width on every rank), both sides enumerating the cells in storage order.
+  void exchange(MPI_Comm comm, Field<Dim>& f) {
+    double* v = f.data().data();
+    requests.clear();
+    for (Peer& p : peers) {
+      if (p.receive_buffer.empty()) continue;
+      requests.emplace_back();
+      check(MPI_Irecv(p.receive_buffer.data(), static_cast<int>(p.receive_buffer.size()), MPI_DOUBLE, p.rank, 0, comm,
+                      &requests.back()),
+            "receive of a halo");
+    }
+    for (Peer& p : peers) {
+      if (p.send_buffer.empty()) continue;
+      double* out = p.send_buffer.data();
+      for (const Run& r : p.send) out = std::copy_n(v + r.offset, r.length, out);
+      requests.emplace_back();
+      check(MPI_Isend(p.send_buffer.data(), static_cast<int>(p.send_buffer.size()), MPI_DOUBLE, p.rank, 0, comm,
+                      &requests.back()),
+            "send of a halo");
+    }
+    check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE), "halo exchange");
+    for (const Peer& p : peers) {
+      const double* in = p.receive_buffer.data();
+      for (const Run& r : p.receive) {
+        std::copy_n(in, r.length, v + r.offset);
+        in += r.length;
+      }
+    }
+  }
+};
+
+// The plans met so far (a run uses a handful: the cell and face fields of the solvers and the multigrid levels);
+// forgotten all at once past a bound, as after many rebalancing deals.
+template <int Dim>
+HaloPlan<Dim>& plan_for(std::vector<HaloPlan<Dim>>& plans, const Field<Dim>& f, std::span<const IndexBox<Dim>> boxes,
+                        HaloCells cells, int me) {
+  for (HaloPlan<Dim>& p : plans)
+    if (p.fits(f, boxes, cells)) return p;
+  constexpr std::size_t kMostPlans = 64;
+  if (plans.size() == kMostPlans) plans.clear();
+  plans.emplace_back(f, boxes, cells, me);
+  return plans.back();
+}
+
 }  // namespace
+
+struct MpiComm::Impl {
+  MPI_Comm comm = MPI_COMM_NULL;
+  MPI_Comm control = MPI_COMM_NULL;  // failure verdicts only (all_arrive_within)
+  bool own_mpi = false;
+  int rank = 0;
+  int size = 1;
+  double inside_s = 0.0;  // seconds inside the calls below (seconds_communicating)
+  std::vector<HaloPlan<2>> plans2;
+  std::vector<HaloPlan<3>> plans3;
+};
 
 MpiComm::MpiComm() : impl_(std::make_unique<Impl>()) {
   int initialised = 0;
@@ -383,11 +450,11 @@ void MpiComm::exchange_halo(Field<3>& f) const {
 }
 void MpiComm::exchange_halo_among(Field<2>& f, std::span<const IndexBox<2>> boxes, HaloCells cells) const {
   const Inside inside(impl_->inside_s);
-  exchange_field<2>(impl_->comm, impl_->rank, impl_->size, f, boxes, cells);
+  if (impl_->size > 1) plan_for<2>(impl_->plans2, f, boxes, cells, impl_->rank).exchange(impl_->comm, f);
 }
 void MpiComm::exchange_halo_among(Field<3>& f, std::span<const IndexBox<3>> boxes, HaloCells cells) const {
   const Inside inside(impl_->inside_s);
-  exchange_field<3>(impl_->comm, impl_->rank, impl_->size, f, boxes, cells);
+  if (impl_->size > 1) plan_for<3>(impl_->plans3, f, boxes, cells, impl_->rank).exchange(impl_->comm, f);
 }
 
 double MpiComm::seconds_communicating() const { return impl_->inside_s; }

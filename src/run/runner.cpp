@@ -617,12 +617,13 @@ class Run {
         if (!(t > t_before)) {
           throw_simulation_error(fmt::format("t = {:.9g} s: the model did not advance (internal error)", t));
         }
+        const StepFlags flags = step_flags(t);
+        model_->share_fields(flags.fields);
         if (tracers_) {
           // The step the model took (the two-fluid model's step is adaptive), not the clock's difference.
           const FieldView fv = model_->fields();
           if (fv.has_solids_velocity()) advance_tracers(*tracers_, fv, model_->last_step());
         }
-        const StepFlags flags = step_flags(t);
         observe(t, flags.averages_due);
         if (checkpoints_.due(t, dt_) && !landed(t)) periodic_checkpoint(t);
         if (stop_requested(flags)) break;
@@ -648,20 +649,30 @@ class Run {
   }
 
   /// What every rank decides after a step, taken together (one reduction on several ranks): a stop asked for by a
-  /// signal to any rank, by the stop file or the wall-time limit (read by rank 0), and whether the time averages
-  /// sample now (their observer is rank 0's; the particles they read are gathered from all).
+  /// signal to any rank, by the stop file or the wall-time limit (read by rank 0), whether the time averages
+  /// sample now (their observer is rank 0's; the particles they read are gathered from all), and which of the
+  /// model's fields rank 0's observers read after this step.
   struct StepFlags {
     bool signal = false, stop_file = false, wall_limit = false, averages_due = false;
+    FieldNeed fields = FieldNeed::None;
   };
   StepFlags step_flags(double t) {
-    double v[4] = {pending_signal.load() != 0 ? 1.0 : 0.0, 0.0, 0.0, 0.0};
+    double v[5] = {pending_signal.load() != 0 ? 1.0 : 0.0, 0.0, 0.0, 0.0, 0.0};
     if (root_) {
       v[1] = steps_here_ % 64 == 0 && fs::exists(out_ / "STOP") ? 1.0 : 0.0;
       v[2] = cfg_.run.max_wall_time > 0.0 && wall() > cfg_.run.max_wall_time ? 1.0 : 0.0;
       v[3] = averages_ && averages_->samples_at(t, dt_) ? 1.0 : 0.0;
+      v[4] = static_cast<double>(fields_read_after_step(t, v[3] != 0.0));
     }
     if (comm_.size() > 1) comm_.max(std::span<double>(v));
-    return {v[0] != 0.0, v[1] != 0.0, v[2] != 0.0, v[3] != 0.0};
+    return {v[0] != 0.0, v[1] != 0.0, v[2] != 0.0, v[3] != 0.0, static_cast<FieldNeed>(static_cast<int>(v[4]))};
+  }
+  /// Rank 0's observers in observe() and the tracers: every field at a frame (bubbles, field files), a probe row
+  /// or an averages sample; the solids velocity alone for the tracers of every step.
+  FieldNeed fields_read_after_step(double t, bool averages_due) const {
+    const bool probe_due = probes_ && (probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_));
+    if (frames_.due(t, dt_) || probe_due || averages_due) return FieldNeed::All;
+    return tracers_ ? FieldNeed::SolidsVelocity : FieldNeed::None;
   }
 
   /// A test of the failure paths on several ranks (tests/cli/mpi_faults.sh): FLUIDBED_FAULT="throw RANK STEP"

@@ -1344,6 +1344,22 @@ double TfmSolver<Dim>::solids_mass() const {
 }
 
 template <int Dim>
+double TfmSolver<Dim>::solids_kinetic_energy() const {
+  ExactSum ke;
+  for_each(grid_.owned, [&](const Index<Dim>& c) {
+    double sq = 0.0;
+    for (int a = 0; a < Dim; ++a) {
+      const double u = 0.5 * (s_.us[a][c] + s_.us[a][shifted<Dim>(c, a, 1)]);
+      sq = a == 0 ? u * u : sq + u * u;
+    }
+    double e = 0.5 * config_.rho_s * (1.0 - s_.eps[c]) * sq;
+    for (int a = 0; a < Dim; ++a) e *= grid_.h[a];
+    ke.add(e);
+  });
+  return comm_.sum(ke);
+}
+
+template <int Dim>
 double TfmSolver<Dim>::pressure_drop() const {
   ExactSum bottom;
   const int ny = grid_.n(kUp);

@@ -88,6 +88,9 @@ class TfmSolver {
 
   /// Solids mass [kg per metre of depth in 2D, kg in 3D].
   double solids_mass() const;
+  /// Kinetic energy of the solids' mean motion from cell-centred velocities (the faces' mean) [J per metre of depth
+  /// in 2D, J in 3D]; an exact sum, the same on any number of ranks.
+  double solids_kinetic_energy() const;
   /// Gas pressure on the bottom face (linear extrapolation, averaged over the bottom) minus the top pressure [Pa].
   double pressure_drop() const;
   /// Weight of the contents per unit bottom area (solids and gas) [Pa]: the static pressure drop.
