@@ -50,10 +50,13 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
   if (t.packed_height > c.domain.height) r.fail("tfm.packed_height", "the bed is taller than the domain");
   t.eps_star = r.number("tfm.eps_star", 0.43, "", "compaction voidage eps* (Eq. 20)", R::Range{0.0, 1.0, true, true});
   const std::string rh = r.string("tfm.rheology", "kinetic_theory", "solids rheology: kinetic theory with the "
-                                  "frictional regime (Eqs. 21-26), constant viscosity, or inviscid (both with Eq. 20)",
-                                  {"kinetic_theory", "constant_viscosity", "inviscid"});
-  t.rheology = rh == "inviscid" ? tfm::SolidsRheology::Inviscid
-               : rh == "constant_viscosity" ? tfm::SolidsRheology::ConstantViscosity : tfm::SolidsRheology::KineticTheory;
+                                  "frictional regime (Eqs. 21-26), constant viscosity, inviscid, or the Bingham "
+                                  "plastic of the paper's closing remarks (the last three with Eq. 20)",
+                                  {"kinetic_theory", "constant_viscosity", "inviscid", "bingham"});
+  t.rheology = rh == "inviscid"             ? tfm::SolidsRheology::Inviscid
+               : rh == "constant_viscosity" ? tfm::SolidsRheology::ConstantViscosity
+               : rh == "bingham"            ? tfm::SolidsRheology::Bingham
+                                            : tfm::SolidsRheology::KineticTheory;
   if (t.rheology == tfm::SolidsRheology::KineticTheory && t.e >= 1.0) {
     r.fail("tfm.restitution", "e = 1 has no granular temperature in the kinetic theory: its algebraic balance of "
                               "shear production against collisional dissipation (~ 1 - e^2, Eqs. 25-26) has no "
@@ -64,8 +67,21 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
                                   "small and the granular temperature may run away (the paper's case runs at 0.97 "
                                   "and stops at 0.12 s at 0.99); the run stops with a diagnosis if it does", t.e));
   }
-  t.mu_s_constant = r.number("tfm.solids_viscosity", 0.5, "Pa s", "solids viscosity of the constant-viscosity rheology "
-                             "(the paper gives no value)", R::positive());
+  t.mu_s_constant = r.number("tfm.solids_viscosity", 0.5, "Pa s", "solids viscosity of the constant-viscosity rheology, "
+                             "the plastic viscosity of the Bingham one (the paper gives no value)", R::positive());
+  const std::string yield = r.string("tfm.yield", "given", "Bingham rheology: the yield stress as given "
+                                     "(tfm.yield_stress) or Mohr-Coulomb's P_s sin(phi) from the Eq. 20 solids "
+                                     "pressure", {"given", "mohr_coulomb"});
+  t.yield = yield == "mohr_coulomb" ? tfm::YieldStress::MohrCoulomb : tfm::YieldStress::Given;
+  t.yield_stress = r.number("tfm.yield_stress", 10.0, "Pa", "Bingham rheology: the yield stress in the bed "
+                            "(tfm.yield = \"given\"; the paper gives no value)", R::non_negative());
+  t.yield_regularisation = r.number("tfm.yield_regularisation", 100.0, "s", "Bingham rheology: Papanastasiou's m "
+                                    "(mu = mu_p + tau_y (1 - exp(-m shear rate)) / shear rate)", R::positive());
+  if (t.rheology != tfm::SolidsRheology::Bingham) {
+    for (const char* key : {"tfm.yield", "tfm.yield_stress", "tfm.yield_regularisation"}) {
+      if (r.has(key)) r.fail(key, "belongs to tfm.rheology = \"bingham\"");
+    }
+  }
   t.mu_s_max = r.number("tfm.max_solids_viscosity", 100.0, "Pa s", "cap on the frictional viscosity", R::positive());
   t.modulus.a = r.number("tfm.modulus_a", 1.0, "Pa", "A of G = A exp(B (eps* - eps)) (Eq. 20)", R::positive());
   t.modulus.b = r.number("tfm.modulus_b", 600.0, "", "B of G = A exp(B (eps* - eps)) (Eq. 20)", R::positive());

@@ -143,6 +143,7 @@ class TfmModel final : public ModelRun {
   std::string describe() const override {
     const char* rheology = config_.tfm.rheology == tfm::SolidsRheology::KineticTheory   ? "kinetic theory"
                            : config_.tfm.rheology == tfm::SolidsRheology::Inviscid        ? "inviscid solids"
+                           : config_.tfm.rheology == tfm::SolidsRheology::Bingham         ? "Bingham plastic solids"
                                                                                            : "constant solids viscosity";
     const Grid<Dim>& g = solver_.grid();
     const std::string cells = Dim == 2 ? fmt::format("{} x {}", g.n(0), g.n(1))

@@ -86,6 +86,13 @@ double frictional_viscosity(double eps, double eps_star, double phi_rad, const S
   return numerator / root;
 }
 
+double bingham_viscosity(double mu_p, double tau_y, double m, double g) {
+  const double x = m * g;
+  // Below 1e-8 the series 1 - x / 2 is exact to rounding, and expm1(-x) / g would lose its digits.
+  if (x < 1e-8) return mu_p + tau_y * m * (1.0 - 0.5 * x);
+  return mu_p + tau_y * -std::expm1(-x) / g;
+}
+
 double modulus_g(const ModulusParams& p, double eps, double eps_star) { return p.a * std::exp(p.b * (eps_star - eps)); }
 
 double modulus_pressure(const ModulusParams& p, double eps, double eps_star) {

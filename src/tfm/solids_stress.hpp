@@ -56,6 +56,11 @@ double frictional_pressure(double eps, double eps_star);
 template <int Dim>
 double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate<Dim>& d, double mu_max);
 
+/// Papanastasiou's regularised Bingham viscosity (J. Rheol. 31 (1987) 385): mu = mu_p + tau_y (1 - exp(-m g)) / g
+/// [Pa s], g the shear rate [1/s] (2 sqrt(I_2D): the simple shear's du/dy), m [s] the regularisation; the stress
+/// mu g is tau_y + mu_p g up to tau_y exp(-m g), and at g = 0 the viscosity is its limit mu_p + tau_y m.
+double bingham_viscosity(double mu_p, double tau_y, double m, double g);
+
 /// Parameters of the solids-pressure modulus of Eq. 20 in the exponential form the paper cites,
 /// G = A exp(B (eps* - eps)).
 struct ModulusParams {

@@ -22,6 +22,15 @@ enum class SolidsRheology {
   ConstantViscosity,  ///< mu_s = mu_s_constant, P_s from Eq. 20
   Inviscid,           ///< mu_s = 0, P_s from Eq. 20
   KineticTheory,      ///< Eqs. 23-26 with algebraic Theta above eps*, frictional Eqs. 21-22 at or below eps*
+  /// The paper's anticipated viscoplastic solids (its closing remarks): mu_s from the regularised Bingham law
+  /// (bingham_viscosity) with the plastic viscosity mu_s_constant and a yield stress, P_s from Eq. 20
+  Bingham,
+};
+
+/// Where the Bingham rheology's yield stress comes from.
+enum class YieldStress {
+  Given,         ///< yield_stress [Pa] in the bed, scaled down with the solids fraction below eps_s = 0.05
+  MohrCoulomb,   ///< tau_y = P_s sin(phi): the Eq. 20 solids pressure and the friction angle (Eq. 21's yield)
 };
 
 /// Calls f(std::integral_constant<SolidsRheology, R>{}) for the rheology r: the one run-time switch, taken before
@@ -33,6 +42,8 @@ decltype(auto) with_rheology(SolidsRheology r, F&& f) {
       return std::forward<F>(f)(std::integral_constant<SolidsRheology, SolidsRheology::ConstantViscosity>{});
     case SolidsRheology::Inviscid:
       return std::forward<F>(f)(std::integral_constant<SolidsRheology, SolidsRheology::Inviscid>{});
+    case SolidsRheology::Bingham:
+      return std::forward<F>(f)(std::integral_constant<SolidsRheology, SolidsRheology::Bingham>{});
     case SolidsRheology::KineticTheory: break;
   }
   return std::forward<F>(f)(std::integral_constant<SolidsRheology, SolidsRheology::KineticTheory>{});
@@ -57,9 +68,12 @@ struct TfmConfig {
   double eps_star = 0.43;      ///< compaction voidage eps*
   // Rheology.
   SolidsRheology rheology = SolidsRheology::KineticTheory;
-  double mu_s_constant = 0.5;  ///< [Pa s] for ConstantViscosity; the paper gives no value
+  double mu_s_constant = 0.5;  ///< [Pa s] for ConstantViscosity, the plastic viscosity of Bingham; the paper gives none
+  YieldStress yield = YieldStress::Given;  ///< Bingham: how tau_y is set
+  double yield_stress = 10.0;  ///< [Pa] Bingham, YieldStress::Given: tau_y in the bed (the paper gives no value)
+  double yield_regularisation = 100.0;  ///< [s] Bingham: Papanastasiou's m (exact Bingham as m -> infinity)
   double mu_s_max = 100.0;     ///< [Pa s] cap on the solids viscosity (frictional viscosity diverges at rest)
-  ModulusParams modulus{};     ///< Eq. 20 for ConstantViscosity and Inviscid
+  ModulusParams modulus{};     ///< Eq. 20 for ConstantViscosity, Inviscid and Bingham
   // Numerics.
   Limiter limiter = Limiter::Superbee;
   double cfl = 0.5;            ///< dt = cfl * cell / max(velocity, solids-pressure wave speed); 0.5 keeps TVD

@@ -205,6 +205,8 @@ void validate(const TfmConfig& c) {
   need(c.packed_height >= 0.0 && c.packed_height <= d.height, "packed_height must lie in [0, height]");
   need(c.mu_s_constant >= 0.0 && c.mu_s_max > 0.0, "solids viscosities must be non-negative (mu_s_max positive)");
   need(c.modulus.a > 0.0 && c.modulus.b > 0.0, "modulus a and b must be positive");
+  need(c.yield_stress >= 0.0 && c.yield_regularisation > 0.0,
+       "the Bingham yield stress must be non-negative and its regularisation m positive");
   need(c.cfl > 0.0 && c.cfl <= 1.0, "cfl must lie in (0, 1]");
   need(c.max_dense_change > 0.0 && c.max_dense_change < 0.1, "max_dense_change must lie in (0, 0.1)");
   need(packing_allowance(c) >= 0.0 && packing_allowance(c) < c.eps_star, "max_compaction must lie in [0, eps_star)");
@@ -615,14 +617,26 @@ void TfmSolver<Dim>::compute_closures_of() {
     // The floor keeps beta / (eps_s rho_s) finite in empty cells.
     beta_c_[cell] = DragLawT::beta(DragInput{std::min(eps, 1.0 - kEpsSFloor), c.d_p, c.rho_g, c.mu_g, slip});
 
-    double mu = 0.0, lambda = 0.0, theta = 0.0;
-    if constexpr (R == SolidsRheology::ConstantViscosity) {
-      mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
-    } else if constexpr (R == SolidsRheology::KineticTheory) {
+    auto strain_rate = [&] {
       StrainRate<Dim> d;
       for (int a = 0; a < Dim; ++a) d(a, a) = (s_.us[a][shifted<Dim>(cell, a, 1)] - s_.us[a][cell]) / grid_.h[a];
       for (int a = 0; a < Dim; ++a)
         for (int b = a + 1; b < Dim; ++b) d(a, b) = 0.5 * (gradient(cell, a, b) + gradient(cell, b, a));
+      return d;
+    };
+    double mu = 0.0, lambda = 0.0, theta = 0.0;
+    if constexpr (R == SolidsRheology::ConstantViscosity) {
+      mu = std::min(c.mu_s_constant * std::min(1.0, eps_s / kEpsSBed), c.mu_s_max);
+    } else if constexpr (R == SolidsRheology::Bingham) {
+      // The constant-viscosity rheology plus a yield stress, both scaled down alike where the solids thin out.
+      const double scale = std::min(1.0, eps_s / kEpsSBed);
+      const double tau_y = c.yield == YieldStress::MohrCoulomb
+                               ? modulus_pressure(c.modulus, eps, c.eps_star) * std::sin(phi)
+                               : c.yield_stress * scale;
+      const double shear_rate = 2.0 * std::sqrt(second_invariant(strain_rate()));
+      mu = std::min(bingham_viscosity(c.mu_s_constant * scale, tau_y, c.yield_regularisation, shear_rate), c.mu_s_max);
+    } else if constexpr (R == SolidsRheology::KineticTheory) {
+      const StrainRate<Dim> d = strain_rate();
       if (eps <= c.eps_star) {
         mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
       } else if (eps_s > 0.0) {
@@ -1205,7 +1219,11 @@ double TfmSolver<Dim>::reference_speed() const {
   const GasBoundaryConfig& b = config_.boundary;
   // The largest inflow any region's schedule reaches (pulses and tables included), noise on top.
   const double u_in = inlet_peak_velocity(b) * (1.0 + b.inlet_noise);
-  return u_in / config_.eps_star + std::sqrt(2.0 * gravity_norm() * grid_.length(kUp));
+  // The fall along the domain's diagonal, its longest straight path: gravity may point along any axis (a periodic
+  // channel driven along x has no height to fall).
+  double diagonal2 = 0.0;
+  for (int a = 0; a < Dim; ++a) diagonal2 += grid_.length(a) * grid_.length(a);
+  return u_in / config_.eps_star + std::sqrt(2.0 * gravity_norm() * std::sqrt(diagonal2));
 }
 
 template <int Dim>
@@ -1284,7 +1302,7 @@ void TfmSolver<Dim>::check_health(double dt) const {
       const bool carries = std::min(1.0 - s_.eps[shifted<Dim>(f, a, -1)], 1.0 - s_.eps[f]) > kEpsSTrace;
       if (carries && std::abs(us) > v_ref) {
         fail(fmt::format("the solids move at {:.4g} m/s, faster than anything that drives them ({:.3g} m/s: the "
-                         "fastest interstitial inflow plus free fall over the domain height)", std::abs(us), v_ref),
+                         "fastest interstitial inflow plus free fall along the domain's diagonal)", std::abs(us), v_ref),
              ci, "an instability of the solids momentum", key);
       }
       if (std::abs(ug) > v_gas_max) {

@@ -110,7 +110,7 @@ class TfmSolver {
   int linear_fallbacks() const { return linear_fallbacks_; }
 
   /// The fastest speed the bed's drivers can give it [m/s]: the fastest interstitial inflow (the largest inlet
-  /// or jet superficial velocity over eps*) plus the free-fall speed over the domain height, sqrt(2 g H).
+  /// or jet superficial velocity over eps*) plus the free-fall speed along the domain's diagonal L, sqrt(2 g L).
   /// Solids are driven only by the gas drag and gravity, so a solids speed (or a fluctuation speed sqrt(Theta))
   /// above it means the numerics, not the physics, produced it.
   double reference_speed() const;

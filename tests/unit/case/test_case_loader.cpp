@@ -62,6 +62,25 @@ TEST(CaseLoader, ArraysOfTablesAndTheTwoFluidModel) {
             std::string::npos);
 }
 
+TEST(CaseLoader, BinghamRheologyAndItsKeys) {
+  const LoadedCase lc = load_case_text("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nrheology = \"bingham\"\n"
+                                       "yield = \"mohr_coulomb\"\nyield_stress = 40\nyield_regularisation = 1000\n"
+                                       "solids_viscosity = 2\n",
+                                       "t.toml");
+  EXPECT_EQ(lc.config.tfm.rheology, tfm::SolidsRheology::Bingham);
+  EXPECT_EQ(lc.config.tfm.yield, tfm::YieldStress::MohrCoulomb);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.yield_stress, 40.0);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.yield_regularisation, 1000.0);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.mu_s_constant, 2.0);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.max_compaction.value_or(-1.0), 0.03);  // the Eq. 20 rheologies' allowance
+  // A yield key with another rheology is a mistake, said by name.
+  EXPECT_NE(error_of("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nyield_stress = 40\n").find("tfm.yield_stress"),
+            std::string::npos);
+  EXPECT_NE(error_of("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nrheology = \"bingham\"\nyield_regularisation = 0\n")
+                .find("tfm.yield_regularisation"),
+            std::string::npos);
+}
+
 TEST(CaseLoader, NonAsciiIsRejectedWithItsPosition) {
   EXPECT_NE(error_of("case.name = \"x\"\n# caf\xc3\xa9\n").find("t.toml:2:6: non-ASCII character"), std::string::npos);
 }

@@ -46,8 +46,9 @@ TEST(TfmFailures, ElasticParticlesAreRefusedWithTheKineticTheory) {
   EXPECT_NO_THROW(validate(c));
 }
 
-// Solids launched at 200 m/s inside the bed: nothing in it moves faster than the inflow at eps* plus free fall
-// (20 / 0.43 + sqrt(2 g 0.4) = 49 m/s), so the first step must stop with a diagnosis, not carry on.
+// Solids launched at 200 m/s inside the bed: nothing in it moves faster than the inflow at eps* plus free fall along
+// the domain's diagonal (20 / 0.43 + sqrt(2 g sqrt(0.2^2 + 0.4^2)) = 49.5 m/s), so the first step must stop with a
+// diagnosis, not carry on.
 TEST(TfmFailures, RunawaySolidsStopWithADiagnosisNamingTheCell) {
   TfmSolver<2> solver(jet_bed());
   solver.advance_to(0.005);
@@ -55,7 +56,7 @@ TEST(TfmFailures, RunawaySolidsStopWithADiagnosisNamingTheCell) {
   const int nx = 10;  // 0.2 m / 0.02 m
   array(s, "vs")[static_cast<std::size_t>(5 * nx + 4)] = 200.0;  // face (4, 5), cells (4, 4) and (4, 5): in the bed
   solver.restore_state(s);
-  EXPECT_NEAR(solver.reference_speed(), 20.0 / 0.43 + std::sqrt(2 * 9.81 * 0.4), 1e-9);
+  EXPECT_NEAR(solver.reference_speed(), 20.0 / 0.43 + std::sqrt(2 * 9.81 * std::hypot(0.2, 0.4)), 1e-9);
   try {
     solver.step(0.01);
     FAIL() << "a 200 m/s solids velocity passed";
