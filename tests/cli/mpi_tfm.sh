@@ -53,6 +53,8 @@ variant viscous "$ROOT/cases/gera1998/tfm-constant-viscosity.toml" --end-time 0.
 variant inviscid "$ROOT/cases/gera1998/tfm-inviscid.toml" --end-time 0.1 --set tfm.limiter='"minmod"' \
   --set coupling.drag_law='"di-felice"' --set inlet.schedule='"sine"' --set inlet.amplitude=0.3 \
   --set inlet.frequency=10 --set output.checkpoint_interval=0.0
+variant bingham "$ROOT/cases/gera1998/tfm-bingham.toml" --end-time 0.1 --set tfm.limiter='"upwind"' \
+  --set coupling.drag_law='"beetstra"' --set output.checkpoint_interval=0.0
 expect 0 "" "paper: 2 ranks x 2 threads" env OMP_NUM_THREADS=2 mpiexec -n 2 --oversubscribe "$FLUIDBED" run \
   "$ROOT/cases/gera1998/tfm.toml" --out "$WORK/paper-2x2" --threads 2 --end-time 0.2 "${mg[@]}" \
   --set output.checkpoint_interval=0.0 --quiet
