@@ -17,7 +17,10 @@ frame nearest it:
     to its neighbourhood is to push it aside.
 Prints one table (markdown) and, with --csv, writes it.
 
-Usage: python3 post/bubble_reach.py RUN [RUN ...] [--label L ...] [--times 0.1 0.2 0.3] [--speed 0.05]
+With --ensemble, the runs are the members of one ensemble (`fluidbed ensemble`): one row per instant with the mean
+and sample standard deviation over the members that have a bubble then.
+
+Usage: python3 post/bubble_reach.py RUN [RUN ...] [--label L ...] [--times 0.1 0.2 0.3] [--speed 0.05] [--ensemble]
 """
 import argparse
 import csv
@@ -116,6 +119,26 @@ def measure(eps, speed, dx, dy, threshold, emulsion, speed_limit):
             "nose": (js.max() + 1) * dy}
 
 
+def ensemble(a):
+    keys = [("reach", "reach (m)"), ("half", "half distance (m)"), ("peak", "largest median |u_x| (m/s)"),
+            ("diameter", "equivalent diameter (m)"), ("aspect", "aspect (h/w)"), ("nose", "top of the bubble (m)")]
+    print("| t (s) | members | " + " | ".join(k[1] for k in keys) + " |")
+    print("|" + "---|" * (len(keys) + 2))
+    for t in a.times:
+        values = []
+        for run in a.runs:
+            frames = read_pvd(os.path.join(run, "fields.pvd"))
+            ft, path = min(frames, key=lambda f: abs(f[0] - t))
+            m = measure(*read_frame(path), a.threshold, a.emulsion, a.speed)
+            if m:
+                values.append(m)
+        cells = []
+        for key, _ in keys:
+            v = np.array([m[key] for m in values], dtype=float)
+            cells.append(f"{v.mean():.3f} +- {v.std(ddof=1):.3f}" if v.size > 1 else "-")
+        print(f"| {t:.2f} | {len(values)} | " + " | ".join(cells) + " |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("runs", nargs="+")
@@ -125,8 +148,12 @@ def main():
     ap.add_argument("--emulsion", type=float, default=0.6, help="voidage below which a cell is emulsion")
     ap.add_argument("--speed", type=float, default=0.05, help="horizontal solids speed taken as at rest, m/s")
     ap.add_argument("--csv", default=None)
+    ap.add_argument("--ensemble", action="store_true", help="the runs are one ensemble: mean and sd per instant")
     a = ap.parse_args()
     labels = a.label if a.label else [os.path.basename(os.path.normpath(r)) for r in a.runs]
+    if a.ensemble:
+        ensemble(a)
+        return
     rows = []
     for run, label in zip(a.runs, labels):
         frames = read_pvd(os.path.join(run, "fields.pvd"))
