@@ -97,6 +97,12 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
                               "exactly (default 0.015 with kinetic_theory, 0.03 with the Eq. 20 rheologies)",
                               R::Range{0.0, t.eps_star, false, true});
   t.solids_no_slip_walls = r.boolean("tfm.solids_no_slip_walls", false, "solids stick to the side walls");
+  const std::size_t dim = static_cast<std::size_t>(c.domain.dimension);
+  const std::vector<double> slide = r.numbers("tfm.sliding_wall_velocity", std::vector<double>(dim, 0.0), "m/s",
+                                              "velocity of the side wall at the high end of z (3D) or x (2D), "
+                                              "tangential to it: the solids stick to it and are sheared (a shear "
+                                              "cell, plane Couette flow); needs tfm.solids_no_slip_walls", dim);
+  for (std::size_t a = 0; a < dim; ++a) t.sliding_wall[a] = slide[a];
   t.eps_noise = r.number("tfm.eps_noise", 0.0, "", "amplitude of the seeded (case.seed) initial voidage noise of the "
                          "bed: eps + a (2u - 1), kept in [eps*, 1]", R::Range{0.0, 0.5, false, true});
   t.seed = c.seed;

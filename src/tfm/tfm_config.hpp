@@ -1,5 +1,6 @@
 #pragma once
 // Configuration of the two-fluid model (paper section 2.2, Table 1 TFM column); defaults are the paper's case.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <type_traits>
@@ -92,6 +93,10 @@ struct TfmConfig {
   /// (the TFM gas has no viscous stress, so the gas wall kinds do not enter; a moving lid is not supported).
   GasBoundaryConfig boundary;
   bool solids_no_slip_walls = false;  ///< solids tangential condition on the side walls (default free slip)
+  /// Velocity of the side wall at the high end of the last horizontal axis (z in 3D, x in 2D) [m/s], tangential
+  /// (its normal component zero): the solids stick to it (solids_no_slip_walls) and are sheared between it and the
+  /// wall opposite, as in a shear cell or plane Couette flow. The gas has no viscous stress and does not feel it.
+  std::array<double, 3> sliding_wall{};
   // Seeded symmetry breaking (a perfectly symmetric bed never bubbles): off by default, as in the paper.
   /// Initial voidage noise: every cell of the initial bed gets eps + eps_noise (2u - 1), u uniform in [0, 1),
   /// kept within [eps*, 1].

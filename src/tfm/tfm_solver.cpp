@@ -205,6 +205,12 @@ void validate(const TfmConfig& c) {
   need(c.packed_height >= 0.0 && c.packed_height <= d.height, "packed_height must lie in [0, height]");
   need(c.mu_s_constant >= 0.0 && c.mu_s_max > 0.0, "solids viscosities must be non-negative (mu_s_max positive)");
   need(c.modulus.a > 0.0 && c.modulus.b > 0.0, "modulus a and b must be positive");
+  const int sliding = three_d ? 2 : 0;
+  const bool slides = c.sliding_wall[0] != 0.0 || c.sliding_wall[1] != 0.0 || (three_d && c.sliding_wall[2] != 0.0);
+  need(!slides || (c.solids_no_slip_walls && !d.periodic[static_cast<std::size_t>(sliding)] &&
+                   c.sliding_wall[static_cast<std::size_t>(sliding)] == 0.0),
+       "a sliding wall (the high side wall of z in 3D, x in 2D) needs solids_no_slip_walls, a wall there (not a "
+       "periodic axis) and a velocity tangential to it");
   need(c.yield_stress >= 0.0 && c.yield_regularisation > 0.0,
        "the Bingham yield stress must be non-negative and its regularisation m positive");
   need(c.cfl > 0.0 && c.cfl <= 1.0, "cfl must lie in (0, 1]");
@@ -845,9 +851,10 @@ void TfmSolver<Dim>::predict_momentum_along(double dt) {
           if (b == kUp) {
             shear[high] = 0.0;  // bottom and top are free-slip for the solids
           } else {
-            // Side walls slip, or no-slip with the wall half a cell from the face.
+            // Side walls slip, or no-slip with the wall half a cell from the face (a sliding wall: relative to it).
             const double mu_w = mu_wall * 0.5 * (mu_s_[lo] + mu_s_[f]);
-            shear[high] = (high ? -2.0 : 2.0) * mu_w * s0[d][f] / h[b];
+            const double u_wall = high && b == kSlidingAxis ? c.sliding_wall[static_cast<std::size_t>(d)] : 0.0;
+            shear[high] = (high ? -2.0 : 2.0) * mu_w * (s0[d][f] - u_wall) / h[b];
             diag += mu_wall * (mu_s_[lo] + mu_s_[f]) / (h[b] * h[b]);
           }
           continue;
@@ -1223,7 +1230,10 @@ double TfmSolver<Dim>::reference_speed() const {
   // channel driven along x has no height to fall).
   double diagonal2 = 0.0;
   for (int a = 0; a < Dim; ++a) diagonal2 += grid_.length(a) * grid_.length(a);
-  return u_in / config_.eps_star + std::sqrt(2.0 * gravity_norm() * std::sqrt(diagonal2));
+  // A sliding wall drags the solids at its own speed.
+  double wall2 = 0.0;
+  for (double v : config_.sliding_wall) wall2 += v * v;
+  return u_in / config_.eps_star + std::sqrt(2.0 * gravity_norm() * std::sqrt(diagonal2)) + std::sqrt(wall2);
 }
 
 template <int Dim>

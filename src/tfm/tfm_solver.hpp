@@ -63,6 +63,8 @@ class TfmSolver {
  public:
   /// The vertical axis (gravity, distributor at its low side).
   static constexpr int kUp = 1;
+  /// The axis whose high side wall may slide (TfmConfig::sliding_wall): z in 3D, x in 2D.
+  static constexpr int kSlidingAxis = Dim == 3 ? 2 : 0;
 
   /// Validates the config (its domain must have this Dim), sets up the grid and the initial bed: uniform
   /// eps_initial below packed_height, gas above, gas at the background inflow, P from the steady gas momentum
@@ -110,7 +112,8 @@ class TfmSolver {
   int linear_fallbacks() const { return linear_fallbacks_; }
 
   /// The fastest speed the bed's drivers can give it [m/s]: the fastest interstitial inflow (the largest inlet
-  /// or jet superficial velocity over eps*) plus the free-fall speed along the domain's diagonal L, sqrt(2 g L).
+  /// or jet superficial velocity over eps*) plus the free-fall speed along the domain's diagonal L, sqrt(2 g L), plus
+  /// the speed of a sliding wall.
   /// Solids are driven only by the gas drag and gravity, so a solids speed (or a fluctuation speed sqrt(Theta))
   /// above it means the numerics, not the physics, produced it.
   double reference_speed() const;

@@ -79,6 +79,17 @@ TEST(CaseLoader, BinghamRheologyAndItsKeys) {
   EXPECT_NE(error_of("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nrheology = \"bingham\"\nyield_regularisation = 0\n")
                 .find("tfm.yield_regularisation"),
             std::string::npos);
+  // A sliding wall: tangential, with the solids stuck to the walls.
+  const LoadedCase slides = load_case_text("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nsolids_no_slip_walls = true\n"
+                                           "sliding_wall_velocity = [0.0, 0.3]\n",
+                                           "t.toml");
+  EXPECT_DOUBLE_EQ(slides.config.tfm.sliding_wall[1], 0.3);
+  EXPECT_NE(error_of("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nsliding_wall_velocity = [0.0, 0.3]\n").find("sliding wall"),
+            std::string::npos);
+  EXPECT_NE(error_of("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nsolids_no_slip_walls = true\n"
+                     "sliding_wall_velocity = [0.1, 0.0]\n")
+                .find("tangential"),
+            std::string::npos);
 }
 
 TEST(CaseLoader, NonAsciiIsRejectedWithItsPosition) {
