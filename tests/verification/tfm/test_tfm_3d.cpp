@@ -51,6 +51,7 @@ void expect_bed_at_rest_3d(SolidsRheology rheology) {
 
 TEST(Tfm3d, BedAtMinimumFluidisationStaysAtRestKineticTheory) { expect_bed_at_rest_3d(SolidsRheology::KineticTheory); }
 TEST(Tfm3d, BedAtMinimumFluidisationStaysAtRestInviscid) { expect_bed_at_rest_3d(SolidsRheology::Inviscid); }
+TEST(Tfm3d, BedAtMinimumFluidisationStaysAtRestBingham) { expect_bed_at_rest_3d(SolidsRheology::Bingham); }
 
 // Closed 2 x 100 x 2 column of 0.2 mm particles at eps0 = 0.7 (Ergun branch of Eq. 13): the top of the suspension
 // falls at the velocity where drag balances buoyant weight with zero net volume flux, beta |v_s| / eps = eps_s eps
