@@ -82,50 +82,40 @@ double bingham_poiseuille(double zeta, double b, double G, double mu_p, double t
   return G / (2.0 * mu_p) * (b * b - a * a) - tau_y / mu_p * (b - a);
 }
 
-// The steady profile of the regularised law with the viscosity cap, as the solver's fluid obeys it: the stress
-// tau = -G zeta is fixed by the momentum balance, the shear rate follows from inverting the monotone stress
-// function min(mu_max, mu(g)) g = |tau| (bisection to rounding), and u(zeta) = integral from |zeta| to b of it
-// (Simpson, 2000 intervals).
-double regularised_poiseuille(double zeta, double b, double G, const Channel& ch) {
-  auto shear_rate = [&](double tau) {
-    double lo = 0.0, hi = tau / ch.mu_p + 1.0;
-    for (int i = 0; i < 200; ++i) {
-      const double g = 0.5 * (lo + hi);
-      const double stress = std::min(ch.cap, bingham_viscosity(ch.mu_p, ch.tau_y, ch.m, g)) * g;
-      (stress < tau ? lo : hi) = g;
-    }
-    return 0.5 * (lo + hi);
-  };
-  const double a = std::abs(zeta);
-  const int n = 2000;
+// The shear rate at which the law with the viscosity cap carries the stress tau (signed, as tau): the inverse of the
+// monotone min(mu_max, mu(g)) g, by bisection to rounding.
+double regularised_shear_rate(double tau, const Channel& ch) {
+  const double a = std::abs(tau);
+  double lo = 0.0, hi = a / ch.mu_p + 1.0;
+  for (int i = 0; i < 200; ++i) {
+    const double g = 0.5 * (lo + hi);
+    (std::min(ch.cap, bingham_viscosity(ch.mu_p, ch.tau_y, ch.m, g)) * g < a ? lo : hi) = g;
+  }
+  return std::copysign(0.5 * (lo + hi), tau);
+}
+
+// Simpson's rule for f over [a, b] with n (even) intervals.
+template <class F>
+double simpson(F&& f, double a, double b, int n) {
   const double dz = (b - a) / n;
   double sum = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-    sum += w * shear_rate(G * (a + i * dz));
-  }
+  for (int i = 0; i <= n; ++i) sum += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * f(a + i * dz);
   return sum * dz / 3.0;
 }
 
+// The steady profile of the regularised law with the viscosity cap, as the solver's fluid obeys it: the stress
+// tau = -G zeta is fixed by the momentum balance, the shear rate is its inverse under the law, and u(zeta) the
+// integral from |zeta| to b of it (2000 intervals).
+double regularised_poiseuille(double zeta, double b, double G, const Channel& ch) {
+  return simpson([&](double s) { return regularised_shear_rate(G * s, ch); }, std::abs(zeta), b, 2000);
+}
+
 // The steady profile with the wall at z = D sliding at U (plane Couette-Poiseuille flow) at heights zs from the fixed
-// wall: the stress is tau_0 - G z, the shear rate its inverse under the law (signed), u(z) the integral from the
-// fixed wall, and tau_0 the one that gives u(D) = U (bisection; u(D) grows with tau_0). Simpson, 1000 intervals.
+// wall: the stress is tau_0 - G z, the shear rate its inverse under the law, u(z) the integral from the fixed wall
+// (1000 intervals), and tau_0 the one that gives u(D) = U (bisection; u(D) grows with tau_0).
 std::vector<double> regularised_couette_poiseuille(const std::vector<double>& zs, double D, double G, const Channel& ch) {
-  auto shear_rate = [&](double tau) {
-    const double a = std::abs(tau);
-    double lo = 0.0, hi = a / ch.mu_p + 1.0;
-    for (int i = 0; i < 200; ++i) {
-      const double g = 0.5 * (lo + hi);
-      (std::min(ch.cap, bingham_viscosity(ch.mu_p, ch.tau_y, ch.m, g)) * g < a ? lo : hi) = g;
-    }
-    return std::copysign(0.5 * (lo + hi), tau);
-  };
   auto speed = [&](double tau0, double z) {
-    const int n = 1000;
-    const double dz = z / n;
-    double sum = 0.0;
-    for (int i = 0; i <= n; ++i) sum += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * shear_rate(tau0 - G * i * dz);
-    return sum * dz / 3.0;
+    return simpson([&](double s) { return regularised_shear_rate(tau0 - G * s, ch); }, 0.0, z, 1000);
   };
   double lo = -G * D - 10.0 * (ch.tau_y + ch.cap * std::abs(ch.wall_speed) / D + 1.0), hi = -lo;
   for (int i = 0; i < 80; ++i) {
