@@ -61,26 +61,8 @@ expect 0 "" "paper: 2 ranks x 2 threads" env OMP_NUM_THREADS=2 mpiexec -n 2 --ov
 same_results "paper: 2 ranks x 2 threads vs one process" "$WORK/paper-1" "$WORK/paper-2x2"
 
 # Probes after every step and time averages (rank 0's observers, on the fields gathered from the blocks).
-cp "$ROOT/cases/gera1998/tfm.toml" "$WORK/obs.toml"
+cat "$ROOT/cases/gera1998/tfm.toml" "$ROOT/tests/cli/paper_probes.toml" > "$WORK/obs.toml"
 cat >> "$WORK/obs.toml" <<'TOML'
-
-[probes]
-interval = 0
-
-[[probe]]
-name = "tap"
-position = [0.15, 0.1]
-
-[[probe]]
-kind = "plane"
-name = "h20"
-height = 0.2
-
-[[probe]]
-kind = "pressure_drop"
-name = "bed"
-height = 0.02
-height_top = 0.5
 
 [averages]
 t_start = 0.02

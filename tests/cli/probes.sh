@@ -5,27 +5,7 @@
 source "$(dirname "$0")/lib.sh"
 source "$(dirname "$0")/reliability.bash"
 
-cp "$ROOT/cases/gera1998/tfm.toml" "$WORK/p.toml"
-cat >> "$WORK/p.toml" <<'TOML'
-
-[probes]
-interval = 0
-
-[[probe]]
-name = "tap"
-position = [0.15, 0.1]
-
-[[probe]]
-kind = "plane"
-name = "h20"
-height = 0.2
-
-[[probe]]
-kind = "pressure_drop"
-name = "bed"
-height = 0.02
-height_top = 0.5
-TOML
+cat "$ROOT/cases/gera1998/tfm.toml" "$ROOT/tests/cli/paper_probes.toml" > "$WORK/p.toml"
 opts=(--threads 1 --set output.fields=false --set output.tracers=false)
 run_ok "probes: 0 to T" run "$WORK/p.toml" --out "$WORK/full" --end-time 0.04 "${opts[@]}"
 check "probes: probes.csv header" bash -c "head -1 '$WORK/full/probes.csv' | grep -qx 'time_s,tap_p_Pa,tap_eps,tap_ug_x_m_s,tap_ug_y_m_s,tap_us_x_m_s,tap_us_y_m_s,h20_p_Pa,h20_eps,h20_ug_x_m_s,h20_ug_y_m_s,h20_us_x_m_s,h20_us_y_m_s,bed_dp_Pa'"
