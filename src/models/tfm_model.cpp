@@ -192,10 +192,11 @@ class TfmModel final : public ModelRun {
       }
     }
     const bool root = comm_.rank() == 0;
-    if (root && whole_.size() < fields.size()) whole_.assign(fields.size(), Field<Dim>(solver_.grid().domain, 0));
     std::vector<Field<Dim>*> into;
-    for (std::size_t k = 0; k < fields.size(); ++k) into.push_back(&whole_[k]);
-    if (!root) into.clear();
+    if (root) {
+      if (whole_.size() < fields.size()) whole_.assign(fields.size(), Field<Dim>(solver_.grid().domain, 0));
+      for (std::size_t k = 0; k < fields.size(); ++k) into.push_back(&whole_[k]);
+    }
     gather_parts<Dim>(comm_, solver_.grid().owned, fields, into, 0);
     if (!root) return;
     for (std::size_t k = 0; k < out.size(); ++k) *out[k] = whole_[k].data();
@@ -207,7 +208,7 @@ class TfmModel final : public ModelRun {
   double step_s_ = 0.0, step_comm_s_ = 0.0, gather_s_ = 0.0;  // this process's time in steps, their MPI, the gather
   long steps_ = 0;
   tfm::CellVectorField<Dim> ug_cells_, us_cells_;
-  std::vector<Field<Dim>> whole_;  // rank 0, several ranks: the gathered fields (eps, p, Theta, u_g, u_s)
+  std::vector<Field<Dim>> whole_;  // rank 0, several ranks: the gathered fields (u_s, then eps, p, Theta, u_g)
   std::vector<double> eps_, p_, theta_;
   std::array<std::vector<double>, Dim> ug_, us_;
   double last_dt_ = 0.0;

@@ -34,6 +34,9 @@ enum class YieldStress {
   MohrCoulomb,   ///< tau_y = P_s sin(phi): the Eq. 20 solids pressure and the friction angle (Eq. 21's yield)
 };
 
+/// The axis whose high side wall may slide (TfmConfig::sliding_wall): z in 3D, x in 2D.
+constexpr int sliding_wall_axis(int dimension) { return dimension == 3 ? 2 : 0; }
+
 /// Calls f(std::integral_constant<SolidsRheology, R>{}) for the rheology r: the one run-time switch, taken before
 /// a loop that is compiled once per rheology.
 template <class F>

@@ -205,7 +205,7 @@ void validate(const TfmConfig& c) {
   need(c.packed_height >= 0.0 && c.packed_height <= d.height, "packed_height must lie in [0, height]");
   need(c.mu_s_constant >= 0.0 && c.mu_s_max > 0.0, "solids viscosities must be non-negative (mu_s_max positive)");
   need(c.modulus.a > 0.0 && c.modulus.b > 0.0, "modulus a and b must be positive");
-  const int sliding = three_d ? 2 : 0;
+  const int sliding = sliding_wall_axis(d.dimension);
   const bool slides = c.sliding_wall[0] != 0.0 || c.sliding_wall[1] != 0.0 || (three_d && c.sliding_wall[2] != 0.0);
   need(!slides || (c.solids_no_slip_walls && !d.periodic[static_cast<std::size_t>(sliding)] &&
                    c.sliding_wall[static_cast<std::size_t>(sliding)] == 0.0),

@@ -63,8 +63,7 @@ class TfmSolver {
  public:
   /// The vertical axis (gravity, distributor at its low side).
   static constexpr int kUp = 1;
-  /// The axis whose high side wall may slide (TfmConfig::sliding_wall): z in 3D, x in 2D.
-  static constexpr int kSlidingAxis = Dim == 3 ? 2 : 0;
+  static constexpr int kSlidingAxis = sliding_wall_axis(Dim);
 
   /// Validates the config (its domain must have this Dim), sets up the grid and the initial bed: uniform
   /// eps_initial below packed_height, gas above, gas at the background inflow, P from the steady gas momentum
