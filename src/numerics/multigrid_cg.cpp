@@ -126,7 +126,7 @@ class MultigridCg final : public StructuredSolver<Dim> {
   void factorise_coarsest();
   void gather_redundant(const Level<Dim>& fine, const Level<Dim>& coarse, std::span<Field<Dim>* const> fields) const;
   void apply(Level<Dim>& l, Field<Dim>& in, Field<Dim>& out) const;
-  void smooth(Level<Dim>& l, int colour) const;
+  void smooth(Level<Dim>& l, int colour, bool ghosts_current = false) const;
   void vcycle(std::size_t level);
   double dot(const Field<Dim>& u, const Field<Dim>& v) const;
 
@@ -357,9 +357,9 @@ void MultigridCg<Dim>::apply(Level<Dim>& l, Field<Dim>& in, Field<Dim>& out) con
 }
 
 template <int Dim>
-void MultigridCg<Dim>::smooth(Level<Dim>& l, int colour) const {
+void MultigridCg<Dim>::smooth(Level<Dim>& l, int colour, bool ghosts_current) const {
   // One colour's cells, each from its neighbours of the other colour (Level::odd_periodic: see there).
-  halo(l, l.x, HaloCells::Faces);
+  if (!ghosts_current) halo(l, l.x, HaloCells::Faces);
   double* u = l.x.data().data();
   double* dst = l.odd_periodic ? l.t.data().data() : u;
   const double* d = l.diag.data().data();
@@ -396,9 +396,9 @@ void MultigridCg<Dim>::vcycle(std::size_t level) {
     for_each(l.grid.owned, [&](const Index<Dim>& c) { l.x[c] = sol[i++]; });
     return;
   }
-  l.x.fill(0.0);
+  l.x.fill(0.0);  // the ghosts too: the first sweep needs no halo
   for (int s = 0; s < options_.smoothing_sweeps; ++s) {
-    smooth(l, 0);
+    smooth(l, 0, s == 0);
     smooth(l, 1);
   }
   apply(l, l.x, l.r);
