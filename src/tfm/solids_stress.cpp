@@ -86,6 +86,20 @@ double frictional_viscosity(double eps, double eps_star, double phi_rad, const S
   return numerator / root;
 }
 
+double jj_frictional_pressure(const FrictionalParams& f, double eps_s) {
+  if (eps_s <= f.eps_s_min) return 0.0;
+  return f.fr * std::pow(eps_s - f.eps_s_min, f.n) / std::pow(f.eps_s_max - eps_s, f.p);
+}
+
+template <int Dim>
+double frictional_viscosity_on(double p_f, double phi_rad, const StrainRate<Dim>& d, double theta_d2, double mu_max) {
+  if (p_f <= 0.0) return 0.0;
+  const double root = std::sqrt(2.0 * second_invariant(d) + theta_d2);
+  const double numerator = std::sqrt(0.5) * p_f * std::sin(phi_rad);
+  if (numerator >= mu_max * root) return mu_max;  // a bed at rest (root 0) gets the cap, not a division by zero
+  return numerator / root;
+}
+
 double bingham_viscosity(double mu_p, double tau_y, double m, double g) {
   const double x = m * g;
   // Below 1e-8 the series 1 - x / 2 is exact to rounding, and expm1(-x) / g would lose its digits.
@@ -109,5 +123,7 @@ template double algebraic_granular_temperature<2>(const GranularMaterial&, doubl
 template double algebraic_granular_temperature<3>(const GranularMaterial&, double, const StrainRate<3>&);
 template double frictional_viscosity<2>(double, double, double, const StrainRate<2>&, double);
 template double frictional_viscosity<3>(double, double, double, const StrainRate<3>&, double);
+template double frictional_viscosity_on<2>(double, double, const StrainRate<2>&, double, double);
+template double frictional_viscosity_on<3>(double, double, const StrainRate<3>&, double, double);
 
 }  // namespace fluidbed::tfm

@@ -56,6 +56,25 @@ double frictional_pressure(double eps, double eps_star);
 template <int Dim>
 double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate<Dim>& d, double mu_max);
 
+/// The frictional normal stress of Johnson & Jackson (J. Fluid Mech. 176 (1987) 67, with the constants of Johnson,
+/// Jackson & Pfeffer, J. Fluid Mech. 210 (1990) 501), the dense-bed closure that MFIX, OpenFOAM and Fluent add to
+/// the kinetic theory: P_f = Fr (eps_s - eps_s,min)^n / (eps_s,max - eps_s)^p for eps_s > eps_s,min.
+struct FrictionalParams {
+  double fr = 0.05;          ///< Fr [Pa]
+  double n = 2.0;            ///< exponent of the excess over the onset
+  double p = 5.0;            ///< exponent of the distance to the packing limit
+  double eps_s_min = 0.5;    ///< solids fraction at which friction sets in
+  double eps_s_max = 0.63;   ///< random close packing, where P_f diverges
+};
+/// P_f [Pa] at solids fraction eps_s (0 at or below the onset); eps_s must stay below eps_s_max.
+double jj_frictional_pressure(const FrictionalParams& f, double eps_s);
+/// Frictional viscosity on a frictional pressure p_f [Pa]: sqrt(2) p_f sin(phi) / (2 sqrt(S:S + theta_d2)), S the
+/// deviatoric strain rate (S:S = 2 I_2D), capped at mu_max. theta_d2 = Theta / d_p^2 [1/s^2] is the
+/// regularisation of Srivastava & Sundaresan (Powder Technol. 129 (2003) 72, their critical-state pressure, the
+/// dilatancy factor left out); theta_d2 = 0 is Schaeffer's form, p_f sin(phi) / (2 sqrt(I_2D)), as in Eq. 21.
+template <int Dim>
+double frictional_viscosity_on(double p_f, double phi_rad, const StrainRate<Dim>& d, double theta_d2, double mu_max);
+
 /// Papanastasiou's regularised Bingham viscosity (J. Rheol. 31 (1987) 385): mu = mu_p + tau_y (1 - exp(-m g)) / g
 /// [Pa s], g the shear rate [1/s] (2 sqrt(I_2D): the simple shear's du/dy), m [s] the regularisation; the stress
 /// mu g is tau_y + mu_p g up to tau_y exp(-m g), and at g = 0 the viscosity is its limit mu_p + tau_y m.

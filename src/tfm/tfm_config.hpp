@@ -28,6 +28,13 @@ enum class SolidsRheology {
   Bingham,
 };
 
+/// The kinetic theory's dense-bed closure.
+enum class FrictionalModel {
+  Schaeffer,             ///< the paper's: Eqs. 21-22 alone at or below eps*, the kinetic theory alone above
+  JohnsonJackson,        ///< jj_frictional_pressure added to the kinetic theory above its onset, Schaeffer's viscosity
+  SrivastavaSundaresan,  ///< the same pressure, the viscosity regularised by Theta / d_p^2
+};
+
 /// Where the Bingham rheology's yield stress comes from.
 enum class YieldStress {
   Given,         ///< yield_stress [Pa] in the bed, scaled down with the solids fraction below eps_s = 0.05
@@ -76,6 +83,8 @@ struct TfmConfig {
   YieldStress yield = YieldStress::Given;  ///< Bingham: how tau_y is set
   double yield_stress = 10.0;  ///< [Pa] Bingham, YieldStress::Given: tau_y in the bed (the paper gives no value)
   double yield_regularisation = 100.0;  ///< [s] Bingham: Papanastasiou's m (exact Bingham as m -> infinity)
+  FrictionalModel frictional = FrictionalModel::Schaeffer;  ///< KineticTheory: the dense-bed closure
+  FrictionalParams friction{};  ///< JohnsonJackson and SrivastavaSundaresan: the frictional pressure's constants
   double mu_s_max = 100.0;     ///< [Pa s] cap on the solids viscosity (frictional viscosity diverges at rest)
   ModulusParams modulus{};     ///< Eq. 20 for ConstantViscosity, Inviscid and Bingham
   // Numerics.

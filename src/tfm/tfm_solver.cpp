@@ -156,7 +156,9 @@ FaceSolve solve_face(double a_g, double a_s, double beta, double rhs_g, double r
 template <SolidsRheology R>
 double solids_pressure_law(const TfmConfig& c, const GranularMaterial& m, double eps, double theta) {
   if constexpr (R == SolidsRheology::KineticTheory) {
-    // Eq. 19: frictional regime at or below eps*, kinetic theory above.
+    // Eq. 19: frictional regime at or below eps*, kinetic theory above; or the two added (Johnson-Jackson).
+    if (c.frictional != FrictionalModel::Schaeffer)
+      return kt_pressure(m, eps, theta) + jj_frictional_pressure(c.friction, 1.0 - eps);
     if (eps <= c.eps_star) return frictional_pressure(eps, c.eps_star);
     return kt_pressure(m, eps, theta);
   } else {
@@ -216,6 +218,14 @@ void validate(const TfmConfig& c) {
   need(c.cfl > 0.0 && c.cfl <= 1.0, "cfl must lie in (0, 1]");
   need(c.max_dense_change > 0.0 && c.max_dense_change < 0.1, "max_dense_change must lie in (0, 0.1)");
   need(packing_allowance(c) >= 0.0 && packing_allowance(c) < c.eps_star, "max_compaction must lie in [0, eps_star)");
+  if (c.rheology == SolidsRheology::KineticTheory && c.frictional != FrictionalModel::Schaeffer) {
+    const FrictionalParams& f = c.friction;
+    need(f.eps_s_min > 0.0 && f.eps_s_min < f.eps_s_max && f.eps_s_max < 1.0,
+         "the frictional onset and packing limit must satisfy 0 < onset < limit < 1");
+    need(1.0 - (c.eps_star - packing_allowance(c)) < f.eps_s_max,
+         "the frictional packing limit must lie above the densest solids fraction the packing limiter allows, "
+         "1 - (eps* - max_compaction): the Johnson-Jackson pressure diverges there");
+  }
   need(c.dt_max > 0.0 && c.dt_min > 0.0 && c.dt_min < c.dt_max, "need 0 < dt_min < dt_max");
   need(c.mass_corrections >= 0 && c.mass_corrections <= 10, "mass_corrections must lie in [0, 10]");
   for (const InletJet& j : c.boundary.jets) {
@@ -643,7 +653,15 @@ void TfmSolver<Dim>::compute_closures_of() {
       mu = std::min(bingham_viscosity(c.mu_s_constant * scale, tau_y, c.yield_regularisation, shear_rate), c.mu_s_max);
     } else if constexpr (R == SolidsRheology::KineticTheory) {
       const StrainRate<Dim> d = strain_rate();
-      if (eps <= c.eps_star) {
+      if (c.frictional != FrictionalModel::Schaeffer) {
+        // The kinetic theory everywhere, the frictional stress added above its onset.
+        if (eps_s > 0.0) theta = algebraic_granular_temperature(mat, eps, d);
+        const double p_f = jj_frictional_pressure(c.friction, eps_s);
+        const double theta_d2 = c.frictional == FrictionalModel::SrivastavaSundaresan ? theta / (c.d_p * c.d_p) : 0.0;
+        mu = std::min(kt_shear_viscosity(mat, eps, theta) + frictional_viscosity_on(p_f, phi, d, theta_d2, c.mu_s_max),
+                      c.mu_s_max);
+        lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
+      } else if (eps <= c.eps_star) {
         mu = frictional_viscosity(eps, c.eps_star, phi, d, c.mu_s_max);
       } else if (eps_s > 0.0) {
         theta = algebraic_granular_temperature(mat, eps, d);

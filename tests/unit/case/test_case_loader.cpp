@@ -62,6 +62,24 @@ TEST(CaseLoader, ArraysOfTablesAndTheTwoFluidModel) {
             std::string::npos);
 }
 
+TEST(CaseLoader, FrictionalModelsAndTheirKeys) {
+  const std::string head = "case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\n";
+  const LoadedCase lc = load_case_text(head + "frictional_model = \"srivastava_sundaresan\"\nfrictional_onset = 0.52\n"
+                                              "frictional_packing_limit = 0.64\n",
+                                       "t.toml");
+  EXPECT_EQ(lc.config.tfm.frictional, tfm::FrictionalModel::SrivastavaSundaresan);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.friction.eps_s_min, 0.52);
+  EXPECT_DOUBLE_EQ(lc.config.tfm.friction.eps_s_max, 0.64);
+  EXPECT_EQ(load_case_text(head, "t.toml").config.tfm.frictional, tfm::FrictionalModel::Schaeffer);
+  // The constants belong to the Johnson-Jackson pressure; the model to the kinetic theory.
+  EXPECT_NE(error_of(head + "frictional_onset = 0.52\n").find("tfm.frictional_onset"), std::string::npos);
+  EXPECT_NE(error_of(head + "rheology = \"inviscid\"\nfrictional_model = \"johnson_jackson\"\n").find("tfm.frictional_model"),
+            std::string::npos);
+  // A packing limit at or below the densest state the limiter allows (1 - (0.43 - 0.015) = 0.585) would diverge.
+  EXPECT_NE(error_of(head + "frictional_model = \"johnson_jackson\"\nfrictional_packing_limit = 0.58\n").find("packing"),
+            std::string::npos);
+}
+
 TEST(CaseLoader, BinghamRheologyAndItsKeys) {
   const LoadedCase lc = load_case_text("case.name = \"x\"\ncase.model = \"tfm\"\n[tfm]\nrheology = \"bingham\"\n"
                                        "yield = \"mohr_coulomb\"\nyield_stress = 40\nyield_regularisation = 1000\n"

@@ -176,6 +176,33 @@ TEST(Frictional, HandComputedValues) {
   EXPECT_NEAR(second_invariant(d2(1.0, -1.0, 0.0)), (4.0 + 1.0 + 1.0) / 6.0, 1e-15);
 }
 
+TEST(Frictional, JohnsonJacksonPressureHandValues) {
+  const FrictionalParams f{};  // Fr 0.05 Pa, n 2, p 5, onset 0.5, limit 0.63
+  EXPECT_DOUBLE_EQ(jj_frictional_pressure(f, 0.5), 0.0);
+  EXPECT_DOUBLE_EQ(jj_frictional_pressure(f, 0.3), 0.0);
+  // eps_s = 0.58: 0.05 * 0.08^2 / 0.05^5 = 0.05 * 0.0064 / 3.125e-7 = 1024 Pa.
+  EXPECT_NEAR(jj_frictional_pressure(f, 0.58), 1024.0, 1024.0 * 1e-13);
+  // Continuous at the onset (the excess enters squared) and growing without bound towards the limit.
+  EXPECT_LT(jj_frictional_pressure(f, 0.5 + 1e-6), 1e-8);
+  EXPECT_GT(jj_frictional_pressure(f, 0.629), 1e9);
+}
+
+TEST(Frictional, ViscosityOnAPressureIsSchaefferWithoutTheta) {
+  // theta_d2 = 0: sqrt(2) P sin(phi) / (2 sqrt(2 I_2D)) = P sin(phi) / (2 sqrt(I_2D)), Eq. 21's form on P* = 1e4.
+  const double phi = 40.0 * kPi / 180.0;
+  const StrainRate<2> shear = d2(0.0, 0.0, 1.0);
+  EXPECT_NEAR(frictional_viscosity_on(1e4, phi, shear, 0.0, 1e9), frictional_viscosity(0.42, 0.43, phi, shear, 1e9),
+              1e-12 * 1e4);
+  // Srivastava-Sundaresan: Theta / d^2 adds to S:S = 2 I_2D = 2; with 6 more the root doubles, the viscosity halves.
+  EXPECT_NEAR(frictional_viscosity_on(1e4, phi, shear, 6.0, 1e9), 0.5 * frictional_viscosity_on(1e4, phi, shear, 0.0, 1e9),
+              1e-12 * 1e4);
+  // At rest: the cap without Theta, a finite value with it.
+  EXPECT_DOUBLE_EQ(frictional_viscosity_on(1e4, phi, StrainRate<2>{}, 0.0, 100.0), 100.0);
+  EXPECT_NEAR(frictional_viscosity_on(10.0, phi, StrainRate<2>{}, 4.0, 100.0), std::sqrt(0.5) * 10.0 * std::sin(phi) / 2.0,
+              1e-12);
+  EXPECT_DOUBLE_EQ(frictional_viscosity_on(0.0, phi, shear, 0.0, 100.0), 0.0);
+}
+
 TEST(StrainRateInvariants, ThreeDimensionalFormReducesToPlaneStrain) {
   // A 3D strain rate with zero out-of-plane components is the 2D one: trace, D:D and Schaeffer's invariant agree
   // to the last bit (the zero terms are exact), so 2D results do not move when the closures are shared with 3D.

@@ -25,9 +25,10 @@ double carrying_voidage(const TfmConfig& c) {
   return modulus_voidage_for_pressure(c.modulus, 2.0 * load, c.eps_star);
 }
 
-void run_paper_case(SolidsRheology rheology) {
+void run_paper_case(SolidsRheology rheology, FrictionalModel frictional = FrictionalModel::Schaeffer) {
   TfmConfig c;
   c.rheology = rheology;
+  c.frictional = frictional;
   TfmSolver<2> solver(c);
   const double m0 = solver.solids_mass();
   double eps_min = 1.0, residual_max = 0.0;
@@ -46,7 +47,11 @@ void run_paper_case(SolidsRheology rheology) {
               "sweeps <= %d\n",
               static_cast<int>(rheology), solver.state().steps, cpu, eps_min, bound, eps_min - bound,
               carrying_voidage(c), solver.solids_mass() / m0 - 1.0, residual_max, sweeps_max);
-  EXPECT_LT(bound, carrying_voidage(c));
+  // The limiter's bound is tuned to the paper's Eqs. 21-22; the Johnson-Jackson pressure reaches twice the bed's
+  // load only at eps_s ~ 0.6, beyond it, so there the densest cells rest on the limiter (docs/model-tfm.md).
+  if (frictional == FrictionalModel::Schaeffer) {
+    EXPECT_LT(bound, carrying_voidage(c));
+  }
   EXPECT_NEAR(solver.time(), 1.0, 1e-12);
   // The packing limiter holds the bound exactly (to the rounding of the flux update).
   EXPECT_GE(eps_min, bound - 1e-12);
@@ -61,6 +66,12 @@ void run_paper_case(SolidsRheology rheology) {
 TEST(TfmPaperCase, KineticTheoryRunsToOneSecond) { run_paper_case(SolidsRheology::KineticTheory); }
 TEST(TfmPaperCase, ConstantViscosityRunsToOneSecond) { run_paper_case(SolidsRheology::ConstantViscosity); }
 TEST(TfmPaperCase, InviscidRunsToOneSecond) { run_paper_case(SolidsRheology::Inviscid); }
+TEST(TfmPaperCase, JohnsonJacksonFrictionRunsToOneSecond) {
+  run_paper_case(SolidsRheology::KineticTheory, FrictionalModel::JohnsonJackson);
+}
+TEST(TfmPaperCase, SrivastavaSundaresanFrictionRunsToOneSecond) {
+  run_paper_case(SolidsRheology::KineticTheory, FrictionalModel::SrivastavaSundaresan);
+}
 
 }  // namespace
 }  // namespace fluidbed::tfm

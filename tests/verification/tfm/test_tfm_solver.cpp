@@ -28,8 +28,10 @@ TfmConfig small_bed(SolidsRheology rheology) {
   return c;
 }
 
-void expect_bed_at_rest(SolidsRheology rheology) {
-  TfmSolver<2> solver(small_bed(rheology));
+void expect_bed_at_rest(SolidsRheology rheology, FrictionalModel frictional = FrictionalModel::Schaeffer) {
+  TfmConfig c = small_bed(rheology);
+  c.frictional = frictional;
+  TfmSolver<2> solver(c);
   const double m0 = solver.solids_mass();
   solver.advance_to(1.0);
   const double dp = solver.pressure_drop(), w = solver.contents_weight_per_area();
@@ -46,6 +48,13 @@ TEST(TfmSolver, BedAtMinimumFluidisationStaysAtRestConstantViscosity) {
   expect_bed_at_rest(SolidsRheology::ConstantViscosity);
 }
 TEST(TfmSolver, BedAtMinimumFluidisationStaysAtRestInviscid) { expect_bed_at_rest(SolidsRheology::Inviscid); }
+// The kinetic theory with the Johnson-Jackson frictional pressure added (the bed at eps_s 0.569 is past its onset).
+TEST(TfmSolver, BedAtMinimumFluidisationStaysAtRestJohnsonJackson) {
+  expect_bed_at_rest(SolidsRheology::KineticTheory, FrictionalModel::JohnsonJackson);
+}
+TEST(TfmSolver, BedAtMinimumFluidisationStaysAtRestSrivastavaSundaresan) {
+  expect_bed_at_rest(SolidsRheology::KineticTheory, FrictionalModel::SrivastavaSundaresan);
+}
 
 // Closed column of 0.2 mm particles at eps0 = 0.7 (Ergun branch of Eq. 13): the top of the suspension falls at
 // the velocity where drag balances buoyant weight with zero net volume flux, beta |v_s| / eps = eps_s eps
