@@ -1,7 +1,7 @@
 #pragma once
 // Packing limiter on conservative solids volume fluxes (one-sided flux-corrected transport, Zalesak 1979,
 // J. Comput. Phys. 31:335): face fluxes into a cell that would pass the packing bound are scaled down until the
-// cell lands on the bound. Only magnitudes shrink, never signs, so the update stays conservative and a zero
+// cell lands on the bound, and fluxes out of a cell that would go negative until it lands on zero. Only magnitudes shrink, never signs, so the update stays conservative and a zero
 // flux is always feasible. Two-fluid codes bound the phase fraction at its packing limit the same way
 // (e.g. OpenFOAM's MULES limiter with alphaMax).
 #include "core/field.hpp"
@@ -17,7 +17,9 @@ struct PackingLimitResult {
 
 /// Scales down the inflow faces of every cell whose conservative update (conservative_update) would exceed
 /// max(phi_max, phi_old) (cells already above phi_max may not grow): such a cell ends on that bound, 1e-14 below
-/// it so that rounding cannot leave it above. Each sweep first finds the factor of every cell from the fluxes
+/// it so that rounding cannot leave it above. Likewise the outflow faces of a cell whose update would fall below
+/// zero (an undershoot of the implicit step's deferred high-order correction; 1 - phi would exceed 1): it ends on
+/// zero. A face takes the smaller of its receiver's inflow factor and its donor's outflow factor. Each sweep first finds the factor of every cell from the fluxes
 /// the previous sweep left (a Jacobi sweep), then cuts each face by the factor of its receiving cell (a face has
 /// exactly one): the result does not depend on the order of the cells, so the limiter can run on sub-domains
 /// with a halo exchange between sweeps. Cutting a face also cuts its donor's outflow, so sweeps repeat until no

@@ -204,6 +204,39 @@ TEST(PackingLimiter, ResultDoesNotDependOnTheCellOrder) {
               r.sweeps, r.faces_limited, diff);
 }
 
+TEST(PackingLimiter, OutflowsOfAnEmptyingCellAreCutAtZero) {
+  // 3 x 3 cells; the centre holds 1e-6 of solids and the fluxes would take 4e-6 out through its four faces
+  // (an undershoot of a high-order correction): its outflows are cut alike, it lands on zero (its voidage on 1
+  // exactly), its neighbours receive what it had, and the total is kept.
+  const Grid<2> g = grid(0.06, 0.06, 3, 3);
+  Field<2> phi = cells(g, 0.3);
+  phi(1, 1) = 1e-6;
+  FaceFluxes<2> f = zero_fluxes(g);
+  const double dt = 1e-3, q = 1e-6 * 0.02 / dt;  // each face alone would empty the centre
+  f[0](1, 1) = -q;  // westward out of the centre
+  f[0](2, 1) = q;   // eastward out of it
+  f[1](1, 1) = -q;
+  f[1](1, 2) = q;
+  f[0](0, 1) = 0.0;
+  const FaceFluxes<2> before = f;
+  const double sum0 = total(phi);
+  const PackingLimitResult r = limit_packing(g, phi, dt, kMax, f);
+  const Field<2> out = conservative_update(g, phi, f, dt);
+  EXPECT_EQ(1.0 - out(1, 1), 1.0);
+  EXPECT_NEAR(out(1, 1), 0.0, 1e-18);
+  EXPECT_NEAR(f[0](2, 1), 0.25 * q, 1e-12 * q);  // the four outflows share the content equally
+  EXPECT_NEAR(f[1](1, 1), -0.25 * q, 1e-12 * q);
+  EXPECT_NEAR(total(out), sum0, 1e-15);
+  expect_only_reduced(before, f);
+  EXPECT_GE(r.sweeps, 2);
+  // A cell that stays non-negative is not touched: the same fluxes, the same bits.
+  FaceFluxes<2> g2 = zero_fluxes(g);
+  g2[0](2, 1) = 0.1 * q;
+  const FaceFluxes<2> kept = g2;
+  limit_packing(g, phi, dt, kMax, g2);
+  EXPECT_EQ(g2[0](2, 1), kept[0](2, 1));
+}
+
 TEST(PackingLimiter, FailsWhenOutOfSweeps) {
   // Flow to the right into a full last cell: the first sweep cuts the last face, which overfills its donor, so
   // one sweep cannot settle it.
