@@ -532,7 +532,9 @@ double TfmSolver<Dim>::advance(double t_stop) {
   const double dt = choose_dt(t_stop);  // Table 3 item 5: dt < cell / V_max, and the compaction rate
   linear_fallbacks_ = 0;
   predict_momentum(dt);            // Eqs. 17-18 per face, drag by partial elimination
-  set_boundary_faces(s_.time + dt);  // walls, distributor inflow and jets, lid
+  // Walls, distributor inflow and jets, lid. The inflow at the step's midpoint, as the CFD-DEM gas takes it: a jet
+  // open over [start, end) blows in exactly the steps inside that span (at the step's end it lost its last step).
+  set_boundary_faces(s_.time + 0.5 * dt);
   face_fractions();                // section 2.2.1: TVD face voidages of the step
   // Eqs. 15 + 16: mixture volume flux divergence-free (P'); the E' rows need only the face fractions and the
   // closures, so a second thread writes them meanwhile.
