@@ -82,10 +82,10 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
       if (r.has(key)) r.fail(key, "belongs to tfm.rheology = \"bingham\"");
     }
   }
-  const std::string fm = r.string("tfm.frictional_model", "schaeffer", "kinetic theory's dense-bed closure: the paper's "
-                                  "Schaeffer regime alone at or below eps* (Eqs. 21-22), or the Johnson-Jackson "
-                                  "frictional pressure added to the kinetic theory with Schaeffer's viscosity or "
-                                  "Srivastava-Sundaresan's (docs/model-tfm.md)",
+  const std::string fm = r.string("tfm.frictional_model", "schaeffer",
+                                  "kinetic theory's dense-bed closure: the paper's Schaeffer regime alone at or below "
+                                  "eps* (Eqs. 21-22), or the Johnson-Jackson frictional pressure added to the kinetic "
+                                  "theory with Schaeffer's viscosity or Srivastava-Sundaresan's (docs/model-tfm.md)",
                                   {"schaeffer", "johnson_jackson", "srivastava_sundaresan"});
   t.frictional = fm == "johnson_jackson"         ? tfm::FrictionalModel::JohnsonJackson
                  : fm == "srivastava_sundaresan" ? tfm::FrictionalModel::SrivastavaSundaresan
@@ -96,7 +96,8 @@ void read_tfm(CaseReader& r, CaseConfig& c) {
                                   "Johnson-Jackson frictional pressure diverges", R::Range{0.0, 1.0, false, false});
   const bool jj = t.rheology == tfm::SolidsRheology::KineticTheory && t.frictional != tfm::FrictionalModel::Schaeffer;
   for (const char* key : {"tfm.frictional_onset", "tfm.frictional_packing_limit"}) {
-    if (r.has(key) && !jj) r.fail(key, "belongs to tfm.frictional_model = \"johnson_jackson\" or \"srivastava_sundaresan\"");
+    if (r.has(key) && !jj)
+      r.fail(key, "belongs to tfm.frictional_model = \"johnson_jackson\" or \"srivastava_sundaresan\"");
   }
   if (r.has("tfm.frictional_model") && t.rheology != tfm::SolidsRheology::KineticTheory) {
     r.fail("tfm.frictional_model", "belongs to tfm.rheology = \"kinetic_theory\"");

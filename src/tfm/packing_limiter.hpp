@@ -1,8 +1,8 @@
 #pragma once
 // Packing limiter on conservative solids volume fluxes (one-sided flux-corrected transport, Zalesak 1979,
 // J. Comput. Phys. 31:335): face fluxes into a cell that would pass the packing bound are scaled down until the
-// cell lands on the bound, and fluxes out of a cell that would go negative until it lands on zero. Only magnitudes shrink, never signs, so the update stays conservative and a zero
-// flux is always feasible. Two-fluid codes bound the phase fraction at its packing limit the same way
+// cell lands on the bound, and fluxes out of a cell that would go negative until it lands on zero. Only magnitudes
+// shrink, never signs, so the update stays conservative and a zero flux is always feasible. Two-fluid codes bound the phase fraction at its packing limit the same way
 // (e.g. OpenFOAM's MULES limiter with alphaMax).
 #include "core/field.hpp"
 #include "core/grid.hpp"
@@ -19,11 +19,11 @@ struct PackingLimitResult {
 /// max(phi_max, phi_old) (cells already above phi_max may not grow): such a cell ends on that bound, 1e-14 below
 /// it so that rounding cannot leave it above. Likewise the outflow faces of a cell whose update would fall below
 /// zero (an undershoot of the implicit step's deferred high-order correction; 1 - phi would exceed 1): it ends on
-/// zero. A face takes the smaller of its receiver's inflow factor and its donor's outflow factor. Each sweep first finds the factor of every cell from the fluxes
-/// the previous sweep left (a Jacobi sweep), then cuts each face by the factor of its receiving cell (a face has
-/// exactly one): the result does not depend on the order of the cells, so the limiter can run on sub-domains
-/// with a halo exchange between sweeps. Cutting a face also cuts its donor's outflow, so sweeps repeat until no
-/// cell is over its bound at all (the check has no tolerance, and uses the very expression of
+/// zero. Each sweep first finds the factors of every cell from the fluxes the previous sweep left (a Jacobi sweep),
+/// then cuts each face by the smaller of its receiving cell's inflow factor and its donor's outflow factor (a face
+/// has exactly one of each): the result does not depend on the order of the cells, so the limiter can run on
+/// sub-domains with a halo exchange between sweeps. Cutting a face also changes its other cell, so sweeps repeat
+/// until no cell is out of its bounds at all (the check has no tolerance, and uses the very expression of
 /// conservative_update); after max_sweeps the run fails (simulation error). Where cut cells form a loop of flow,
 /// each cut returns to the cell that started it, so the sweeps converge geometrically; the default cap leaves a
 /// wide margin. On a periodic axis of the grid face n is face 0 (the same flux on entry): both take the same cut.

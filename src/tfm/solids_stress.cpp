@@ -76,14 +76,20 @@ double frictional_p_star(double eps, double eps_star) {
 double frictional_pressure(double eps, double eps_star) { return (1.0 - eps) * frictional_p_star(eps, eps_star); }
 
 template <int Dim>
-double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate<Dim>& d, double mu_max) {
-  const double p_star = frictional_p_star(eps, eps_star);
-  if (p_star <= 0.0) return 0.0;
-  const double root = std::sqrt(second_invariant(d));
-  const double numerator = 0.5 * p_star * std::sin(phi_rad);
+double frictional_viscosity_on(double p_f, double phi_rad, const StrainRate<Dim>& d, double theta_d2, double mu_max) {
+  if (p_f <= 0.0) return 0.0;
+  // sqrt(2) p_f sin(phi) / (2 sqrt(2 I_2D + theta_d2)), written so that theta_d2 = 0 is Eq. 21's expression bit for
+  // bit (I_2D + 0 is I_2D).
+  const double root = std::sqrt(second_invariant(d) + 0.5 * theta_d2);
+  const double numerator = 0.5 * p_f * std::sin(phi_rad);
   // Written as a comparison so that a strain rate of exactly zero gives the cap, not a division by zero.
   if (numerator >= mu_max * root) return mu_max;
   return numerator / root;
+}
+
+template <int Dim>
+double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate<Dim>& d, double mu_max) {
+  return frictional_viscosity_on(frictional_p_star(eps, eps_star), phi_rad, d, 0.0, mu_max);
 }
 
 double jj_frictional_pressure(const FrictionalParams& f, double eps_s) {
@@ -91,14 +97,6 @@ double jj_frictional_pressure(const FrictionalParams& f, double eps_s) {
   return f.fr * std::pow(eps_s - f.eps_s_min, f.n) / std::pow(f.eps_s_max - eps_s, f.p);
 }
 
-template <int Dim>
-double frictional_viscosity_on(double p_f, double phi_rad, const StrainRate<Dim>& d, double theta_d2, double mu_max) {
-  if (p_f <= 0.0) return 0.0;
-  const double root = std::sqrt(2.0 * second_invariant(d) + theta_d2);
-  const double numerator = std::sqrt(0.5) * p_f * std::sin(phi_rad);
-  if (numerator >= mu_max * root) return mu_max;  // a bed at rest (root 0) gets the cap, not a division by zero
-  return numerator / root;
-}
 
 double bingham_viscosity(double mu_p, double tau_y, double m, double g) {
   const double x = m * g;
@@ -121,9 +119,9 @@ template double second_invariant<2>(const StrainRate<2>&);
 template double second_invariant<3>(const StrainRate<3>&);
 template double algebraic_granular_temperature<2>(const GranularMaterial&, double, const StrainRate<2>&);
 template double algebraic_granular_temperature<3>(const GranularMaterial&, double, const StrainRate<3>&);
-template double frictional_viscosity<2>(double, double, double, const StrainRate<2>&, double);
-template double frictional_viscosity<3>(double, double, double, const StrainRate<3>&, double);
 template double frictional_viscosity_on<2>(double, double, const StrainRate<2>&, double, double);
 template double frictional_viscosity_on<3>(double, double, const StrainRate<3>&, double, double);
+template double frictional_viscosity<2>(double, double, double, const StrainRate<2>&, double);
+template double frictional_viscosity<3>(double, double, double, const StrainRate<3>&, double);
 
 }  // namespace fluidbed::tfm

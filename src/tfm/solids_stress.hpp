@@ -52,7 +52,8 @@ double algebraic_granular_temperature(const GranularMaterial& m, double eps, con
 double frictional_p_star(double eps, double eps_star);
 /// Eq. 21: P_s^f = (1 - eps) P*.
 double frictional_pressure(double eps, double eps_star);
-/// Eq. 21: mu_s^f = P* sin(phi) / (2 sqrt(I_2D)), capped at mu_max because sqrt(I_2D) -> 0 in a bed at rest.
+/// Eq. 21: mu_s^f = P* sin(phi) / (2 sqrt(I_2D)), capped at mu_max because sqrt(I_2D) -> 0 in a bed at rest
+/// (frictional_viscosity_on with P* and no regularisation).
 template <int Dim>
 double frictional_viscosity(double eps, double eps_star, double phi_rad, const StrainRate<Dim>& d, double mu_max);
 

@@ -35,6 +35,19 @@ enum class FrictionalModel {
   SrivastavaSundaresan,  ///< the same pressure, the viscosity regularised by Theta / d_p^2
 };
 
+/// Calls f(std::integral_constant<FrictionalModel, F>{}) for the model m, as with_rheology does for the rheology.
+template <class F>
+decltype(auto) with_frictional(FrictionalModel m, F&& f) {
+  switch (m) {
+    case FrictionalModel::JohnsonJackson:
+      return std::forward<F>(f)(std::integral_constant<FrictionalModel, FrictionalModel::JohnsonJackson>{});
+    case FrictionalModel::SrivastavaSundaresan:
+      return std::forward<F>(f)(std::integral_constant<FrictionalModel, FrictionalModel::SrivastavaSundaresan>{});
+    case FrictionalModel::Schaeffer: break;
+  }
+  return std::forward<F>(f)(std::integral_constant<FrictionalModel, FrictionalModel::Schaeffer>{});
+}
+
 /// Where the Bingham rheology's yield stress comes from.
 enum class YieldStress {
   Given,         ///< yield_stress [Pa] in the bed, scaled down with the solids fraction below eps_s = 0.05

@@ -153,11 +153,11 @@ FaceSolve solve_face(double a_g, double a_s, double beta, double rhs_g, double r
   return f;
 }
 
-template <SolidsRheology R>
+template <SolidsRheology R, FrictionalModel F>
 double solids_pressure_law(const TfmConfig& c, const GranularMaterial& m, double eps, double theta) {
   if constexpr (R == SolidsRheology::KineticTheory) {
     // Eq. 19: frictional regime at or below eps*, kinetic theory above; or the two added (Johnson-Jackson).
-    if (c.frictional != FrictionalModel::Schaeffer)
+    if constexpr (F != FrictionalModel::Schaeffer)
       return kt_pressure(m, eps, theta) + jj_frictional_pressure(c.friction, 1.0 - eps);
     if (eps <= c.eps_star) return frictional_pressure(eps, c.eps_star);
     return kt_pressure(m, eps, theta);
@@ -590,15 +590,24 @@ void TfmSolver<Dim>::mask_trace_solids_velocity() {
 
 template <int Dim>
 void TfmSolver<Dim>::compute_closures() {
-  // Rheology and drag law chosen once per step; the cell loop is compiled for the pair.
+  // Rheology, frictional closure (the kinetic theory's only) and drag law chosen once per step; the cell loop is
+  // compiled for each combination.
   with_rheology(config_.rheology, [this](auto r) {
-    with_drag_law(DragModel{config_.drag_law, config_.drag_switch},
-                  [this](auto law) { compute_closures_of<decltype(r)::value, decltype(law)>(); });
+    auto with_law = [this](auto f) {
+      with_drag_law(DragModel{config_.drag_law, config_.drag_switch}, [this](auto law) {
+        compute_closures_of<decltype(r)::value, decltype(f)::value, decltype(law)>();
+      });
+    };
+    if constexpr (decltype(r)::value == SolidsRheology::KineticTheory) {
+      with_frictional(config_.frictional, with_law);
+    } else {
+      with_law(std::integral_constant<FrictionalModel, FrictionalModel::Schaeffer>{});
+    }
   });
 }
 
 template <int Dim>
-template <SolidsRheology R, class DragLawT>
+template <SolidsRheology R, FrictionalModel F, class DragLawT>
 void TfmSolver<Dim>::compute_closures_of() {
   const TfmConfig& c = config_;
   const GranularMaterial mat{c.d_p, c.rho_s, c.e};
@@ -655,11 +664,11 @@ void TfmSolver<Dim>::compute_closures_of() {
       mu = std::min(bingham_viscosity(c.mu_s_constant * scale, tau_y, c.yield_regularisation, shear_rate), c.mu_s_max);
     } else if constexpr (R == SolidsRheology::KineticTheory) {
       const StrainRate<Dim> d = strain_rate();
-      if (c.frictional != FrictionalModel::Schaeffer) {
+      if constexpr (F != FrictionalModel::Schaeffer) {
         // The kinetic theory everywhere, the frictional stress added above its onset.
         if (eps_s > 0.0) theta = algebraic_granular_temperature(mat, eps, d);
         const double p_f = jj_frictional_pressure(c.friction, eps_s);
-        const double theta_d2 = c.frictional == FrictionalModel::SrivastavaSundaresan ? theta / (c.d_p * c.d_p) : 0.0;
+        const double theta_d2 = F == FrictionalModel::SrivastavaSundaresan ? theta / (c.d_p * c.d_p) : 0.0;
         mu = std::min(kt_shear_viscosity(mat, eps, theta) + frictional_viscosity_on(p_f, phi, d, theta_d2, c.mu_s_max),
                       c.mu_s_max);
         lambda = std::clamp(kt_bulk_viscosity(mat, eps, theta), -c.mu_s_max, c.mu_s_max);
@@ -674,11 +683,11 @@ void TfmSolver<Dim>::compute_closures_of() {
     mu_s_[cell] = mu;
     lambda_s_[cell] = lambda;
     s_.theta[cell] = theta;
-    p_s_[cell] = solids_pressure_law<R>(c, mat, eps, theta);
+    p_s_[cell] = solids_pressure_law<R, F>(c, mat, eps, theta);
     // dP_s/d eps_s sets the speed of compaction waves that the explicit solids pressure must resolve.
     const double h = 1e-7;
-    const double p_lo = solids_pressure_law<R>(c, mat, eps - h, theta);
-    const double p_hi = solids_pressure_law<R>(c, mat, eps + h, theta);
+    const double p_lo = solids_pressure_law<R, F>(c, mat, eps - h, theta);
+    const double p_hi = solids_pressure_law<R, F>(c, mat, eps + h, theta);
     dps_deps_[cell] = std::max(0.0, (p_lo - p_hi) / (2 * h));
   };
   // Each cell writes only its own closures: the same bits at any thread count. Below kParallelCells with two

@@ -150,7 +150,7 @@ class TfmSolver {
   // The stages of advance(), in order.
   void mask_trace_solids_velocity();
   void compute_closures();
-  template <SolidsRheology R, class DragLawT>
+  template <SolidsRheology R, FrictionalModel F, class DragLawT>
   void compute_closures_of();
   double choose_dt(double t_stop) const;
   void predict_momentum(double dt);

@@ -73,10 +73,12 @@ TEST(CaseLoader, FrictionalModelsAndTheirKeys) {
   EXPECT_EQ(load_case_text(head, "t.toml").config.tfm.frictional, tfm::FrictionalModel::Schaeffer);
   // The constants belong to the Johnson-Jackson pressure; the model to the kinetic theory.
   EXPECT_NE(error_of(head + "frictional_onset = 0.52\n").find("tfm.frictional_onset"), std::string::npos);
-  EXPECT_NE(error_of(head + "rheology = \"inviscid\"\nfrictional_model = \"johnson_jackson\"\n").find("tfm.frictional_model"),
+  EXPECT_NE(error_of(head + "rheology = \"inviscid\"\nfrictional_model = \"johnson_jackson\"\n")
+                .find("tfm.frictional_model"),
             std::string::npos);
   // A packing limit at or below the densest state the limiter allows (1 - (0.43 - 0.015) = 0.585) would diverge.
-  EXPECT_NE(error_of(head + "frictional_model = \"johnson_jackson\"\nfrictional_packing_limit = 0.58\n").find("packing"),
+  EXPECT_NE(error_of(head + "frictional_model = \"johnson_jackson\"\nfrictional_packing_limit = 0.58\n")
+                .find("packing"),
             std::string::npos);
 }
 

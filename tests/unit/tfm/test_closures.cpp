@@ -194,12 +194,12 @@ TEST(Frictional, ViscosityOnAPressureIsSchaefferWithoutTheta) {
   EXPECT_NEAR(frictional_viscosity_on(1e4, phi, shear, 0.0, 1e9), frictional_viscosity(0.42, 0.43, phi, shear, 1e9),
               1e-12 * 1e4);
   // Srivastava-Sundaresan: Theta / d^2 adds to S:S = 2 I_2D = 2; with 6 more the root doubles, the viscosity halves.
-  EXPECT_NEAR(frictional_viscosity_on(1e4, phi, shear, 6.0, 1e9), 0.5 * frictional_viscosity_on(1e4, phi, shear, 0.0, 1e9),
-              1e-12 * 1e4);
+  EXPECT_NEAR(frictional_viscosity_on(1e4, phi, shear, 6.0, 1e9),
+              0.5 * frictional_viscosity_on(1e4, phi, shear, 0.0, 1e9), 1e-12 * 1e4);
   // At rest: the cap without Theta, a finite value with it.
   EXPECT_DOUBLE_EQ(frictional_viscosity_on(1e4, phi, StrainRate<2>{}, 0.0, 100.0), 100.0);
-  EXPECT_NEAR(frictional_viscosity_on(10.0, phi, StrainRate<2>{}, 4.0, 100.0), std::sqrt(0.5) * 10.0 * std::sin(phi) / 2.0,
-              1e-12);
+  EXPECT_NEAR(frictional_viscosity_on(10.0, phi, StrainRate<2>{}, 4.0, 100.0),
+              std::sqrt(0.5) * 10.0 * std::sin(phi) / 2.0, 1e-12);
   EXPECT_DOUBLE_EQ(frictional_viscosity_on(0.0, phi, shear, 0.0, 100.0), 0.0);
 }
 
