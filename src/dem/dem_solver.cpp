@@ -338,9 +338,15 @@ void DemSolver<Dim>::gather_held_springs() {
   HeldSprings<Dim>& h = held_;
   h.clear(n, rolling_law);
   if (nbr_.offset.size() < n + 1) return;
+  // After a force evaluation on this list only its touching pairs (marked with a record) can hold a spring, every
+  // other entry having been released to +0. The tests are combined without branches: about one entry in three
+  // holds a spring, in no pattern a branch predictor could follow.
+  const bool marked = marked_ && entry_contact_.size() == nbr_.entries();
   auto held = [&](std::size_t q) {
-    if (!HeldSprings<Dim>::plus_zero(nbr_.history[q])) return true;
-    return rolling && !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
+    bool keep = !HeldSprings<Dim>::plus_zero(nbr_.history[q]);
+    if (rolling) keep = keep | !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
+    if (marked) keep = keep & (entry_contact_[q] != 0);
+    return keep;
   };
   // Counted, then copied, both in parallel over the particles (the entries land in list order either way).
   const auto sn = static_cast<std::ptrdiff_t>(n);
@@ -348,7 +354,7 @@ void DemSolver<Dim>::gather_held_springs() {
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     std::size_t c = 0;
-    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) c += held(q) ? 1 : 0;
+    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) c += static_cast<std::size_t>(held(q));
     h.offset[i + 1] = c;
   }
   for (std::size_t i = 0; i < n; ++i) h.offset[i + 1] += h.offset[i];
@@ -360,12 +366,21 @@ void DemSolver<Dim>::gather_held_springs() {
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     std::size_t c = h.offset[i];
-    for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) {
-      if (!held(q)) continue;
-      h.partner_id[c] = p_.id[nbr_.partner[q]];
-      h.xi[c] = nbr_.history[q];
-      if (rolling_law) h.roll[c] = rolling ? nbr_.rolling[q] : Spin<Dim>{};
-      ++c;
+    // The held entries picked out without a branch, in chunks, then copied.
+    constexpr std::size_t kChunk = 64;
+    std::size_t pick[kChunk];
+    for (std::size_t q0 = nbr_.offset[i], end = nbr_.offset[i + 1]; q0 < end; q0 += kChunk) {
+      std::size_t m = 0;
+      for (std::size_t q = q0; q < std::min(end, q0 + kChunk); ++q) {
+        pick[m] = q;
+        m += static_cast<std::size_t>(held(q));
+      }
+      for (std::size_t t = 0; t < m; ++t, ++c) {
+        const std::size_t q = pick[t];
+        h.partner_id[c] = p_.id[nbr_.partner[q]];
+        h.xi[c] = nbr_.history[q];
+        if (rolling_law) h.roll[c] = rolling ? nbr_.rolling[q] : Spin<Dim>{};
+      }
     }
   }
 }
@@ -380,12 +395,20 @@ void DemSolver<Dim>::carry_held_springs() {
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
+    const std::size_t k0 = nbr_.offset[i], k1 = nbr_.offset[i + 1];
+    // The search goes on from the last match, round the list once: both lists hold the partners in the canonical
+    // order, which changes only at a sorting rebuild, so each entry is usually looked at once. A partner is in a
+    // list at most once (a period spans more than two reaches), so the match is the one a search from the start
+    // finds.
+    std::size_t k = k0;
     for (std::size_t q = held_.offset[i]; q < held_.offset[i + 1]; ++q) {
       const std::int64_t j = held_.partner_id[q];
-      for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+      for (std::size_t step = k0; step < k1; ++step, ++k) {
+        if (k == k1) k = k0;
         if (p_.id[nbr_.partner[k]] == j) {
           nbr_.history[k] = held_.xi[q];
           if (rolling) nbr_.rolling[k] = held_.roll[q];
+          ++k;
           break;
         }
       }
@@ -485,7 +508,7 @@ void DemSolver<Dim>::drop_ghosts() {
   p_.for_each_array([this](const std::string&, auto& a, ArrayRole) { a.resize(n_owned_); });
   nbr_.offset.clear();  // the list named the ghosts' slots
   upper_offset_.clear();
-  last_valid_ = false;
+  marked_ = false;
   ++generation_;
 }
 
@@ -507,7 +530,7 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order) {
   n_owned_ = order.size();
   nbr_.offset.clear();  // the list named the old slots
   upper_offset_.clear();
-  last_valid_ = false;
+  marked_ = false;
   ++generation_;
 }
 
@@ -681,7 +704,7 @@ void DemSolver<Dim>::link_mirrors() {
     throw_simulation_error("neighbour list is not symmetric (internal error)");
   }
   linked_entries_ = nbr_.entries();
-  last_valid_ = false;  // the compact contacts named entries of the old list
+  marked_ = false;  // the records marked entries of the old list
   // A new list: no entry has a force yet (compute_forces relies on zeros in the entries not in contact).
   // With room for growth: assign() beyond the capacity allocates the exact size, which a list growing as the bed
   // compacts would pay (in page faults) at every rebuild.
@@ -759,39 +782,53 @@ DemStepInfo DemSolver<Dim>::advance(double dt) {
   int bad = 0;
   int escaped = 0;
   const auto sn = static_cast<std::ptrdiff_t>(n);
+  // A DEM-only run reads none of the fluid arrays (7 of the 3D pass's 27): with them at zero the coupled form adds
+  // exact zeros and relaxes by exactly 1, so both forms give the same bits.
+  auto update = [&]<bool Fluid>() {
 #pragma omp parallel for schedule(static) reduction(max : moved_far, bad, escaped)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const double k = drag_k[i];
-    const double im = inv_mass[i];
-    const double relax = 1.0 / (1.0 + dt * k * im);
-    // The new state is kept in locals for the tests below: the domain test through the store's accessors would
-    // reload every array it reads.
-    double moved2 = 0.0;
-    bool ok = true;
-    for (int a = 0; a < Dim; ++a) {
-      const double v = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * im + g[a]) * dt) * relax;
-      double x = X[a][i] + v * dt;
-      double dd = x - B[a][i];
-      if (wrap) {
-        // Re-enter through the opposite side; the distance moved since the list build is the nearest image's.
-        x = box.wrap(a, x);
-        dd = box.min_image(a, x - B[a][i]);
+    for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const double im = inv_mass[i];
+      const double k = Fluid ? drag_k[i] : 0.0;
+      const double relax = Fluid ? 1.0 / (1.0 + dt * k * im) : 1.0;
+      // The new state is kept in locals for the tests below: the domain test through the store's accessors would
+      // reload every array it reads.
+      double moved2 = 0.0;
+      bool ok = true;
+      for (int a = 0; a < Dim; ++a) {
+        double v;
+        if constexpr (Fluid) {
+          v = (V[a][i] + ((F[a][i] + FE[a][i] + k * UG[a][i]) * im + g[a]) * dt) * relax;
+        } else {
+          v = V[a][i] + ((F[a][i] + 0.0) * im + g[a]) * dt;  // + 0.0: a -0 force gives +0, as F + FE did
+        }
+        double x = X[a][i] + v * dt;
+        double dd = x - B[a][i];
+        if (wrap) {
+          // Re-enter through the opposite side; the distance moved since the list build is the nearest image's.
+          x = box.wrap(a, x);
+          dd = box.min_image(a, x - B[a][i]);
+        }
+        V[a][i] = v;
+        X[a][i] = x;
+        moved2 += dd * dd;
+        ok = ok && in_domain.inside(a, x) && std::isfinite(v);
+        if (in_domain.any_outflow && in_domain.escaped(a, x)) escaped = 1;
       }
-      V[a][i] = v;
-      X[a][i] = x;
-      moved2 += dd * dd;
-      ok = ok && in_domain.inside(a, x) && std::isfinite(v);
-      if (in_domain.any_outflow && in_domain.escaped(a, x)) escaped = 1;
+      // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
+      for (int c = 0; c < NS; ++c) {
+        const double w = W[c][i] + T[c][i] * inv_inertia[i] * dt;
+        W[c][i] = w;
+        ok = ok && std::isfinite(w);
+      }
+      if (moved2 >= half_skin2) moved_far = 1;
+      if (!ok) bad = 1;
     }
-    // Eq. 9 (a sphere: isotropic inertia, so each spin component follows its torque component)
-    for (int c = 0; c < NS; ++c) {
-      const double w = W[c][i] + T[c][i] * inv_inertia[i] * dt;
-      W[c][i] = w;
-      ok = ok && std::isfinite(w);
-    }
-    if (moved2 >= half_skin2) moved_far = 1;
-    if (!ok) bad = 1;
+  };
+  if (fluid_) {
+    update.template operator()<true>();
+  } else {
+    update.template operator()<false>();
   }
   if (domain_) finish_step_distributed(moved_far, bad, escaped);
   info.max_overlap = max_overlap_;
@@ -1246,7 +1283,7 @@ void DemSolver<Dim>::restore(State s) {
     if (build_[static_cast<std::size_t>(a)].empty()) build_[static_cast<std::size_t>(a)] = p_.coord(a);
   }
   upper_offset_.clear();  // linked again at the next force evaluation
-  last_valid_ = false;
+  marked_ = false;
   ++generation_;
   key_sorted_ = false;  // a state in id order: the canonical order is sorted out when asked for
   if (portable) {

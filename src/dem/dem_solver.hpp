@@ -78,6 +78,9 @@ class DemSolver {
   void distribute(const Comm& comm, const Index<Dim>& cells, const Vec<Dim>& h, const Vec<Dim>& origin,
                   const Vec<Dim>& kernel_reach, double rebalance_threshold = 1.2);
   bool distributed() const { return domain_.has_value(); }
+  /// The gas acts on the particles (CFD-DEM): the update reads drag_k, the gas velocity and force_ext, which a
+  /// DEM-only run leaves at zero and does not read.
+  void couple_to_fluid() { fluid_ = true; }
   const Comm& comm() const { return domain_ ? domain_->comm() : serial_comm(); }
   /// The block layout of a distributed run (null on one rank).
   const BlockLayout<Dim>* layout() const { return domain_ ? &domain_->layout() : nullptr; }
@@ -325,6 +328,7 @@ class DemSolver {
   std::vector<double> pair_damping_per_root_mass_;
   std::vector<double> wall_damping_per_root_mass_;
   bool sized_ = false;  ///< some particle's size differs from its species' diameter
+  bool fluid_ = false;  ///< couple_to_fluid() was called
   List nbr_;
   std::array<std::vector<double>, Dim> build_;
   /// The owned particles' springs by partner id, in store order: gathered from the list when it is rebuilt, or
@@ -371,12 +375,13 @@ class DemSolver {
   struct Contact {
     std::uint32_t i, u;
   };
-  // The touching pairs of this and of the last force evaluation, one array per block of particles (one block per
-  // thread), with their counts; the last ones are the only entries that can hold a force to release.
-  std::vector<std::vector<Contact>> contacts_, last_contacts_;
-  std::vector<std::size_t> contact_count_, last_count_;
-  bool last_valid_ = false;  ///< last_contacts_ name entries of the current list
-  std::size_t last_n_ = 0;   ///< particles at the last evaluation (the blocks depend on it)
+  // The touching pairs of the force evaluation, one array per block of particles (one block per thread), with
+  // their counts.
+  std::vector<std::vector<Contact>> contacts_;
+  std::vector<std::size_t> contact_count_;
+  /// A force evaluation ran on the current list: entry_contact_ marks its touching pairs, the only entries that
+  /// can hold a spring to release.
+  bool marked_ = false;
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double max_overlap_fraction_ = 0.0;
