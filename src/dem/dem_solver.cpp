@@ -659,6 +659,31 @@ void DemSolver<Dim>::permute_wall_roll(const std::vector<std::size_t>& order) {
 }
 
 template <int Dim>
+bool DemSolver<Dim>::link_sorted_mirrors() {
+  // Lists sorted by partner slot (one rank, after a sorting rebuild: the usual case) hold each particle's lower
+  // partners first, in ascending order; taken in ascending order, the particles naming j as an upper partner are
+  // those same partners in the same order, so the c-th of them finds its mirror at j's c-th entry, with no search.
+  // One pass over the list (serial: the count per partner is a running one); any entry out of that order sends
+  // the list to the search instead.
+  const std::size_t n = p_.size();
+  std::vector<std::uint32_t>& seen = mirror_cursor_;
+  seen.assign(n, 0);
+  const std::uint32_t* partner = nbr_.partner.data();
+  for (std::size_t i = 0, u = 0; i < n; ++i) {
+    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+      const std::size_t j = partner[k];
+      if (j <= i) continue;
+      const std::size_t q = nbr_.offset[j] + seen[j]++;
+      if (q >= nbr_.offset[j + 1] || partner[q] != i) return false;
+      upper_entry_[u] = static_cast<std::uint32_t>(k);
+      upper_mirror_[u] = static_cast<std::uint32_t>(q);
+      ++u;
+    }
+  }
+  return true;
+}
+
+template <int Dim>
 void DemSolver<Dim>::link_mirrors() {
   const std::size_t n = p_.size();
   if (nbr_.entries() > std::numeric_limits<std::uint32_t>::max()) {
@@ -679,24 +704,27 @@ void DemSolver<Dim>::link_mirrors() {
   upper_entry_.resize(upper_offset_[n]);
   upper_mirror_.resize(upper_offset_[n]);
   int missing = 0;
+  // Several ranks sort by the canonical order, not by slot: their lists go to the search directly.
+  if (domain_ || !link_sorted_mirrors()) {
 #pragma omp parallel for schedule(static) reduction(max : missing)
-  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    std::size_t u = upper_offset_[i];
-    for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
-      const std::size_t j = nbr_.partner[k];
-      if (j <= i) continue;
-      bool found = false;
-      for (std::size_t q = nbr_.offset[j]; q < nbr_.offset[j + 1]; ++q) {
-        if (nbr_.partner[q] == i) {
-          upper_entry_[u] = static_cast<std::uint32_t>(k);
-          upper_mirror_[u] = static_cast<std::uint32_t>(q);
-          found = true;
-          break;
+    for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      std::size_t u = upper_offset_[i];
+      for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
+        const std::size_t j = nbr_.partner[k];
+        if (j <= i) continue;
+        bool found = false;
+        for (std::size_t q = nbr_.offset[j]; q < nbr_.offset[j + 1]; ++q) {
+          if (nbr_.partner[q] == i) {
+            upper_entry_[u] = static_cast<std::uint32_t>(k);
+            upper_mirror_[u] = static_cast<std::uint32_t>(q);
+            found = true;
+            break;
+          }
         }
+        ++u;
+        if (!found) missing = 1;
       }
-      ++u;
-      if (!found) missing = 1;
     }
   }
   // Every upper entry has its partner's entry, and those are all the other entries: the list is symmetric.

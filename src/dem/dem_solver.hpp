@@ -263,6 +263,8 @@ class DemSolver {
   /// Distributed: ghosts follow their owners; the flags and largest overlaps of the step reduced over ranks.
   void finish_step_distributed(int& moved_far, int& bad, int& escaped);
   void link_mirrors();
+  /// link_mirrors without a search, for lists sorted by partner slot; false (links unfinished) for any other list.
+  bool link_sorted_mirrors();
   /// Drop the particles whose centre is beyond an outflow side, keeping the order of the others, their neighbour
   /// entries and contact springs; counts them and their mass.
   std::size_t remove_escaped();
@@ -382,6 +384,7 @@ class DemSolver {
   /// A force evaluation ran on the current list: entry_contact_ marks its touching pairs, the only entries that
   /// can hold a spring to release.
   bool marked_ = false;
+  std::vector<std::uint32_t> mirror_cursor_;  ///< link_sorted_mirrors' count per partner
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double max_overlap_fraction_ = 0.0;
