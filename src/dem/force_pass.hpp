@@ -301,21 +301,10 @@ struct DemSolver<Dim>::ForcePass {
     // are those over the touching entries in list order. They are picked out without a branch first, in chunks,
     // so that the chain of dependent additions is as long as the contacts, not the list (2.5 times longer in a
     // packed 3D bed at a skin of half a diameter). The partner's side takes -f, an exact negation.
-    constexpr std::size_t kChunk = 64;
-    std::uint32_t marks[kChunk];
-    for (std::size_t k0 = s.nbr_.offset[i], end = s.nbr_.offset[i + 1]; k0 < end; k0 += kChunk) {
-      const std::size_t k1 = std::min(end, k0 + kChunk);
-      std::size_t m = 0;
-      for (std::size_t k = k0; k < k1; ++k) {
-        const std::uint32_t e = s.entry_contact_[k];
-        marks[m] = e;
-        m += static_cast<std::size_t>(e != 0);
-      }
-      for (std::size_t c = 0; c < m; ++c) {
-        const std::uint32_t e = marks[c];
-        f += kSide[e & 1u] * cforce[e >> 1];
-        torque += ctorque[e];
-      }
+    for (std::size_t k = s.nbr_.offset[i]; k < s.nbr_.offset[i + 1]; ++k) {
+      const std::uint32_t e = s.entry_contact_[k];
+      f += kSide[e & 1u] * cforce[e >> 1];
+      torque += ctorque[e];
     }
     // Plane walls: the same law against a fixed body of infinite mass. A disabled wall never holds a spring.
     // A particle clear of every wall (most of the bed) only needs its springs checked for zero: the test on

@@ -85,8 +85,9 @@ class TfmModel final : public ModelRun {
             mass * per_depth, ke * per_depth, last_dt_, solver_.min_voidage(), solver_.max_solids_speed(),
             solver_.bed_granular_temperature_max(), solver_.solids_mean_granular_temperature(),
             static_cast<double>(solver_.linear_fallbacks()),
-            // The superficial inflow of the last step (the TFM takes it at the step's end, the current time).
-            inlet_mean_velocity(config_.tfm.boundary, g, solver_.time())};
+            // The superficial inflow of the last step, taken at its midpoint as the solver took it (before the
+            // first step, the schedules at t = 0).
+            inlet_mean_velocity(config_.tfm.boundary, g, solver_.time() - 0.5 * last_dt_)};
   }
   FieldView fields() override {
     const Grid<Dim>& g = solver_.grid();
