@@ -18,8 +18,8 @@ template <int Dim>
 CfdDemSimulation<Dim>::CfdDemSimulation(DemSolver<Dim> dem, std::optional<GasSolver<Dim>> gas, CouplingConfig coupling)
     : dem_(std::move(dem)), gas_(std::move(gas)), coupling_(coupling) {
   depth_ = coupling_.depth > 0.0 ? coupling_.depth : largest_diameter();
+  dem_.couple_to_fluid(gas_.has_value());  // without gas nothing writes the fluid arrays: the update skips them
   if (gas_) {
-    dem_.couple_to_fluid();
     const IndexBox<Dim>& box = gas_->grid().owned;
     for (Field<Dim>* f : {&eps_, &eps_gas_old_, &eps_gas_, &beta_}) *f = Field<Dim>(box, 0);
     for (int a = 0; a < Dim; ++a) {

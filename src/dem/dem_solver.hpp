@@ -78,9 +78,9 @@ class DemSolver {
   void distribute(const Comm& comm, const Index<Dim>& cells, const Vec<Dim>& h, const Vec<Dim>& origin,
                   const Vec<Dim>& kernel_reach, double rebalance_threshold = 1.2);
   bool distributed() const { return domain_.has_value(); }
-  /// The gas acts on the particles (CFD-DEM): the update reads drag_k, the gas velocity and force_ext, which a
-  /// DEM-only run leaves at zero and does not read.
-  void couple_to_fluid() { fluid_ = true; }
+  /// Whether a fluid acts on the particles: the update reads drag_k, the gas velocity and force_ext (the default,
+  /// right for whatever the store holds), or, for a run known to have no gas, leaves those arrays (at zero) unread.
+  void couple_to_fluid(bool on) { fluid_ = on; }
   const Comm& comm() const { return domain_ ? domain_->comm() : serial_comm(); }
   /// The block layout of a distributed run (null on one rank).
   const BlockLayout<Dim>* layout() const { return domain_ ? &domain_->layout() : nullptr; }
@@ -330,7 +330,7 @@ class DemSolver {
   std::vector<double> pair_damping_per_root_mass_;
   std::vector<double> wall_damping_per_root_mass_;
   bool sized_ = false;  ///< some particle's size differs from its species' diameter
-  bool fluid_ = false;  ///< couple_to_fluid() was called
+  bool fluid_ = true;  ///< couple_to_fluid
   List nbr_;
   std::array<std::vector<double>, Dim> build_;
   /// The owned particles' springs by partner id, in store order: gathered from the list when it is rebuilt, or

@@ -48,8 +48,8 @@ TEST(DemUpdateForms, DemOnlyUpdateGivesTheCoupledFormsBitsWithTheFluidAtZero) {
   pc.seed = 3;
   const ParticleStore<3> p = place_random<3>(c, pc);
   DemSolver<3> dem_only(c, p);
-  DemSolver<3> coupled(c, p);
-  coupled.couple_to_fluid();
+  dem_only.couple_to_fluid(false);
+  DemSolver<3> coupled(c, p);  // the default form
   std::uint64_t contact_steps = 0;
   for (int n = 0; n < 1500; ++n) {
     dem_only.step();
