@@ -297,10 +297,8 @@ struct DemSolver<Dim>::ForcePass {
     const double ri = R[i];
     Vec<Dim> f{};
     Spin<Dim> torque{};
-    // Entries not in contact name the zero record (-0), whose addition leaves every partial sum as it was: the sums
-    // are those over the touching entries in list order. They are picked out without a branch first, in chunks,
-    // so that the chain of dependent additions is as long as the contacts, not the list (2.5 times longer in a
-    // packed 3D bed at a skin of half a diameter). The partner's side takes -f, an exact negation.
+    // Entries not in contact name the zero record: adding +0 or -0 leaves every partial sum as it was, so the
+    // sums are those over the touching entries in list order. The partner's side takes -f, an exact negation.
     for (std::size_t k = s.nbr_.offset[i]; k < s.nbr_.offset[i + 1]; ++k) {
       const std::uint32_t e = s.entry_contact_[k];
       f += kSide[e & 1u] * cforce[e >> 1];

@@ -16,7 +16,7 @@ deviation() {  # deviation FILE EXPR
 
 expect 0 "" "pulsed TFM runs" "$FLUIDBED" run "$ROOT/cases/pulsed/tfm.toml" --out "$WORK/tfm" --end-time 0.2 --quiet \
   --set output.fields=false
-expect 0 "^within" "TFM inlet_velocity_m_s = 2.7 + 0.9 sin(10 pi t)" \
+expect 0 "^within" "TFM inlet_velocity_m_s = 2.7 + 0.9 sin(10 pi (t - dt / 2))" \
   deviation "$WORK/tfm/monitor.csv" "2.7 + 0.9 * sin(2 * 3.141592653589793 * 5 * (t - h / 2))"
 
 # 300 particles in a 0.1 x 0.3 m box on a plate of 5 slots 4 mm wide at 20 mm pitch (20% open) carrying 2 m/s,
