@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 #include "analysis/bubble_tracker.hpp"
 
@@ -59,6 +61,18 @@ double bed_height(const CellView<Dim>& eps, double solids_fraction) {
   return 0.0;
 }
 
+double percentile(std::span<const double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::vector<double> v(values.begin(), values.end());
+  const double rank = std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(rank);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(lo), v.end());
+  const double a = v[lo];
+  if (lo + 1 == v.size()) return a;
+  const double b = *std::min_element(v.begin() + static_cast<std::ptrdiff_t>(lo) + 1, v.end());
+  return a + (rank - static_cast<double>(lo)) * (b - a);
+}
+
 std::vector<std::string> probe_columns(const std::vector<ProbeSpec>& probes, int dimension, bool solids) {
   static constexpr const char* axis[3] = {"x", "y", "z"};
   std::vector<std::string> cols;
@@ -69,6 +83,10 @@ std::vector<std::string> probe_columns(const std::vector<ProbeSpec>& probes, int
     }
     if (p.kind == ProbeKind::BedHeight) {
       cols.push_back(p.name + "_bed_height_m");
+      continue;
+    }
+    if (p.kind == ProbeKind::ParticleTop) {
+      cols.push_back(p.name + "_top_m");
       continue;
     }
     cols.push_back(p.name + "_p_Pa");
@@ -92,6 +110,10 @@ std::vector<double> sample_probes(const std::vector<ProbeSpec>& probes, const Pr
     }
     if (p.kind == ProbeKind::BedHeight) {
       row.push_back(bed_height<Dim>(view(fields.eps), p.solids_fraction));
+      continue;
+    }
+    if (p.kind == ProbeKind::ParticleTop) {
+      row.push_back(percentile(fields.particle_tops, p.percentile));
       continue;
     }
     std::array<double, Dim> x{};

@@ -4,6 +4,7 @@
 // experimenter's pressure taps, optical probes and capacitance planes measure them. Pure functions of
 // cell-centred fields (CellView), so CFD-DEM and TFM, 2D and 3D share them. docs/analysis.md ("Probes").
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ enum class ProbeKind {
   Plane,         ///< the fields' mean over the horizontal line (2D) or plane (3D) at height `height`
   PressureDrop,  ///< mean pressure at `height` minus mean pressure at `height_top` (Pa, > 0 for a fluidised bed)
   BedHeight,     ///< highest height where the cross-section mean solids fraction falls to `solids_fraction` (m)
+  ParticleTop,   ///< the `percentile` of the particles' tops (centre + radius), m: the surface a camera sees
 };
 
 /// One probe of the case file ([[probe]]).
@@ -27,6 +29,7 @@ struct ProbeSpec {
   double height = 0.0;                   ///< m above the bottom, Plane and the lower tap of PressureDrop
   double height_top = 0.0;               ///< m, the upper tap of PressureDrop
   double solids_fraction = 0.3;          ///< BedHeight's threshold of the mean solids fraction 1 - eps
+  double percentile = 99.0;              ///< ParticleTop: percent of the particles' tops at or below the value
 };
 
 /// The probes of a case and their sampling.
@@ -44,6 +47,8 @@ struct ProbeFields {
   const double* eps = nullptr;
   std::array<const double*, Dim> ug{};
   std::array<const double*, Dim> us{};
+  /// The particles' tops (centre + radius along y), any order; empty for a model without particles.
+  std::span<const double> particle_tops;
   bool has_solids_velocity() const {
     for (const double* c : us)
       if (!c) return false;
@@ -62,9 +67,14 @@ double plane_mean(const CellView<Dim>& f, double y);
 template <int Dim>
 double bed_height(const CellView<Dim>& eps, double solids_fraction);
 
+/// The p-th percentile (0 <= p <= 100) of `values`, linear between the order statistics around rank
+/// p / 100 (n - 1) (Hyndman and Fan's definition 7, numpy's default): a function of the values alone, not of their
+/// order; 0 for no values.
+double percentile(std::span<const double> values, double p);
+
 /// probes.csv header columns after time_s, per probe in order: Point and Plane `NAME_p_Pa,NAME_eps,NAME_ug_x_m_s,
 /// NAME_ug_y_m_s[,NAME_ug_z_m_s][,NAME_us_x_m_s,NAME_us_y_m_s[,NAME_us_z_m_s]]` (us with `solids`), PressureDrop
-/// `NAME_dp_Pa`, BedHeight `NAME_bed_height_m`.
+/// `NAME_dp_Pa`, BedHeight `NAME_bed_height_m`, ParticleTop `NAME_top_m`.
 std::vector<std::string> probe_columns(const std::vector<ProbeSpec>& probes, int dimension, bool solids);
 
 /// The values of one probes.csv row after time_s, in probe_columns() order.

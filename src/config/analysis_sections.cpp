@@ -80,12 +80,14 @@ void read_probes(CaseReader& r, CaseConfig& c) {
     ProbeSpec s;
     const std::string kind = r.string(p + "kind", "point", "point (fields at position), plane (the mean over the "
                                       "horizontal line, 3D plane, at height), pressure_drop (mean pressure at "
-                                      "height minus at height_top) or bed_height (the highest height where the "
-                                      "cross-section mean solids fraction falls to solids_fraction)",
-                                      {"point", "plane", "pressure_drop", "bed_height"});
+                                      "height minus at height_top), bed_height (the highest height where the "
+                                      "cross-section mean solids fraction falls to solids_fraction) or particle_top "
+                                      "(the percentile of the particles' tops: CFD-DEM)",
+                                      {"point", "plane", "pressure_drop", "bed_height", "particle_top"});
     s.kind = kind == "plane"           ? ProbeKind::Plane
              : kind == "pressure_drop" ? ProbeKind::PressureDrop
              : kind == "bed_height"    ? ProbeKind::BedHeight
+             : kind == "particle_top"  ? ProbeKind::ParticleTop
                                        : ProbeKind::Point;
     s.name = r.string(p + "name", fmt::format("probe{}", k), "column prefix in probes.csv");
     if (s.name.empty() || s.name.find_first_of(", \t\n\"") != std::string::npos)
@@ -103,6 +105,13 @@ void read_probes(CaseReader& r, CaseConfig& c) {
       s.solids_fraction = r.number(p + "solids_fraction", 0.3, "", "bed_height: the cross-section mean solids "
                                    "fraction 1 - eps that marks the bed surface (about half a packed bed's)",
                                    R::Range{0.0, 1.0, true, true});
+    } else if (s.kind == ProbeKind::ParticleTop) {
+      if (c.model == Model::Tfm) {
+        r.fail(p + "kind", "particle_top reads the particles, and the two-fluid model has none: use bed_height");
+      }
+      s.percentile = r.number(p + "percentile", 99.0, "%", "particle_top: the percent of the particles' tops "
+                              "(centre + radius) at or below the probe's height",
+                              R::between(0.0, 100.0));
     } else {
       s.height = r.required_number(p + "height", "m", "height of a plane probe, lower tap of a pressure drop",
                                    R::between(0.0, c.domain.height));

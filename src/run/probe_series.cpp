@@ -1,14 +1,18 @@
 #include "run/probe_series.hpp"
 
+#include <cstddef>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace fluidbed {
 
 namespace {
 
 template <int Dim>
-ProbeFields<Dim> probe_fields(const FieldView& fv) {
+ProbeFields<Dim> probe_fields(const FieldView& fv, std::span<const double> tops) {
   ProbeFields<Dim> f;
+  f.particle_tops = tops;
   for (int a = 0; a < Dim; ++a) {
     f.geometry.n[a] = fv.n[a];
     f.geometry.h[a] = fv.h[a];
@@ -31,9 +35,22 @@ ProbeSeries::ProbeSeries(const std::filesystem::path& path, const std::vector<Pr
   csv_.emplace(restart ? CsvWriter::resume(path, cols, t_cut) : CsvWriter(path, cols));
 }
 
-void ProbeSeries::sample(double t, const FieldView& fv) {
-  const std::vector<double> v =
-      dim_ == 3 ? sample_probes<3>(probes_, probe_fields<3>(fv)) : sample_probes<2>(probes_, probe_fields<2>(fv));
+bool ProbeSeries::reads_particles() const {
+  for (const ProbeSpec& p : probes_)
+    if (p.kind == ProbeKind::ParticleTop) return true;
+  return false;
+}
+
+void ProbeSeries::sample(double t, const FieldView& fv, const ParticleArrays* particles) {
+  if (particles) {
+    tops_.resize(particles->size());
+    const std::span<const double> y = particles->x[1];
+    for (std::size_t i = 0; i < tops_.size(); ++i) tops_[i] = y[i] + particles->radius[i];
+  } else {
+    tops_.clear();
+  }
+  const std::vector<double> v = dim_ == 3 ? sample_probes<3>(probes_, probe_fields<3>(fv, tops_))
+                                          : sample_probes<2>(probes_, probe_fields<2>(fv, tops_));
   std::vector<std::optional<double>> row{t};
   for (double x : v) row.push_back(x);
   csv_->row(row);

@@ -607,7 +607,7 @@ class Run {
     dt_ = model_->macro_dt();
     model_steps_before_ = model_->cost().time_steps;  // DEM steps (several per gas step) or TFM steps
     try {
-      if (!restart_) observe(model_->time(), step_flags(model_->time()).averages_due);
+      if (!restart_) observe(model_->time(), step_flags(model_->time()));
       while (!landed(model_->time())) {
         const double t_before = model_->time();
         model_->advance(cfg_.run.end_time);
@@ -624,7 +624,7 @@ class Run {
           const FieldView fv = model_->fields();
           if (fv.has_solids_velocity()) advance_tracers(*tracers_, fv, model_->last_step());
         }
-        observe(t, flags.averages_due);
+        observe(t, flags);
         if (checkpoints_.due(t, dt_) && !landed(t)) periodic_checkpoint(t);
         if (stop_requested(flags)) break;
         progress.update(t, steps_here_, wall(), log());
@@ -650,28 +650,30 @@ class Run {
 
   /// What every rank decides after a step, taken together (one reduction on several ranks): a stop asked for by a
   /// signal to any rank, by the stop file or the wall-time limit (read by rank 0), whether the time averages
-  /// sample now (their observer is rank 0's; the particles they read are gathered from all), and which of the
-  /// model's fields rank 0's observers read after this step.
+  /// sample now (their observer is rank 0's; the particles they read are gathered from all), whether a probe row
+  /// that reads the particles is due (the same), and which of the model's fields rank 0's observers read after
+  /// this step.
   struct StepFlags {
-    bool signal = false, stop_file = false, wall_limit = false, averages_due = false;
+    bool signal = false, stop_file = false, wall_limit = false, averages_due = false, particle_probes_due = false;
     FieldNeed fields = FieldNeed::None;
   };
   StepFlags step_flags(double t) {
-    double v[5] = {pending_signal.load() != 0 ? 1.0 : 0.0, 0.0, 0.0, 0.0, 0.0};
+    double v[6] = {pending_signal.load() != 0 ? 1.0 : 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     if (root_) {
       v[1] = steps_here_ % 64 == 0 && fs::exists(out_ / "STOP") ? 1.0 : 0.0;
       v[2] = cfg_.run.max_wall_time > 0.0 && wall() > cfg_.run.max_wall_time ? 1.0 : 0.0;
       v[3] = averages_ && averages_->samples_at(t, dt_) ? 1.0 : 0.0;
       v[4] = static_cast<double>(fields_read_after_step(t, v[3] != 0.0));
+      v[5] = probes_ && probes_->reads_particles() && probe_due(t) ? 1.0 : 0.0;
     }
     if (comm_.size() > 1) comm_.max(std::span<double>(v));
-    return {v[0] != 0.0, v[1] != 0.0, v[2] != 0.0, v[3] != 0.0, static_cast<FieldNeed>(static_cast<int>(v[4]))};
+    return {v[0] != 0.0, v[1] != 0.0, v[2] != 0.0, v[3] != 0.0, v[5] != 0.0,
+            static_cast<FieldNeed>(static_cast<int>(v[4]))};
   }
   /// Rank 0's observers in observe() and the tracers: every field at a frame (bubbles, field files), a probe row
   /// or an averages sample; the solids velocity alone for the tracers of every step.
   FieldNeed fields_read_after_step(double t, bool averages_due) const {
-    const bool probe_due = probes_ && (probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_));
-    if (frames_.due(t, dt_) || probe_due || averages_due) return FieldNeed::All;
+    if (frames_.due(t, dt_) || (probes_ && probe_due(t)) || averages_due) return FieldNeed::All;
     return tracers_ ? FieldNeed::SolidsVelocity : FieldNeed::None;
   }
 
@@ -735,10 +737,16 @@ class Run {
 
   /// The outputs due at time t. The model's calls are collective (every rank makes them, in this order); the
   /// observers and writers are rank 0's.
-  void observe(double t, bool averages_due) {
-    // Probes may sample every step (probes.interval = 0), so before the coarser outputs.
-    if (probes_ && (probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_))) {
-      probes_->sample(probe_rows_.interval == 0.0 ? t : probe_rows_.stamp(t), model_->fields());
+  bool probe_due(double t) const { return probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_); }
+
+  void observe(double t, const StepFlags& flags) {
+    const bool averages_due = flags.averages_due;
+    // Probes may sample every step (probes.interval = 0), so before the coarser outputs. A probe of the particles
+    // gathers them on every rank (collective), decided alike on every rank by step_flags.
+    const std::optional<ParticleArrays> probed = flags.particle_probes_due ? model_->particles() : std::nullopt;
+    if (probes_ && probe_due(t)) {
+      probes_->sample(probe_rows_.interval == 0.0 ? t : probe_rows_.stamp(t), model_->fields(),
+                      probed ? &*probed : nullptr);
       probe_rows_.advance(t, dt_);
     }
     if (averages_due || averages_) {

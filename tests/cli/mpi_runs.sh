@@ -39,12 +39,36 @@ check "paper: the decomposition is logged" grep -q "decomposition: .* blocks" "$
 
 # 3D: 600 spheres settled in vacuum by each run on its own ranks, then fluidised with a disc jet (the regression
 # oracle's 3D bed), with particle CSVs.
-ranks_agree bed3d "$ROOT/tests/oracle/dem3d.toml" --set output.particles_csv=true
+# With probes of the particles' tops (gathered from every rank at each row) beside a field probe, at the frames'
+# times: a probe row must equal the percentile of the frame's particles (numpy's default, Hyndman-Fan 7).
+probes3d=(--set 'probe=[{kind="particle_top",name="top",percentile=90},{kind="particle_top",name="max",percentile=100},{kind="bed_height",name="bed"}]'
+          --set probes.interval=0.005)
+ranks_agree bed3d "$ROOT/tests/oracle/dem3d.toml" --set output.particles_csv=true "${probes3d[@]}"
 check "bed3d: the settled beds are the same bytes" cmp "$WORK/bed3d-1/settled.csv" "$WORK/bed3d-3/settled.csv"
+check "bed3d: particle_top rows are the frames' percentiles" /usr/bin/python3 - "$WORK/bed3d-1" <<'PY'
+import csv, re, sys
+import numpy as np
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+run = sys.argv[1]
+rows = {round(float(r["time_s"]), 9): r for r in csv.DictReader(open(run + "/probes.csv"))}
+frames = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', open(run + "/particles.pvd").read())
+assert len(frames) >= 5, frames
+for t, f in frames:
+    rd = vtk.vtkXMLUnstructuredGridReader()
+    rd.SetFileName(run + "/" + f)
+    rd.Update()
+    o = rd.GetOutput()
+    top = vtk_to_numpy(o.GetPoints().GetData())[:, 1] + 0.5 * vtk_to_numpy(o.GetPointData().GetArray("diameter"))
+    r = rows[round(float(t), 9)]
+    for col, p in (("top_top_m", 90), ("max_top_m", 100)):
+        assert abs(float(r[col]) - np.percentile(top, p)) <= 1e-15, (t, col, r[col], np.percentile(top, p))
+print(f"{len(frames)} frames: particle_top = numpy's percentile of the tops")
+PY
 
 # Two threads per rank (hybrid MPI x OpenMP).
 mpi_ok "bed3d: 2 ranks x 2 threads" 2 "$ROOT/tests/oracle/dem3d.toml" --out "$WORK/bed3d-hybrid" --threads 2 \
-  --set output.particles_csv=true
+  --set output.particles_csv=true "${probes3d[@]}"
 same_results "bed3d: 2 ranks x 2 threads vs one process" "$WORK/bed3d-1" "$WORK/bed3d-hybrid"
 
 # A CFD-DEM box periodic in x, gravity tilted so that particles and gas cross the periodic side (and the ranks).

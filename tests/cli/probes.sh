@@ -40,4 +40,6 @@ expect 2 "probe\[0\]\.position.*outside the domain" "probes: a point outside the
   "$FLUIDBED" check "$WORK/p.toml" --set 'probe[0].position=[0.7, 0.1]'
 expect 2 "probe\[2\]\.height_top" "probes: a pressure drop needs its upper tap" "$FLUIDBED" check "$WORK/p.toml" \
   --set 'probe=[{kind="point", position=[0.1,0.1]}, {kind="plane", height=0.1}, {kind="pressure_drop", height=0.1}]'
+expect 2 "probe\[0\]\.kind.*particle_top.*two-fluid model has none" "probes: particle_top is refused in a TFM case" \
+  "$FLUIDBED" check "$WORK/p.toml" --set 'probe=[{kind="particle_top", name="top"}]'
 finish

@@ -95,8 +95,9 @@ same_results() {  # same_results LABEL DIR_A DIR_B
     check "$label: $f entries identical" cmp <(pvd_entries "$a/$f") <(pvd_entries "$b/$f")
     check "$label: $f has no time twice" test -z "$(pvd_entries "$b/$f" | cut -d' ' -f1 | sort | uniq -d)"
   done
-  # The bubble series: the jet bubble and every bubble (ids, events and velocities continue across a restart).
-  for f in bubble.csv bubbles.csv bubble_events.csv bubble_frames.csv; do
+  # The bubble series: the jet bubble and every bubble (ids, events and velocities continue across a restart);
+  # the probes.
+  for f in bubble.csv bubbles.csv bubble_events.csv bubble_frames.csv probes.csv; do
     [[ -e $a/$f || -e $b/$f ]] || continue
     check "$label: $f identical" cmp "$a/$f" "$b/$f"
   done

@@ -157,5 +157,43 @@ void check_bed_height() {
 TEST(Probes, BedHeight2D) { check_bed_height<2>(); }
 TEST(Probes, BedHeight3D) { check_bed_height<3>(); }
 
+// The percentile of Hyndman and Fan's definition 7: on 1, 2, ..., 101 the p-th percentile is 1 + p exactly; on
+// five values the ranks fall between order statistics (p = 90: rank 3.6, 4 + 0.6 (5 - 4)); any order of the same
+// values gives the same bits; the ends are the minimum and the maximum; no values give 0.
+TEST(Probes, PercentileOfValuesInAnyOrder) {
+  std::vector<double> v(101);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<double>((i * 37) % 101 + 1);  // a permutation
+  for (const double p : {0.0, 5.0, 50.0, 95.0, 99.0, 100.0}) EXPECT_EQ(percentile(v, p), 1.0 + p) << p;
+  const std::vector<double> five{5.0, 1.0, 4.0, 2.0, 3.0};
+  EXPECT_DOUBLE_EQ(percentile(five, 90.0), 4.6);
+  EXPECT_DOUBLE_EQ(percentile(five, 12.5), 1.5);
+  std::vector<double> tops(2000);
+  for (std::size_t i = 0; i < tops.size(); ++i) tops[i] = 0.1 + 1e-3 * std::sin(0.37 * static_cast<double>(i));
+  const double forward = percentile(tops, 99.5);
+  std::vector<double> backward(tops.rbegin(), tops.rend());
+  EXPECT_EQ(percentile(backward, 99.5), forward);
+  EXPECT_EQ(percentile(five, 0.0), 1.0);
+  EXPECT_EQ(percentile(five, 100.0), 5.0);
+  EXPECT_EQ(percentile(std::vector<double>{}, 50.0), 0.0);
+  EXPECT_EQ(percentile(std::vector<double>{0.25}, 99.0), 0.25);
+}
+
+// A particle_top probe reads the particles' tops it is given, in its own column among the field probes.
+TEST(Probes, ParticleTopReadsTheParticlesTops) {
+  Fields<3> fields;
+  ProbeFields<3> f = fields.view();
+  std::vector<double> tops{0.30, 0.10, 0.20, 0.40, 0.05};
+  f.particle_tops = tops;
+  ProbeSpec top{ProbeKind::ParticleTop, "top", {}, 0.0, 0.0, 0.3, 75.0};
+  ProbeSpec drop{ProbeKind::PressureDrop, "dp", {}, 0.1, 0.3};
+  const std::vector<ProbeSpec> probes{drop, top};
+  ASSERT_EQ(probe_columns(probes, 3, true), (std::vector<std::string>{"dp_dp_Pa", "top_top_m"}));
+  const std::vector<double> row = sample_probes<3>(probes, f);
+  ASSERT_EQ(row.size(), 2u);
+  EXPECT_DOUBLE_EQ(row[1], 0.30);  // rank 3 of 0.05, 0.10, 0.20, 0.30, 0.40
+  f.particle_tops = {};
+  EXPECT_EQ(sample_probes<3>(probes, f)[1], 0.0);  // no particles
+}
+
 }  // namespace
 }  // namespace fluidbed
