@@ -1206,18 +1206,19 @@ typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
 }
 
 template <int Dim>
-typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
-  // Every owned particle with its springs by partner id (from the list when it is current), gathered on rank 0.
-  HeldSprings<Dim> held_now;
-  const HeldSprings<Dim>* held = &held_;
-  if (list_springs_) {
-    DemSolver& self = const_cast<DemSolver&>(*this);
-    HeldSprings<Dim> saved = std::move(self.held_);
-    self.gather_held_springs();
-    held_now = std::move(self.held_);
-    self.held_ = std::move(saved);
-    held = &held_now;
-  }
+HeldSprings<Dim> DemSolver<Dim>::current_held_springs() const {
+  // From the list when it holds the current springs (held_ is then stale), else held_ itself.
+  if (!list_springs_) return held_;
+  DemSolver& self = const_cast<DemSolver&>(*this);
+  HeldSprings<Dim> saved = std::move(self.held_);
+  self.gather_held_springs();
+  HeldSprings<Dim> now = std::move(self.held_);
+  self.held_ = std::move(saved);
+  return now;
+}
+
+template <int Dim>
+typename DemSolver<Dim>::State DemSolver<Dim>::clock_state() const {
   State st;
   st.time = time_;
   st.steps = steps_;
@@ -1229,6 +1230,55 @@ typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
   st.removed_mass = removed_mass_;
   st.feed = feed_;
   st.held.clear(0, config_.contact.needs_rolling_history());
+  return st;
+}
+
+namespace {
+/// The slots of a store's particles in ascending id.
+template <int Dim>
+std::vector<std::size_t> ascending_id_order(const ParticleStore<Dim>& p) {
+  std::vector<std::size_t> order(p.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  return order;
+}
+}  // namespace
+
+template <int Dim>
+typename DemSolver<Dim>::CheckpointView DemSolver<Dim>::checkpoint_view() const {
+  CheckpointView v;
+  if (domain_) {
+    v.state = portable_state();
+    v.order.resize(v.state.particles.size());
+    for (std::size_t k = 0; k < v.order.size(); ++k) v.order[k] = k;
+    return v;
+  }
+  // One process: the arrays where they are, read in ascending id; only the springs by partner id are made anew.
+  v.state = clock_state();
+  v.order = ascending_id_order(p_);
+  const HeldSprings<Dim> held = current_held_springs();
+  if (held.particles() == n_owned_) {
+    v.state.held = held;
+    v.state.held.select(v.order);
+  } else {
+    v.state.held.clear(n_owned_, config_.contact.needs_rolling_history());
+  }
+  v.own_particles = &p_;
+  v.own_walls = &walls_;
+  v.own_wall_roll = &wall_roll_;
+  for (int a = 0; a < Dim; ++a) {
+    const std::vector<double>& b = build_[static_cast<std::size_t>(a)];
+    v.own_build[static_cast<std::size_t>(a)] = b.size() == n_owned_ ? &b : &p_.coord(a);
+  }
+  return v;
+}
+
+template <int Dim>
+typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
+  // Every owned particle with its springs by partner id (from the list when it is current), gathered on rank 0.
+  const HeldSprings<Dim> held_now = current_held_springs();
+  const HeldSprings<Dim>* held = &held_now;
+  State st = clock_state();
   if (!domain_) {
     // One rank: the arrays themselves (no ghosts), without a message between.
     st.particles = p_;
@@ -1253,9 +1303,7 @@ typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
     }
   }
   // Ascending id: the same file whatever the storage order and the number of ranks.
-  std::vector<std::size_t> order(st.particles.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return st.particles.id[a] < st.particles.id[b]; });
+  const std::vector<std::size_t> order = ascending_id_order(st.particles);
   st.particles.permute(order);
   st.walls.permute(order);
   if (!st.wall_roll.empty()) {

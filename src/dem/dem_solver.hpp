@@ -185,28 +185,28 @@ class DemSolver {
   /// neighbour list: what a checkpoint keeps, restorable on any number of ranks. Collective; the other ranks get
   /// a state without particles.
   State portable_state() const;
-  /// The same data as State, by reference: what a checkpoint writes without copying the whole solver.
-  struct StateView {
-    const Store& particles;
-    const List& neighbors;
-    const WallSprings<Dim>& walls;
-    const std::array<std::vector<double>, Dim>& build;
-    double time;
-    std::uint64_t steps;
-    std::uint64_t rebuilds;
-    bool need_rebuild;
-    double time_origin;
-    std::uint64_t steps_origin;
-    std::uint64_t removed_count;
-    double removed_mass;
-    FeedState feed;
-    const std::vector<Spin<Dim>>& wall_roll;
-    bool own_sizes;  ///< the particles' sizes are state (has_own_sizes)
+  /// What a checkpoint writes: the portable state, with the particle arrays read where they are. On one process
+  /// the store, the wall springs and the list-build positions are the solver's own, read through `order` (the
+  /// slot of each particle in ascending id), and `state` holds the clock, the feed and the springs by partner id
+  /// (ascending id): no copy of the store, which was the run's memory peak at its last checkpoint. On several
+  /// ranks `state` is portable_state() (rank 0 holds every particle, the others none) and `order` the identity.
+  /// Collective. The arrays stay valid until the solver steps.
+  struct CheckpointView {
+    State state;
+    std::vector<std::size_t> order;
+    const Store* own_particles = nullptr;  ///< one process: the solver's store; else state.particles
+    const WallSprings<Dim>* own_walls = nullptr;
+    const std::vector<Spin<Dim>>* own_wall_roll = nullptr;
+    std::array<const std::vector<double>*, Dim> own_build{};
+    const Store& particles() const { return own_particles ? *own_particles : state.particles; }
+    const WallSprings<Dim>& walls() const { return own_walls ? *own_walls : state.walls; }
+    const std::vector<Spin<Dim>>& wall_roll() const { return own_wall_roll ? *own_wall_roll : state.wall_roll; }
+    const std::vector<double>& build(int a) const {
+      const auto k = static_cast<std::size_t>(a);
+      return own_build[k] ? *own_build[k] : state.build[k];
+    }
   };
-  StateView view() const {
-    return {p_,           nbr_,          walls_,         build_,        time_, steps_,      rebuilds_, need_rebuild_,
-            time_origin_, steps_origin_, removed_count_, removed_mass_, feed_, wall_roll_, sized_};
-  }
+  CheckpointView checkpoint_view() const;
   /// Whether some particle's size differs from its species' diameter (a size distribution, or a file's sizes).
   bool has_own_sizes() const { return sized_; }
   /// Restores a state(): with its neighbour list it continues as saved; a portable state (no list) on any number
@@ -246,6 +246,10 @@ class DemSolver {
   void rebuild(bool counted);
   /// The springs of the owned particles' list entries into held_ (by partner id).
   void gather_held_springs();
+  /// The owned particles' springs by partner id as they are now (gathered from the list when it holds them).
+  HeldSprings<Dim> current_held_springs() const;
+  /// A State with the clock, the removal and feed counters, and no particles or springs.
+  State clock_state() const;
   /// held_'s springs into the entries of the same partners in the new list.
   void carry_held_springs();
   /// Keep the owned particles `order` names (in that order), with everything that is theirs; ghosts are dropped.

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <span>
 #include <sstream>
 #include <fmt/format.h>
@@ -55,44 +56,57 @@ std::string wall_spring_name(int w, int c) {
   return std::string("dem/wall_xi_") + kSide[w] + "_" + kAxis[c];
 }
 
-// Writes a portable state (DemSolver::portable_state: every particle in ascending id, its springs by partner id);
-// what is converted is converted one HDF5 chunk at a time.
+// Writes a portable state (DemSolver::checkpoint_view: every particle in ascending id, its springs by partner id),
+// each array read through the view's order one HDF5 chunk at a time, so no array of the store is copied whole.
 template <int Dim>
-void save_dem(Hdf5File& f, const typename DemSolver<Dim>::State& s, bool own_sizes) {
+void save_dem(Hdf5File& f, const typename DemSolver<Dim>::CheckpointView& s, bool own_sizes) {
     static constexpr const char* kAxis[3] = {"x", "y", "z"};
-    const ParticleStore<Dim>& p = s.particles;
+    const ParticleStore<Dim>& p = s.particles();
+    const std::vector<std::size_t>& order = s.order;
+    const std::size_t n = order.size();
     f.create_group("dem");
     // Every state attribute of the store under its own name (ParticleStore::for_each_array), then the
     // positions of the last list build.
     p.for_each_array([&](const std::string& name, const auto& a, ArrayRole role) {
-      if (role == ArrayRole::State) f.write("dem/" + name, a);
+      if (role != ArrayRole::State) return;
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      f.write("dem/" + name, n, std::function<void(std::size_t, std::size_t, T*)>(
+                                   [&a, &order](std::size_t first, std::size_t m, T* d) {
+                                     for (std::size_t k = first; k < first + m; ++k) *d++ = a[order[k]];
+                                   }));
     });
     // The wall springs, one array per wall and component over every particle (+0 where a particle holds none), as
     // the store once held them.
+    const WallSprings<Dim>& walls = s.walls();
     for (int w = 0; w < 2 * Dim; ++w) {
       for (int c = 0; c < Dim; ++c) {
-        f.write(wall_spring_name<Dim>(w, c), p.size(), [&s, w, c](std::size_t first, std::size_t n, double* d) {
-          for (std::size_t i = first; i < first + n; ++i) *d++ = s.walls.get(i, w)[c];
+        f.write(wall_spring_name<Dim>(w, c), n, [&walls, &order, w, c](std::size_t first, std::size_t m, double* d) {
+          for (std::size_t k = first; k < first + m; ++k) *d++ = walls.get(order[k], w)[c];
         });
       }
     }
     // Particles of their own sizes keep them (the species' diameters restore every other bed, as they always have).
     if (own_sizes) {
-      f.write("dem/diameter", p.size(), [&p](std::size_t first, std::size_t n, double* d) {
-        for (std::size_t i = first; i < first + n; ++i) *d++ = 2.0 * p.radius[i];
+      f.write("dem/diameter", n, [&p, &order](std::size_t first, std::size_t m, double* d) {
+        for (std::size_t k = first; k < first + m; ++k) *d++ = 2.0 * p.radius[order[k]];
       });
     }
-    for (std::size_t a = 0; a < s.build.size(); ++a) f.write(std::string("dem/") + kAxis[a] + "_build", s.build[a]);
+    for (int a = 0; a < Dim; ++a) {
+      const std::vector<double>& b = s.build(a);
+      f.write(std::string("dem/") + kAxis[a] + "_build", n, [&b, &order](std::size_t first, std::size_t m, double* d) {
+        for (std::size_t k = first; k < first + m; ++k) *d++ = b[order[k]];
+      });
+    }
     // The pair springs each particle holds, by its partner's id (CSR over the particles): no storage slot is
     // written, so the state restarts on any number of ranks.
-    const HeldSprings<Dim>& h = s.held;
-    f.write("dem/held_offset", h.offset.size(), [&h](std::size_t first, std::size_t n, std::int64_t* d) {
-      for (std::size_t k = first; k < first + n; ++k) *d++ = static_cast<std::int64_t>(h.offset[k]);
+    const HeldSprings<Dim>& h = s.state.held;
+    f.write("dem/held_offset", h.offset.size(), [&h](std::size_t first, std::size_t m, std::int64_t* d) {
+      for (std::size_t k = first; k < first + m; ++k) *d++ = static_cast<std::int64_t>(h.offset[k]);
     });
     f.write("dem/held_partner_id", h.partner_id);
     for (int a = 0; a < Dim; ++a) {
-      f.write(std::string("dem/held_xi_") + kAxis[a], h.xi.size(), [&h, a](std::size_t first, std::size_t n, double* d) {
-        for (std::size_t k = first; k < first + n; ++k) *d++ = h.xi[k][a];
+      f.write(std::string("dem/held_xi_") + kAxis[a], h.xi.size(), [&h, a](std::size_t first, std::size_t m, double* d) {
+        for (std::size_t k = first; k < first + m; ++k) *d++ = h.xi[k][a];
       });
     }
     // One spin component of a rolling spring (a scalar in 2D).
@@ -107,32 +121,35 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::State& s, bool own_siz
     // Rolling springs (laws with one): one array per spin component, absent when the law has none.
     if (h.keeps_rolling()) {
       for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        f.write(fmt::format("dem/held_roll_{}", c), h.roll.size(), [&](std::size_t first, std::size_t n, double* d) {
-          for (std::size_t k = first; k < first + n; ++k) *d++ = spin_component(h.roll[k], c);
+        f.write(fmt::format("dem/held_roll_{}", c), h.roll.size(), [&](std::size_t first, std::size_t m, double* d) {
+          for (std::size_t k = first; k < first + m; ++k) *d++ = spin_component(h.roll[k], c);
         });
       }
     }
-    // Rolling springs against the walls, 2 Dim per particle, likewise absent without them.
-    if (!s.wall_roll.empty()) {
+    // Rolling springs against the walls, 2 Dim per particle (in ascending id), likewise absent without them.
+    const std::vector<Spin<Dim>>& wall_roll = s.wall_roll();
+    if (!wall_roll.empty()) {
+      constexpr std::size_t kWalls = 2 * Dim;
       for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        f.write(fmt::format("dem/wall_roll_{}", c), s.wall_roll.size(), [&](std::size_t first, std::size_t n, double* d) {
-          for (std::size_t k = first; k < first + n; ++k) *d++ = spin_component(s.wall_roll[k], c);
+        f.write(fmt::format("dem/wall_roll_{}", c), n * kWalls, [&](std::size_t first, std::size_t m, double* d) {
+          for (std::size_t k = first; k < first + m; ++k)
+            *d++ = spin_component(wall_roll[order[k / kWalls] * kWalls + k % kWalls], c);
         });
       }
     }
     f.set_attribute("dem", "dimension", static_cast<std::int64_t>(Dim));
-    f.set_attribute("dem", "time", s.time);
-    f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.steps));
-    f.set_attribute("dem", "rebuilds", static_cast<std::int64_t>(s.rebuilds));
-    f.set_attribute("dem", "need_rebuild", static_cast<std::int64_t>(s.need_rebuild));
-    f.set_attribute("dem", "time_origin", s.time_origin);
-    f.set_attribute("dem", "steps_origin", static_cast<std::int64_t>(s.steps_origin));
-    f.set_attribute("dem", "removed_count", static_cast<std::int64_t>(s.removed_count));
-    f.set_attribute("dem", "removed_mass", s.removed_mass);
-    f.set_attribute("dem", "inserted_count", static_cast<std::int64_t>(s.feed.inserted));
-    f.set_attribute("dem", "inserted_mass", s.feed.mass);
-    f.set_attribute("dem", "feed_draws", static_cast<std::int64_t>(s.feed.draws));
-    f.set_attribute("dem", "next_id", s.feed.next_id);
+    f.set_attribute("dem", "time", s.state.time);
+    f.set_attribute("dem", "steps", static_cast<std::int64_t>(s.state.steps));
+    f.set_attribute("dem", "rebuilds", static_cast<std::int64_t>(s.state.rebuilds));
+    f.set_attribute("dem", "need_rebuild", static_cast<std::int64_t>(s.state.need_rebuild));
+    f.set_attribute("dem", "time_origin", s.state.time_origin);
+    f.set_attribute("dem", "steps_origin", static_cast<std::int64_t>(s.state.steps_origin));
+    f.set_attribute("dem", "removed_count", static_cast<std::int64_t>(s.state.removed_count));
+    f.set_attribute("dem", "removed_mass", s.state.removed_mass);
+    f.set_attribute("dem", "inserted_count", static_cast<std::int64_t>(s.state.feed.inserted));
+    f.set_attribute("dem", "inserted_mass", s.state.feed.mass);
+    f.set_attribute("dem", "feed_draws", static_cast<std::int64_t>(s.state.feed.draws));
+    f.set_attribute("dem", "next_id", s.state.feed.next_id);
 }
 
 // One double per particle of the checkpoint array dem/NAME, checked against the particle count.
@@ -538,10 +555,10 @@ class DemModel final : public ModelRun {
   void save(Hdf5File* file) const override {
     // The state of every particle, gathered on rank 0 in ascending id with its springs by partner id: the same file
     // on any number of ranks, restorable on any number (collective; rank 0 writes).
-    const typename DemSolver<Dim>::State st = sim_.dem().portable_state();
+    const typename DemSolver<Dim>::CheckpointView st = sim_.dem().checkpoint_view();
     if (file == nullptr) return;
     Hdf5File& f = *file;
-    save_dem<Dim>(f, st, st.particles.has_own_sizes(config_.dem.species));
+    save_dem<Dim>(f, st, st.particles().has_own_sizes(config_.dem.species));
     f.set_attribute("dem", "gas_steps", static_cast<std::int64_t>(sim_.gas_steps()));
     if (sim_.has_gas()) {
       const GasFields<Dim>& g = sim_.gas().fields();
