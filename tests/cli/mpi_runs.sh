@@ -158,15 +158,16 @@ check "rebalance: the blocks were dealt again on 4 ranks" \
   bash -c "grep -Eq 'blocks dealt again [1-9][0-9]* times' '$WORK/rebalance-4/log.txt'"
 
 # Restart across rank counts: a checkpoint written on 3 ranks at 0.025 s continues on 2 and on 1 rank to the
-# bits of the uninterrupted one-process run (bed3d-1, which ran with the same case and no checkpoint between).
+# bits of the uninterrupted one-process run (bed3d-1, which ran with the same case and no checkpoint between),
+# its probes.csv included.
 mpi_ok "restart: 3 ranks to 0.025 s" 3 "$ROOT/tests/oracle/dem3d.toml" --out "$WORK/split" --end-time 0.025 \
-  --set output.particles_csv=true
+  --set output.particles_csv=true "${probes3d[@]}"
 cp -r "$WORK/split" "$WORK/split-2"
 mpi_ok "restart: continued on 2 ranks" 2 "$ROOT/tests/oracle/dem3d.toml" --out "$WORK/split-2" \
-  --set output.particles_csv=true --restart latest
+  --set output.particles_csv=true "${probes3d[@]}" --restart latest
 same_results "restart: 3 ranks then 2 vs one process" "$WORK/bed3d-1" "$WORK/split-2"
 cp -r "$WORK/split" "$WORK/split-1"
 run_ok "restart: continued on one process" run "$ROOT/tests/oracle/dem3d.toml" --out "$WORK/split-1" \
-  --set output.particles_csv=true --restart latest
+  --set output.particles_csv=true "${probes3d[@]}" --restart latest
 same_results "restart: 3 ranks then 1 vs one process" "$WORK/bed3d-1" "$WORK/split-1"
 finish
