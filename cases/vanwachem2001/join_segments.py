@@ -30,18 +30,20 @@ def main():
     ap.add_argument("second", nargs="?", help="the second segment's probes.csv, if the run was made in two")
     ap.add_argument("--offset", type=float, default=0.0, help="segment 2's label minus the simulated time, s")
     ap.add_argument("--out", required=True)
+    ap.add_argument("--extra", nargs="*", default=[], help="more columns to keep after COLUMNS (a study's probes)")
     a = ap.parse_args()
     one, two = rows(a.first), rows(a.second) if a.second else []
+    cols = COLUMNS + tuple(a.extra)
     t_end = max(float(r["time_s"]) for r in one)
     with open(a.out, "w", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
-        w.writerow(("time_s",) + COLUMNS)
+        w.writerow(("time_s",) + cols)
         for r in one:
-            w.writerow([f"{float(r['time_s']):.6f}"] + [f"{float(r[c]):.7g}" if r.get(c) else "" for c in COLUMNS])
+            w.writerow([f"{float(r['time_s']):.6f}"] + [f"{float(r[c]):.7g}" if r.get(c) else "" for c in cols])
         for r in two:
             t = float(r["time_s"]) - a.offset
             if t > t_end + 1e-9:
-                w.writerow([f"{t:.6f}"] + [f"{float(r[c]):.7g}" if r.get(c) else "" for c in COLUMNS])
+                w.writerow([f"{t:.6f}"] + [f"{float(r[c]):.7g}" if r.get(c) else "" for c in cols])
 
 
 if __name__ == "__main__":

@@ -3,7 +3,8 @@
 
 Reads RUN/probes.csv, keeps the statistically steady window (default 1 s to the end), and for the relative pressure
 at 45 mm (`rel45_dp_Pa`, the tap's cross-section mean less the outlet's) and the bed height (`bed_bed_height_m`)
-prints the mean, the standard deviation, the dominant frequency of the Welch PSD (post/psd.py) and, for the bed
+prints the mean and the standard deviation (each with a 90% interval from a moving-block bootstrap of 0.5 s
+blocks, circular), the dominant frequency of the Welch PSD (post/psd.py) and, for the bed
 height, the oscillation period twice: 1 / the PSD peak, and the mean spacing of the upward zero crossings of the
 detrended, lightly smoothed signal (with hysteresis, so noise about zero does not count as crossings).
 
@@ -70,14 +71,29 @@ def zero_crossing_period(x, fs, smooth_s=0.02, hysteresis=0.25):
     return (ups[-1] - ups[0]) / (len(ups) - 1), len(ups)
 
 
-def analyse(t, x, t0, t1, segment_s):
-    """Mean, std, Welch PSD (segments of segment_s seconds) and dominant frequency of x over t0 <= t <= t1."""
+def block_bootstrap(y, fs, block_s, stat, n=400, seed=1):
+    """5% and 95% of `stat` over circular block-bootstrap resamples of y (Politis and Romano 1992): blocks of
+    block_s seconds (longer than an oscillation, so that a resample keeps the signal's correlation), starting
+    anywhere and wrapping around the window's end so that every sample is drawn alike, until the resample is as long
+    as y. How far a window's statistic can be trusted from the oscillations it holds."""
+    rng = np.random.default_rng(seed)
+    b = max(1, min(int(round(block_s * fs)), y.size // 2))
+    nb = int(np.ceil(y.size / b))
+    ring = np.concatenate([y, y[:b]])
+    vals = [stat(np.concatenate([ring[s:s + b] for s in rng.integers(0, y.size, nb)])[:y.size]) for _ in range(n)]
+    return float(np.percentile(vals, 5)), float(np.percentile(vals, 95))
+
+
+def analyse(t, x, t0, t1, segment_s, block_s=0.5):
+    """Mean, std (with block-bootstrap 90% intervals), Welch PSD (segments of segment_s seconds) and dominant
+    frequency of x over t0 <= t <= t1."""
     keep = (t >= t0) & (t <= t1)
     y, fs = uniform(t[keep], x[keep])
     nperseg = min(y.size, int(round(segment_s * fs)))
     f, p, f_dom, std = welch_psd(y, fs, nperseg)
     period, crossings = zero_crossing_period(y, fs)
-    return {"mean": float(np.mean(y)), "std": std, "dominant_frequency_Hz": f_dom, "bin_Hz": float(f[1]),
+    return {"mean": float(np.mean(y)), "mean_ci": block_bootstrap(y, fs, block_s, np.mean), "std": std,
+            "std_ci": block_bootstrap(y, fs, block_s, np.std), "dominant_frequency_Hz": f_dom, "bin_Hz": float(f[1]),
             "psd_period_s": 1.0 / f_dom if f_dom > 0 else float("nan"), "zero_crossing_period_s": period,
             "upward_crossings": crossings, "samples": int(y.size), "fs_Hz": fs, "f": f, "psd": p, "signal": y}
 
@@ -104,7 +120,8 @@ def main():
         r = analyse(t, cols[name], a.t0, t1, a.segment)
         results[name] = r
         print(f"{label} ({name}), {a.t0:g}-{t1:g} s, {r['samples']} samples at {r['fs_Hz']:.0f} Hz: "
-              f"mean {r['mean']:.6g} {unit}, std {r['std']:.4g} {unit}, dominant frequency "
+              f"mean {r['mean']:.6g} {unit} (90%: {r['mean_ci'][0]:.6g}-{r['mean_ci'][1]:.6g}), std {r['std']:.4g} "
+              f"{unit} (90%: {r['std_ci'][0]:.4g}-{r['std_ci'][1]:.4g}), dominant frequency "
               f"{r['dominant_frequency_Hz']:.3f} Hz (bin {r['bin_Hz']:.3f} Hz), period from the PSD peak "
               f"{r['psd_period_s']:.3f} s, from {r['upward_crossings']} upward zero crossings "
               f"{r['zero_crossing_period_s']:.3f} s")
