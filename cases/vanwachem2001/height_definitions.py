@@ -12,15 +12,17 @@ frequency, period from the upward zero crossings) and bootstrap confidence inter
 - from the particle frames (particles/*.vtu, every output.particle_interval):
   - percentiles of the particles' tops (centre + radius): 95, 99 and 99.5%;
   - a camera's view through the front wall: the particles drawn as their discs (the silhouette a backlit camera
-    records through the 8 mm depth) on pixels of `--pixel` m, the image averaged over a square of one particle
-    diameter, and in each pixel column the highest pixel whose averaged coverage is at least `--coverage`
-    (default 0.5: half the window dark reads as bed); the height is the mean of those column tops over the width.
+    records through the 8 mm depth) on pixels of `--pixel` m, the image averaged over a square of `--window`
+    particle diameters (default 3: a lone particle thrown up darkens 9% of it), and in each pixel column the highest
+    pixel whose averaged coverage is at least `--coverage` (default 0.5: half the window dark reads as bed); the
+    height is the mean of those column tops over the width.
 
-The confidence intervals are the 5-95% of a circular block bootstrap (post.block_bootstrap) (blocks of `--block` s, longer than an
-oscillation, so that the resampled series keep their correlation): how far the window's statistics can be trusted.
+The confidence intervals are the 5-95% of a circular block bootstrap (post.block_bootstrap; blocks of `--block` s,
+longer than an oscillation, so that the resampled series keep their correlation): how far the window's statistics
+can be trusted.
 
-Usage: height_definitions.py RUN [--t0 1.0] [--t1 END] [--pixel 2.5e-4] [--coverage 0.5] [--block 0.5]
-                             [--json out.json] [--csv heights.csv] [--png figure.png]
+Usage: height_definitions.py RUN [--t0 1.0] [--t1 END] [--pixel 2.5e-4] [--coverage 0.5] [--window 3]
+                             [--block 0.5] [--json out.json] [--csv heights.csv] [--png figure.png]
 (--png needs matplotlib; vtk9's Python module reads the frames: /usr/bin/python3 on the development machine.)
 """
 import argparse
@@ -70,9 +72,11 @@ def read_frame(path):
     return pts[:, 0], pts[:, 1], d
 
 
-def camera_height(x, y, d, pixel, coverage, height=0.54):
-    """Mean over the pixel columns of the highest pixel whose coverage, averaged over a square of one diameter, is
-    at least `coverage` (the particles drawn as discs of their diameter in the x-y plane)."""
+def camera_height(x, y, d, pixel, coverage, window=3.0, height=0.54):
+    """Mean over the pixel columns of the highest pixel whose coverage, averaged over a square of `window`
+    diameters, is at least `coverage` (the particles drawn as discs of their diameter in the x-y plane). A lone
+    disc darkens pi / (4 window^2) of its window (0.09 at 3 diameters), so particles thrown above the bed do not
+    read as bed; a packing does."""
     nx, ny = int(round(WIDTH / pixel)), int(round(height / pixel))
     img = np.zeros((ny, nx), dtype=np.uint8)
     r = 0.5 * float(np.max(d))
@@ -85,8 +89,8 @@ def camera_height(x, y, d, pixel, coverage, height=0.54):
         px, py = (pi + 0.5) * pixel, (pj + 0.5) * pixel
         inside = ((px - x) ** 2 + (py - y) ** 2 <= (0.5 * d) ** 2) & (pi >= 0) & (pi < nx) & (pj >= 0) & (pj < ny)
         img[pj[inside], pi[inside]] = 1
-    # box average over one diameter: cumulative sums along both axes
-    w = max(1, int(round(float(np.median(d)) / pixel)))
+    # box average over `window` diameters: cumulative sums along both axes
+    w = max(1, int(round(window * float(np.median(d)) / pixel)))
     c = np.cumsum(np.cumsum(np.pad(img.astype(np.float64), ((1, 0), (1, 0))), axis=0), axis=1)
     h = w // 2
     j0 = np.clip(np.arange(ny) - h, 0, ny)
@@ -125,6 +129,7 @@ def main():
     ap.add_argument("--t1", type=float, default=float("inf"))
     ap.add_argument("--pixel", type=float, default=2.5e-4, help="camera pixel, m (default 0.25 mm)")
     ap.add_argument("--coverage", type=float, default=0.5, help="averaged coverage that reads as bed (default 0.5)")
+    ap.add_argument("--window", type=float, default=3.0, help="the averaging square's side in diameters (default 3)")
     ap.add_argument("--block", type=float, default=0.5, help="bootstrap block, s (default 0.5)")
     ap.add_argument("--json")
     ap.add_argument("--csv", help="the per-frame heights from the particles")
@@ -150,12 +155,13 @@ def main():
             p95.append(q[0])
             p99.append(q[1])
             p995.append(q[2])
-            cam.append(camera_height(x, y, d, a.pixel, a.coverage))
+            cam.append(camera_height(x, y, d, a.pixel, a.coverage, a.window))
         tt = np.array(tt)
         signals["top_p95"] = ("95th percentile of the particles' tops", tt, np.array(p95))
         signals["top_p99"] = ("99th percentile of the particles' tops", tt, np.array(p99))
         signals["top_p995"] = ("99.5th percentile of the particles' tops", tt, np.array(p995))
-        signals["camera"] = (f"camera through the front wall (coverage {a.coverage:g}, pixel {a.pixel * 1e3:g} mm)",
+        signals["camera"] = (f"camera through the front wall (coverage {a.coverage:g} over {a.window:g} d, pixel "
+                             f"{a.pixel * 1e3:g} mm)",
                              tt, np.array(cam))
         if a.csv:
             with open(a.csv, "w", newline="") as fh:

@@ -57,6 +57,14 @@ with tempfile.TemporaryDirectory() as tmp:
     exact_std = np.sqrt(0.015**2 / 2 + 0.002**2 / 2 + 0.5e-3**2 + (0.2e-3 * 5) ** 2 / 12)
     check("bed height: std (m)", exact_std, rh["std"], 0.03 * exact_std)
     check("samples in 1-6 s", 5001, rh["samples"], 0)
+    # The block-bootstrap intervals (0.5 s blocks, a period of 0.45 s and 0.36 s) hold the exact values.
+    for name, r_, mean, std in (("relative pressure", rp, 300.0, np.sqrt(120**2 / 2 + 25)),
+                                ("bed height", rh, 0.12 + 0.2e-3 * 3.5, exact_std)):
+        for q, exact in (("mean", mean), ("std", std)):
+            lo, hi = r_[q + "_ci"]
+            inside = lo <= exact <= hi and lo <= r_[q] <= hi
+            failures += not inside
+            print(f"{name}: {q} 90% interval {lo:.6g}-{hi:.6g} holds {exact:.6g}", "ok" if inside else "FAIL")
     lines = open(os.path.join(tmp, "s.csv")).read().splitlines()
     check("spectra.csv: header and 1001 bins", 1002, len(lines), 0)
     assert lines[0] == "frequency_Hz,psd_rel45_dp_Pa,psd_bed_bed_height_m", lines[0]
