@@ -735,24 +735,23 @@ class Run {
 
   // ---- observers ---------------------------------------------------------------------------------------------
 
-  /// The outputs due at time t. The model's calls are collective (every rank makes them, in this order); the
-  /// observers and writers are rank 0's.
   bool probe_due(double t) const { return probe_rows_.interval == 0.0 || probe_rows_.due(t, dt_); }
 
+  /// The outputs due at time t. The model's calls are collective (every rank makes them, in this order); the
+  /// observers and writers are rank 0's.
   void observe(double t, const StepFlags& flags) {
     const bool averages_due = flags.averages_due;
-    // Probes may sample every step (probes.interval = 0), so before the coarser outputs. A probe of the particles
-    // gathers them on every rank (collective), decided alike on every rank by step_flags.
-    const std::optional<ParticleArrays> probed = flags.particle_probes_due ? model_->particles() : std::nullopt;
+    // The particles, gathered once on every rank (collective) for the probes of the particles and the averages
+    // that sample now, decided alike on every rank by step_flags.
+    const std::optional<ParticleArrays> particles =
+        averages_due || flags.particle_probes_due ? model_->particles() : std::nullopt;
+    // Probes may sample every step (probes.interval = 0), so before the coarser outputs.
     if (probes_ && probe_due(t)) {
       probes_->sample(probe_rows_.interval == 0.0 ? t : probe_rows_.stamp(t), model_->fields(),
-                      probed ? &*probed : nullptr);
+                      flags.particle_probes_due && particles ? &*particles : nullptr);
       probe_rows_.advance(t, dt_);
     }
-    if (averages_due || averages_) {
-      const std::optional<ParticleArrays> particles = averages_due ? model_->particles() : std::nullopt;
-      if (averages_) averages_->observe(t, dt_, model_->fields(), particles);
-    }
+    if (averages_) averages_->observe(t, dt_, model_->fields(), averages_due ? particles : std::nullopt);
     if (monitors_.due(t, dt_)) {
       std::vector<std::optional<double>> row{monitors_.stamp(t)};
       for (auto& v : model_->monitor_values()) row.push_back(v);
