@@ -1,6 +1,7 @@
 #pragma once
 // Closed-form solutions shared by the DEM verification tests, and small helpers to set up one-particle runs.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "dem/contact_law.hpp"
 #include "dem/dem_config.hpp"
+#include "dem/packing.hpp"
 #include "dem/particle_store.hpp"
 
 namespace fluidbed::test {
@@ -114,6 +116,18 @@ inline DemConfig one_species_config_3d(double d, double rho, double k, double e,
 
 /// All six walls of a 3D box.
 inline WallConfig closed_box() { return WallConfig{true, true, true, true, false, true, true}; }
+
+/// Random placement of `count` particles over the whole 3D box [0, box.x] x [0, box.y] x [0, box.z].
+inline PackingConfig box_packing(Vec3 box, std::int64_t count, std::uint64_t seed, double min_gap = 0.0002) {
+  PackingConfig pc;
+  pc.count = count;
+  pc.x_max = box.x;
+  pc.y_max = box.y;
+  pc.z_max = box.z;
+  pc.min_gap = min_gap;
+  pc.seed = seed;
+  return pc;
+}
 
 /// Runs the enclosed code on `n` OpenMP threads. One-particle runs use one: on a shared, loaded machine each
 /// parallel region would otherwise wait for a second thread every step.

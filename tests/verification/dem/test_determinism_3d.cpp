@@ -22,13 +22,7 @@ DemConfig bed_config() {
 }
 
 ParticleStore<3> falling_bed() {
-  PackingConfig pc;
-  pc.count = 1200;
-  pc.x_max = kBox.x;
-  pc.y_max = kBox.y;
-  pc.z_max = kBox.z;
-  pc.seed = 9;
-  ParticleStore<3> p = place_random<3>(bed_config(), pc);
+  ParticleStore<3> p = place_random<3>(bed_config(), test::box_packing(kBox, 1200, 9));
   std::mt19937_64 rng(4);
   auto uniform = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   for (std::size_t i = 0; i < p.size(); ++i) {

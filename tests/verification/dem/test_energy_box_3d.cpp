@@ -43,14 +43,8 @@ TEST(DemEnergyBoxIn3D, ElasticFrictionlessGasInAClosedBoxConservesEnergy) {
   const double dt = t_c / 50.0;
   DemConfig c = test::one_species_config_3d(sp.diameter, sp.density, k, 1.0, 0.0, dt, {0.0, 0.0, 0.0}, box,
                                             test::closed_box());
-  PackingConfig pc;
-  pc.count = 1000;
-  pc.x_max = box.x;
-  pc.y_max = box.y;
-  pc.z_max = box.z;
-  pc.min_gap = 0.001;  // 6 mm lattice sites: 1000 sites, every one taken
-  pc.seed = 7;
-  ParticleStore<3> p = place_random<3>(c, pc);
+  // A gap of 1 mm: 6 mm lattice sites, 1000 sites, every one taken.
+  ParticleStore<3> p = place_random<3>(c, test::box_packing(box, 1000, 7, 0.001));
   std::mt19937_64 rng(11);
   auto uniform = [&rng]() { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   for (std::size_t i = 0; i < p.size(); ++i) {

@@ -39,14 +39,7 @@ TEST(DemUpdateForms, DemOnlyUpdateGivesTheCoupledFormsBitsWithTheFluidAtZero) {
   const double dt = contact_duration(reduced_mass(sp.mass(), sp.mass()), k, 0.0) / 20.0;  // undamped: the shorter
   const DemConfig c = test::one_species_config_3d(sp.diameter, sp.density, k, 0.9, 0.3, dt, {0.0, -9.81, 0.0},
                                                   box, test::closed_box());
-  PackingConfig pc;
-  pc.count = 300;
-  pc.x_max = box.x;
-  pc.y_max = box.y;
-  pc.z_max = box.z;
-  pc.min_gap = 0.0002;
-  pc.seed = 3;
-  const ParticleStore<3> p = place_random<3>(c, pc);
+  const ParticleStore<3> p = place_random<3>(c, test::box_packing(box, 300, 3));
   DemSolver<3> dem_only(c, p);
   dem_only.couple_to_fluid(false);
   DemSolver<3> coupled(c, p);  // the default form
