@@ -36,10 +36,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from post import block_bootstrap, read_probes, uniform, zero_crossing_period  # noqa: E402
+from post import analyse, block_bootstrap, read_probes  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "post"))
-from psd import welch_psd  # noqa: E402
 
 WIDTH = 0.09  # the column's width, m (dem.toml)
 
@@ -106,20 +104,13 @@ def camera_height(x, y, d, pixel, coverage, window=3.0, height=0.54):
 
 
 def statistics(t, x, t0, t1, block_s, segment_s=2.0):
-    keep = (t >= t0) & (t <= t1) & np.isfinite(x)
-    y, fs = uniform(t[keep], x[keep])
-    nperseg = min(y.size, int(round(segment_s * fs)))
-    f, p, f_dom, std = welch_psd(y, fs, nperseg)
-    period, ups = zero_crossing_period(y, fs)
+    """post.analyse's statistics, and the 5-95% range with its bootstrap interval."""
+    r = analyse(t, x, t0, t1, segment_s, block_s)
+    y, fs = r["signal"], r["fs_Hz"]
     q05, q95 = np.percentile(y, [5, 95])
-    return {
-        "mean": float(np.mean(y)), "mean_ci": block_bootstrap(y, fs, block_s, np.mean),
-        "std": float(np.std(y)), "std_ci": block_bootstrap(y, fs, block_s, np.std),
-        "range_5_95": float(q95 - q05),
-        "range_ci": block_bootstrap(y, fs, block_s, lambda z: float(np.subtract(*np.percentile(z, [95, 5])))),
-        "dominant_frequency_Hz": f_dom, "bin_Hz": float(f[1]), "zero_crossing_period_s": period,
-        "upward_crossings": ups, "samples": int(y.size), "fs_Hz": fs, "signal": y,
-    }
+    r["range_5_95"] = float(q95 - q05)
+    r["range_ci"] = block_bootstrap(y, fs, block_s, lambda z: float(np.subtract(*np.percentile(z, [95, 5]))))
+    return r
 
 
 def main():
@@ -187,7 +178,7 @@ def main():
               f"({r['upward_crossings']} crossings) |")
     if a.json:
         with open(a.json, "w") as fh:
-            json.dump({k: {q: v for q, v in r.items() if q != "signal"} | {"label": signals[k][0], "t0": a.t0,
+            json.dump({k: {q: v for q, v in r.items() if q not in ("signal", "f", "psd")} | {"label": signals[k][0], "t0": a.t0,
                                                                             "t1": t1}
                        for k, r in results.items()}, fh, indent=1)
     if a.png:
