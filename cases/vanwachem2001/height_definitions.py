@@ -27,34 +27,17 @@ Usage: height_definitions.py RUN [--t0 1.0] [--t1 END] [--pixel 2.5e-4] [--cover
 """
 import argparse
 import csv
-import glob
 import json
 import os
-import re
 import sys
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from post import analyse, block_bootstrap, read_probes  # noqa: E402
+from post import analyse, block_bootstrap, pvd_frames, read_probes  # noqa: E402
 
 
 WIDTH = 0.09  # the column's width, m (dem.toml)
-
-
-def frame_times(run):
-    """(time, path) of every particle frame, from the particle series' .pvd."""
-    pvd = os.path.join(run, "particles.pvd")
-    if not os.path.exists(pvd):
-        cands = glob.glob(os.path.join(run, "*particles*.pvd"))
-        if not cands:
-            sys.exit(f"no particle series (.pvd) in {run}")
-        pvd = cands[0]
-    text = open(pvd).read()
-    out = []
-    for m in re.finditer(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text):
-        out.append((float(m.group(1)), os.path.join(os.path.dirname(pvd), m.group(2))))
-    return out
 
 
 def read_frame(path):
@@ -135,7 +118,7 @@ def main():
         if col in probes:
             signals[col] = (label, probes["time_s"], probes[col])
 
-    frames = [(t, p) for t, p in frame_times(a.run) if a.t0 - 1e-9 <= t <= a.t1 + 1e-9]
+    frames = [(t, p) for t, p in pvd_frames(a.run, "particles") if a.t0 - 1e-9 <= t <= a.t1 + 1e-9]
     if frames:
         tt, p95, p99, p995, cam = [], [], [], [], []
         for t, path in frames:

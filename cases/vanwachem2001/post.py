@@ -17,6 +17,7 @@ import argparse
 import csv
 import json
 import os
+import re
 import sys
 
 import numpy as np
@@ -36,6 +37,15 @@ def read_probes(path):
     for k, name in enumerate(head):
         cols[name] = np.array([float(r[k]) if k < len(r) and r[k] != "" else np.nan for r in body])
     return cols
+
+
+def pvd_frames(run, series):
+    """(time, path) of every frame of a run's series ("fields" or "particles"), from RUN/SERIES.pvd."""
+    pvd = os.path.join(run, series + ".pvd")
+    if not os.path.exists(pvd):
+        sys.exit(f"no {series}.pvd in {run}")
+    text = open(pvd).read()
+    return [(float(t), os.path.join(run, f)) for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)]
 
 
 def uniform(t, x):

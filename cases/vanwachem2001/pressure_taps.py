@@ -19,18 +19,12 @@ Usage: pressure_taps.py RUN [--t0 1.0] [--t1 END] [--height 0.045] [--json out.j
 import argparse
 import json
 import os
-import re
 import sys
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from post import analyse  # noqa: E402
-
-
-def frames(run):
-    text = open(os.path.join(run, "fields.pvd")).read()
-    return [(float(t), os.path.join(run, f)) for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)]
+from post import analyse, pvd_frames  # noqa: E402
 
 
 def pressure(path):
@@ -56,7 +50,7 @@ def main():
     a = ap.parse_args()
     taps = {"side wall": [], "centre line": [], "front wall, centre": [], "cross-section mean": []}
     times = []
-    for t, path in frames(a.run):
+    for t, path in pvd_frames(a.run, "fields"):
         if not a.t0 - 1e-9 <= t <= a.t1 + 1e-9:
             continue
         p, (hx, hy, _) = pressure(path)
