@@ -65,25 +65,32 @@ struct ContactForce {
   double k_n = 0.0;  ///< normal tangent stiffness dF_n / d delta at this overlap, N/m
 };
 
+/// Per component a where c holds, else b. The law is written with these selects and no branch, so that the force
+/// pass compiles it over a block of contacts into vector code (force_pass.hpp) and no branch waits on a test that
+/// the contacts answer at random (slide or stick). Each select picks the value the branch would have computed, so
+/// the bits are those of the branching form; the value not picked may be inf or NaN.
+constexpr double choose(bool c, double a, double b) { return c ? a : b; }
+constexpr Vec2 choose(bool c, Vec2 a, Vec2 b) { return {c ? a.x : b.x, c ? a.y : b.y}; }
+constexpr Vec3 choose(bool c, Vec3 a, Vec3 b) { return {c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z}; }
+
 /// The stored tangential spring turned into the tangent plane of the current normal n, keeping its length
 /// (the contact frame rotates with the pair; LAMMPS gran/hooke/history). In 2D the plane is the line of
 /// t = (-n_y, n_x), so the rotated spring is +-|xi| t: one square root, no division. In 3D the spring is
-/// projected onto the plane and scaled back to its length.
+/// projected onto the plane and scaled back to its length. A zero spring stays as it is (signs of zero included).
 inline void rotate_into_tangent_plane(Vec2& xi, Vec2 n) {
   const double xi_len2 = norm2(xi);
-  if (xi_len2 > 0.0) {
-    const Vec2 t{-n.y, n.x};
-    const double along = dot(xi, t);
-    xi = along > 0.0 ? std::sqrt(xi_len2) * t : (along < 0.0 ? -std::sqrt(xi_len2) * t : Vec2{});
-  }
+  const Vec2 t{-n.y, n.x};
+  const double along = dot(xi, t);
+  const double len = std::sqrt(xi_len2);
+  const Vec2 turned = choose(along > 0.0, len * t, choose(along < 0.0, -len * t, Vec2{}));
+  xi = choose(xi_len2 > 0.0, turned, xi);
 }
 inline void rotate_into_tangent_plane(Vec3& xi, Vec3 n) {
   const double xi_len2 = norm2(xi);
-  if (xi_len2 > 0.0) {
-    const Vec3 proj = xi - dot(xi, n) * n;
-    const double p_len2 = norm2(proj);
-    xi = p_len2 > 0.0 ? std::sqrt(xi_len2 / p_len2) * proj : Vec3{};
-  }
+  const Vec3 proj = xi - dot(xi, n) * n;
+  const double p_len2 = norm2(proj);
+  const Vec3 turned = choose(p_len2 > 0.0, std::sqrt(xi_len2 / p_len2) * proj, Vec3{});
+  xi = choose(xi_len2 > 0.0, turned, xi);
 }
 
 /// Normal velocity for the dashpot of Eq. 2, corrected for a contact that starts or ends inside the step.
@@ -96,9 +103,8 @@ inline void rotate_into_tangent_plane(Vec3& xi, Vec3 n) {
 /// of the explicit dashpot (docs/verification-dem.md, test 2).
 inline double normal_dashpot_velocity(double overlap, double vn, double dt) {
   const double travel = std::abs(vn) * dt;
-  if (overlap >= travel) return vn;
   // Approaching (vn > 0): vn + overlap / dt; separating (vn < 0): vn * tau = -overlap / dt.
-  return vn > 0.0 ? vn + overlap / dt : -overlap / dt;
+  return choose(overlap >= travel, vn, choose(vn > 0.0, vn + overlap / dt, -overlap / dt));
 }
 
 /// The elastic normal force (repulsive size) and its tangent stiffness dF/d delta.
@@ -194,8 +200,7 @@ struct ConstantRolling {
   static Spin<Dim> torque(const ContactParams& p, const ContactKinematics<Dim>& c, const RollingInput<Dim>& in, double,
                           Spin<Dim>&) {
     const double w = spin_length(in.w_r);
-    if (!(w > 0.0)) return Spin<Dim>{};
-    return (-p.mu_r * c.r_eff * in.f_n / w) * in.w_r;
+    return choose(w > 0.0, (-p.mu_r * c.r_eff * in.f_n / w) * in.w_r, Spin<Dim>{});
   }
 };
 
@@ -214,11 +219,11 @@ struct EpsdRolling {
     m_k = m_k - (k_r * dt) * in.w_r;
     const double m_max = p.mu_r * c.r_eff * in.f_n;
     const double len = spin_length(m_k);
-    if (len > m_max) {
-      m_k = (len > 0.0 ? m_max / len : 0.0) * m_k;
-      return m_k;
-    }
-    return m_k - (p.eta_r * 2.0 * std::sqrt(c.i_roll * k_r)) * in.w_r;
+    const bool capped = len > m_max;
+    const Spin<Dim> at_cap = choose(len > 0.0, m_max / len, 0.0) * m_k;
+    const Spin<Dim> damped = m_k - (p.eta_r * 2.0 * std::sqrt(c.i_roll * k_r)) * in.w_r;
+    m_k = choose(capped, at_cap, m_k);
+    return choose(capped, at_cap, damped);
   }
 };
 
@@ -257,10 +262,10 @@ struct ContactLaw {
 
     const double ft_max = p.mu * std::abs(fn);  // Eq. 6
     const double ft2 = norm2(f_t);
-    if (ft2 > ft_max * ft_max) {
-      f_t = (ft_max / std::sqrt(ft2)) * f_t;  // Eq. 7: slide at the Coulomb limit
-      xi = k_t > 0.0 ? (-1.0 / k_t) * (f_t + eta_t * v_t) : Vec<Dim>{};
-    }
+    const bool slides = ft2 > ft_max * ft_max;
+    const Vec<Dim> f_slide = (ft_max / std::sqrt(ft2)) * f_t;  // Eq. 7: slide at the Coulomb limit
+    xi = choose(slides, choose(k_t > 0.0, (-1.0 / k_t) * (f_slide + eta_t * v_t), Vec<Dim>{}), xi);
+    f_t = choose(slides, f_slide, f_t);
     return {f_n + f_t, f_t, fn, s.stiffness};
   }
 

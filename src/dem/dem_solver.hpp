@@ -18,6 +18,7 @@
 #include "dem/contact_law.hpp"
 #include "dem/dem_config.hpp"
 #include "dem/held_springs.hpp"
+#include "dem/kernel_support.hpp"
 #include "dem/neighbor_list.hpp"
 #include "dem/particle_domain.hpp"
 #include "dem/particle_store.hpp"
@@ -384,6 +385,10 @@ class DemSolver {
   // The touching pairs of the force evaluation, one array per block of particles (one block per thread), with
   // their counts.
   std::vector<std::vector<Contact>> contacts_;
+  // Every slot's centre and radius, velocity and spin, packed at the start of each force evaluation from the store
+  // for the pair loops' reads of partners (force_pass.hpp).
+  std::vector<dem_kernel::PlaceRadius<Dim>> place_;
+  std::vector<dem_kernel::Motion<Dim>> motion_;
   std::vector<std::size_t> contact_count_;
   /// A force evaluation ran on the current list: entry_contact_ marks its touching pairs, the only entries that
   /// can hold a spring to release.

@@ -3,6 +3,8 @@
 // it for one dimension and one kind of box each (forces_*.cpp), so that the build shares its many instantiations
 // among its cores.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <type_traits>
 
@@ -18,6 +20,8 @@ namespace fluidbed {
 using dem_kernel::AxisPtrs;
 using dem_kernel::axis_ptrs;
 using dem_kernel::is_zero;
+using dem_kernel::Motion;
+using dem_kernel::PlaceRadius;
 using dem_kernel::spin_norm2;
 
 template <int Dim>
@@ -62,6 +66,9 @@ struct DemSolver<Dim>::ForcePass {
   const std::uint32_t* partner;
   const std::uint32_t* upper;
   Vec<Dim>* history;
+  // Every slot's packed state (pack), for the pair loops.
+  PlaceRadius<Dim>* place = nullptr;
+  Motion<Dim>* motion = nullptr;
   // The contacts' records, for pass 2: set once pass 1 has sized them.
   const Vec<Dim>* cforce = nullptr;
   const Spin<Dim>* ctorque = nullptr;
@@ -106,8 +113,13 @@ struct DemSolver<Dim>::ForcePass {
   }
   // Ai et al. 2011 Eq. 17: the rolling inertia of one partner, I + m r^2.
   [[gnu::always_inline]] double roll_inertia(std::size_t i) const { return 1.0 / IINV[i] + M[i] * R[i] * R[i]; }
+  /// Slot q's centre, radius, velocity and spin into the packed arrays.
+  [[gnu::always_inline]] void pack(std::size_t q) const {
+    place[q] = PlaceRadius<Dim>{pos(q), R[q]};
+    motion[q] = Motion<Dim>{vel(q), spin(q)};
+  }
   [[gnu::always_inline]] Vec<Dim> separation(const Vec<Dim>& xi, std::size_t j) const {
-    Vec<Dim> dx = pos(j) - xi;
+    Vec<Dim> dx = place[j].x - xi;
     if constexpr (Periodic) dx = s.periodic_.min_image(dx);  // the partner's nearest image
     return dx;
   }
@@ -137,13 +149,13 @@ struct DemSolver<Dim>::ForcePass {
         found.resize(used + (upper[i + 1] - upper[i]) + found.size() / 2 + 64);
         out = found.data();
       }
-      const Vec<Dim> xi = pos(i);
-      const double ri = R[i];
+      const Vec<Dim> xi = place[i].x;
+      const double ri = place[i].r;
       for (std::size_t u = upper[i]; u < upper[i + 1]; ++u) {
         const std::size_t k = s.upper_entry_[u];
         const std::size_t j = partner[k];
         const Vec<Dim> dx = separation(xi, j);
-        const double rsum = ri + R[j];
+        const double rsum = ri + place[j].r;
         const bool touching = !(dot(dx, dx) >= rsum * rsum);
         out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(u)};
         used += static_cast<std::size_t>(touching);
@@ -160,20 +172,107 @@ struct DemSolver<Dim>::ForcePass {
     s.contact_count_[b] = used;
   }
 
-  /// Pass 1, second part: one touching pair, from its lower slot, into its record g (force, both torques), its
-  /// springs into both entries.
-  [[gnu::always_inline]] void pair_contact(const Contact& ct, std::size_t g, double& max_ov, double& max_frac) const {
-    const std::size_t i = ct.i, k = s.upper_entry_[ct.u];
-    const std::size_t j = partner[k];
-    const std::size_t km = s.upper_mirror_[ct.u];
-    const double ri = R[i];
-    const Spin<Dim> wi = spin(i);
-    const Vec<Dim> vi = vel(i);
-    // One species (not Mixed): every contact takes the first table entry, without the species lookups.
-    const std::size_t si = Mixed ? static_cast<std::size_t>(s.p_.species[i]) : 0;
-    const Vec<Dim> dx = separation(pos(i), j);
+  // Pass 1, second part, a block of touching pairs at a time: their kinematics gathered into lanes (structure of
+  // arrays), the law over the lanes in one loop with no branch (contact_law.hpp writes its cases as selects), which
+  // the compiler turns into vector code, then the results scattered to the records and both springs. Each lane
+  // computes what the pair's own evaluation would, operation for operation, so the bits do not depend on the
+  // block or the lane a pair lands in.
+  static constexpr std::size_t kBlock = 32;
+  // Per-lane contact parameters only where they differ between pairs (several species, or the paper's dashpot on
+  // particles of their own sizes); otherwise every lane reads the one entry.
+  static constexpr bool kLaneParams = Mixed || kSizedDashpot;
+  // The rolling inertia (Ai et al. 2011 Eq. 17) is read by the rolling spring's dashpot only.
+  static constexpr bool kRollInertia = Law::kRollingHistory;
+  static constexpr int kParamFields = sizeof(ContactParams) / sizeof(double);
+  static_assert(sizeof(ContactParams) == kParamFields * sizeof(double), "ContactParams holds doubles only");
+  using ParamWords = std::array<double, kParamFields>;
+  struct Lanes {
+    double dx[Dim][kBlock], dv[Dim][kBlock], wi[NS][kBlock], wj[NS][kBlock];
+    double ri[kBlock], rj[kBlock], mi[kBlock], mj[kBlock], ii[kBlock], ij[kBlock];
+    double xi[Dim][kBlock], roll[NS][kBlock];  // the springs, in and out
+    double f[Dim][kBlock], tq_i[NS][kBlock], tq_j[NS][kBlock], overlap[kBlock];
+    // The parameters by field, as the other lanes (an array of the structs keeps GCC from vectorising the loop).
+    double params[kLaneParams ? kParamFields : 1][kBlock];
+  };
+
+  template <class V, int N>
+  [[gnu::always_inline]] static V lane(const double (&a)[N][kBlock], std::size_t c) {
+    if constexpr (std::is_same_v<V, double>) {
+      return a[0][c];
+    } else if constexpr (V::dim == 2) {
+      return V{a[0][c], a[1][c]};
+    } else {
+      return V{a[0][c], a[1][c], a[2][c]};
+    }
+  }
+  template <class V, int N>
+  [[gnu::always_inline]] static void set_lane(double (&a)[N][kBlock], std::size_t c, const V& v) {
+    if constexpr (std::is_same_v<V, double>) {
+      a[0][c] = v;
+    } else {
+      a[0][c] = v.x;
+      a[1][c] = v.y;
+      if constexpr (V::dim == 3) a[2][c] = v.z;
+    }
+  }
+
+  /// The pairs ct[0 .. n) into the lanes: separation, relative velocity, spins, sizes, springs (and parameters).
+  [[gnu::always_inline]] void gather_pairs(const Contact* ct, std::size_t n, Lanes& L) const {
+    for (std::size_t c = 0; c < n; ++c) {
+      const std::size_t i = ct[c].i, k = s.upper_entry_[ct[c].u];
+      const std::size_t j = partner[k];
+      set_lane(L.dx, c, separation(place[i].x, j));
+      set_lane(L.dv, c, motion[i].v - motion[j].v);
+      set_lane(L.wi, c, motion[i].w);
+      set_lane(L.wj, c, motion[j].w);
+      L.ri[c] = place[i].r;
+      L.rj[c] = place[j].r;
+      if constexpr (Law::kNeedsPairSize) {
+        L.mi[c] = M[i];
+        L.mj[c] = M[j];
+      }
+      if constexpr (kRollInertia) {
+        L.ii[c] = roll_inertia(i);
+        L.ij[c] = roll_inertia(j);
+      }
+      set_lane(L.xi, c, history[k]);
+      if constexpr (Law::kRollingHistory) set_lane(L.roll, c, roll[k]);
+      if constexpr (kLaneParams) {
+        const std::size_t pair =
+            Mixed ? static_cast<std::size_t>(s.p_.species[i]) * ns + static_cast<std::size_t>(s.p_.species[j]) : 0;
+        ContactParams pp = s.pair_params_[pair];
+        if constexpr (kSizedDashpot) {
+          // Eq. 8 on this pair's reduced mass: the restitution of the input for every pair of sizes.
+          pp.eta_n = s.pair_damping_per_root_mass_[pair] * std::sqrt(reduced_mass(M[i], M[j]));
+          pp.eta_t = pp.eta_n;
+        }
+        const ParamWords words = std::bit_cast<ParamWords>(pp);
+        for (int f = 0; f < kParamFields; ++f) L.params[f][c] = words[static_cast<std::size_t>(f)];
+      }
+    }
+  }
+
+  /// Eqs. 2-9 (and the rolling torque) over lanes 0 .. n: the force on the lower slot, both torques, the springs.
+  [[gnu::always_inline]] void pair_law(Lanes& L, std::size_t n) const {
+    const ContactParams& common = s.pair_params_[0];
+    for (std::size_t c = 0; c < n; ++c) {
+      if constexpr (kLaneParams) {
+        ParamWords words;
+        for (int f = 0; f < kParamFields; ++f) words[static_cast<std::size_t>(f)] = L.params[f][c];
+        pair_lane(std::bit_cast<ContactParams>(words), L, c);
+      } else {
+        pair_lane(common, L, c);
+      }
+    }
+  }
+
+  /// Lane c of pair_law, with the pair's parameters p.
+  [[gnu::always_inline]] void pair_lane(const ContactParams& p, Lanes& L, std::size_t c) const {
+    const double h = dt;
+    const Vec<Dim> dx = lane<Vec<Dim>>(L.dx, c);
+    const double ri = L.ri[c], rj = L.rj[c];
     const double d2 = dot(dx, dx);
-    const double rsum = ri + R[j];
+    const double rsum = ri + rj;
     const double d = std::sqrt(d2);
     const double inv_d = 1.0 / d;
     const Vec<Dim> nrm = inv_d * dx;
@@ -181,53 +280,76 @@ struct DemSolver<Dim>::ForcePass {
     // Lever arms to the contact point x_i + (r_i - overlap / 2) n, the same point seen from j: with them the
     // pair's torques balance the moment of its forces and an isolated pair keeps its angular momentum, spin
     // included (the full radii would change it in proportion to the overlap).
-    const double ai = ri - 0.5 * overlap, aj = R[j] - 0.5 * overlap;
+    const double ai = ri - 0.5 * overlap, aj = rj - 0.5 * overlap;
+    const Spin<Dim> wi = lane<Spin<Dim>>(L.wi, c), wj = lane<Spin<Dim>>(L.wj, c);
     // Velocity of i's contact point relative to j's; symmetric in (i, j) up to the sign, bit for bit.
-    const Vec<Dim> v_rel = (vi - vel(j)) + cross(wi * ai + spin(j) * aj, nrm);
-    const std::size_t pair = Mixed ? si * ns + static_cast<std::size_t>(s.p_.species[j]) : 0;
+    const Vec<Dim> v_rel = lane<Vec<Dim>>(L.dv, c) + cross(wi * ai + wj * aj, nrm);
     ContactKinematics<Dim> kin{nrm, overlap, v_rel};
     if constexpr (Law::kNeedsPairSize) {
-      kin.r_eff = ri * R[j] / rsum;
-      kin.m_eff = M[i] * M[j] / (M[i] + M[j]);
-      if constexpr (Law::kRolling) kin.i_roll = 1.0 / (1.0 / roll_inertia(i) + 1.0 / roll_inertia(j));
+      kin.r_eff = ri * rj / rsum;
+      kin.m_eff = L.mi[c] * L.mj[c] / (L.mi[c] + L.mj[c]);
+      if constexpr (kRollInertia) kin.i_roll = 1.0 / (1.0 / L.ii[c] + 1.0 / L.ij[c]);
     }
-    const ContactForce<Dim> cf = [&] {
-      if constexpr (kSizedDashpot) {
-        // Eq. 8 on this pair's reduced mass: the restitution of the input for every pair of sizes.
-        ContactParams pp = s.pair_params_[pair];
-        pp.eta_n = s.pair_damping_per_root_mass_[pair] * std::sqrt(reduced_mass(M[i], M[j]));
-        pp.eta_t = pp.eta_n;
-        return Law::template force<Dim>(pp, kin, dt, s.nbr_.history[k]);
-      } else {
-        return Law::template force<Dim>(s.pair_params_[pair], kin, dt, s.nbr_.history[k]);
-      }
-    }();
-    s.nbr_.history[km] = -s.nbr_.history[k];
-    s.entry_contact_[k] = static_cast<std::uint32_t>(2 * g);
-    s.entry_contact_[km] = static_cast<std::uint32_t>(2 * g + 1);
-    // Component by component: a whole-vector copy lets GCC spill the sum to the stack in 8-byte halves and read
-    // it back 16 bytes at once, a load that no store can forward (a stall of the pass's every contact).
-    Vec<Dim>& rec = s.contact_force_[g];
-    for (int a = 0; a < Dim; ++a) rec[a] = cf.f[a];
+    Vec<Dim> xi = lane<Vec<Dim>>(L.xi, c);
+    const ContactForce<Dim> cf = Law::template force<Dim>(p, kin, h, xi);
+    set_lane(L.xi, c, xi);
+    set_lane(L.f, c, cf.f);
     // Eq. 9: the torque of the tangential force about each centre, a (n x f_t) with the partner's own lever
     // arm; n x f_t is the same for both partners ((-n) x (-f_t) = n x f_t).
     const Spin<Dim> tq = cross(nrm, cf.f_t);
     Spin<Dim> tq_i = ai * tq, tq_j = aj * tq;
     if constexpr (Law::kRolling) {
       // The rolling torque acts on i and, reversed, on j (Ai et al. 2011 Eq. 11: w_r = omega_i - omega_j).
-      Spin<Dim> unused{};
-      Spin<Dim>& m_k = Law::kRollingHistory ? roll[k] : unused;
-      const Spin<Dim> tr = Law::template rolling_torque<Dim>(s.pair_params_[pair], kin, cf, wi - spin(j), dt, m_k);
-      if constexpr (Law::kRollingHistory) roll[km] = -roll[k];
+      Spin<Dim> m_k = Law::kRollingHistory ? lane<Spin<Dim>>(L.roll, c) : Spin<Dim>{};
+      const Spin<Dim> tr = Law::template rolling_torque<Dim>(p, kin, cf, wi - wj, h, m_k);
+      if constexpr (Law::kRollingHistory) set_lane(L.roll, c, m_k);
       tq_i += tr;
       tq_j -= tr;
     }
-    s.contact_torque_[2 * g] = tq_i;
-    s.contact_torque_[2 * g + 1] = tq_j;
-    max_ov = std::max(max_ov, overlap);
-    // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
-    // no longer a small perturbation of two touching spheres.
-    if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(ri, R[j])));
+    set_lane(L.tq_i, c, tq_i);
+    set_lane(L.tq_j, c, tq_j);
+    L.overlap[c] = overlap;
+  }
+
+  /// The lanes back: pair c of the block into record g0 + c, its springs into both entries.
+  [[gnu::always_inline]] void scatter_pairs(const Contact* ct, std::size_t n, std::size_t g0, const Lanes& L,
+                                            double& max_ov, double& max_frac) const {
+    for (std::size_t c = 0; c < n; ++c) {
+      const std::size_t k = s.upper_entry_[ct[c].u];
+      const std::size_t km = s.upper_mirror_[ct[c].u];
+      const std::size_t g = g0 + c;
+      const Vec<Dim> xi = lane<Vec<Dim>>(L.xi, c);
+      history[k] = xi;
+      history[km] = -xi;
+      if constexpr (Law::kRollingHistory) {
+        roll[k] = lane<Spin<Dim>>(L.roll, c);
+        roll[km] = -roll[k];
+      }
+      s.entry_contact_[k] = static_cast<std::uint32_t>(2 * g);
+      s.entry_contact_[km] = static_cast<std::uint32_t>(2 * g + 1);
+      // Component by component: a whole-vector copy lets GCC spill the sum to the stack in 8-byte halves and read
+      // it back 16 bytes at once, a load that no store can forward (a stall of the pass's every contact).
+      Vec<Dim>& rec = s.contact_force_[g];
+      for (int a = 0; a < Dim; ++a) rec[a] = L.f[a][c];
+      s.contact_torque_[2 * g] = lane<Spin<Dim>>(L.tq_i, c);
+      s.contact_torque_[2 * g + 1] = lane<Spin<Dim>>(L.tq_j, c);
+      const double overlap = L.overlap[c];
+      max_ov = std::max(max_ov, overlap);
+      // Judged against the smaller partner: its diameter sets how deep the pair can sink before the contact is
+      // no longer a small perturbation of two touching spheres.
+      if constexpr (Mixed) max_frac = std::max(max_frac, overlap / (2.0 * std::min(L.ri[c], L.rj[c])));
+    }
+  }
+
+  /// Pass 1, second part: the touching pairs ct[0 .. n) into records g0, g0 + 1, ..., a block at a time.
+  void pair_contacts(const Contact* ct, std::size_t n, std::size_t g0, double& max_ov, double& max_frac) const {
+    Lanes L;
+    for (std::size_t c0 = 0; c0 < n; c0 += kBlock) {
+      const std::size_t m = std::min(kBlock, n - c0);
+      gather_pairs(ct + c0, m, L);
+      pair_law(L, m);
+      scatter_pairs(ct + c0, m, g0 + c0, L, max_ov, max_frac);
+    }
   }
 
   /// Pass 2: particle i (at xi, radius ri, its wall springs or null) against plane wall w = 2 axis + side, added
@@ -350,8 +472,16 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     contacts_.assign(nb, {});
     contact_count_.assign(nb, 0);
   }
+  const std::size_t slots = p_.size();  // owned and ghosts: partners may be either
+  place_.resize(slots);
+  motion_.resize(slots);
+  pass.place = place_.data();
+  pass.motion = motion_.data();
+  const auto sslots = static_cast<std::ptrdiff_t>(slots);
 #pragma omp parallel num_threads(max_threads)
   {
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t q = 0; q < sslots; ++q) pass.pack(static_cast<std::size_t>(q));
     const auto [t0, nt] = team_slot();
     for (std::size_t b = t0; b < nb; b += nt) pass.gather_touching(b, n * b / nb, n * (b + 1) / nb, marked_);
   }
@@ -374,8 +504,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   {
     const auto [t0, nt] = team_slot();
     for (std::size_t b = t0; b < nb; b += nt) {
-      const Contact* out = contacts_[b].data();
-      for (std::size_t c = 0; c < contact_count_[b]; ++c) pass.pair_contact(out[c], base[b] + c, max_ov, max_frac);
+      pass.pair_contacts(contacts_[b].data(), contact_count_[b], base[b], max_ov, max_frac);
     }
   }
   marked_ = true;
