@@ -278,6 +278,7 @@ void DemSolver<Dim>::rebuild(bool counted) {
   // not a copy of the whole old list, so the rebuild needs little memory beyond the list itself.
   if (list_springs_) gather_held_springs();
   list_springs_ = false;
+  marked_ = false;  // the records belong to the list about to go (measure_costs reads only its contact marks)
   if (domain_) {
     if (counted) measure_costs();  // from the list about to go
     drop_ghosts();  // the new set comes after migration
@@ -334,18 +335,17 @@ template <int Dim>
 void DemSolver<Dim>::gather_held_springs() {
   const std::size_t n = n_owned_;
   const bool rolling_law = config_.contact.needs_rolling_history();
-  const bool rolling = rolling_law && nbr_.rolling.size() == nbr_.history.size();
   HeldSprings<Dim>& h = held_;
   h.clear(n, rolling_law);
   if (nbr_.offset.size() < n + 1) return;
-  // After a force evaluation on this list only its touching pairs (marked with a record) can hold a spring, every
-  // other entry having been released to +0. The tests are combined without branches: about one entry in three
-  // holds a spring, in no pattern a branch predictor could follow.
-  const bool marked = marked_ && entry_contact_.size() == nbr_.entries();
+  // After a force evaluation on this list only its touching pairs (marked with a record) can hold a spring, the
+  // others naming the record of +0; before one, the entries hold them. The tests are combined without branches:
+  // about one entry in three holds a spring, in no pattern a branch predictor could follow.
+  const bool rolling = rolling_law && (marked_ ? roll_spring_.size() == spring_.size()
+                                               : nbr_.rolling.size() == nbr_.history.size());
   auto held = [&](std::size_t q) {
-    bool keep = !HeldSprings<Dim>::plus_zero(nbr_.history[q]);
-    if (rolling) keep = keep | !HeldSprings<Dim>::plus_zero(nbr_.rolling[q]);
-    if (marked) keep = keep & (entry_contact_[q] != 0);
+    bool keep = !HeldSprings<Dim>::plus_zero(entry_spring(q));
+    if (rolling) keep = keep | !HeldSprings<Dim>::plus_zero(entry_roll(q));
     return keep;
   };
   // Counted, then copied, both in parallel over the particles (the entries land in list order either way).
@@ -378,8 +378,8 @@ void DemSolver<Dim>::gather_held_springs() {
       for (std::size_t t = 0; t < m; ++t, ++c) {
         const std::size_t q = pick[t];
         h.partner_id[c] = p_.id[nbr_.partner[q]];
-        h.xi[c] = nbr_.history[q];
-        if (rolling_law) h.roll[c] = rolling ? nbr_.rolling[q] : Spin<Dim>{};
+        h.xi[c] = entry_spring(q);
+        if (rolling_law) h.roll[c] = rolling ? entry_roll(q) : Spin<Dim>{};
       }
     }
   }
@@ -684,7 +684,28 @@ bool DemSolver<Dim>::link_sorted_mirrors() {
 }
 
 template <int Dim>
+void DemSolver<Dim>::sync_list_springs() const {
+  if (!marked_ || entry_contact_.size() != nbr_.entries()) return;
+  // The springs are where they were, only written out as well: callers holding a const solver may ask for it.
+  List& list = const_cast<DemSolver&>(*this).nbr_;
+  const std::size_t m = list.entries();
+  const bool rolling = config_.contact.needs_rolling_history() && roll_spring_.size() == spring_.size();
+  list.history.resize(m);
+  if (rolling) list.rolling.resize(m);
+  const auto sm = static_cast<std::ptrdiff_t>(m);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t qq = 0; qq < sm; ++qq) {
+    const auto q = static_cast<std::size_t>(qq);
+    list.history[q] = entry_spring(q);
+    if (rolling) list.rolling[q] = entry_roll(q);
+  }
+}
+
+template <int Dim>
 void DemSolver<Dim>::link_mirrors() {
+  // The list the records number (an insertion adds rows without entries and keeps it): its springs into its
+  // entries, read by the next evaluation as on any list linked anew.
+  sync_list_springs();
   const std::size_t n = p_.size();
   if (nbr_.entries() > std::numeric_limits<std::uint32_t>::max()) {
     throw_simulation_error("neighbour list too long for 32-bit entry links");
@@ -930,6 +951,7 @@ std::size_t DemSolver<Dim>::remove_escaped() {
   }
   // The neighbour list of the particles that stay, in the same order, with their springs: the remaining pairs
   // are still within reach of their last build, so the list stays valid without a rebuild.
+  sync_list_springs();
   List list;
   list.offset.assign(keep.size() + 1, 0);
   list.partner.reserve(nbr_.partner.size());
@@ -1195,6 +1217,7 @@ double DemSolver<Dim>::total_mass() const {
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
   if (domain_) throw std::logic_error("DemSolver::state: a distributed solver gives portable_state()");
+  sync_list_springs();
   State st{p_,           nbr_,         walls_,        build_,        time_,         steps_,       rebuilds_,
            need_rebuild_, time_origin_, steps_origin_, removed_count_, removed_mass_, feed_,
            wall_roll_};

@@ -213,7 +213,10 @@ class DemSolver {
   /// Restores a state(): with its neighbour list it continues as saved; a portable state (no list) on any number
   /// of ranks, each keeping the particles of its blocks (after distribute()).
   void restore(State s);
-  const List& neighbors() const { return nbr_; }
+  const List& neighbors() const {
+    sync_list_springs();
+    return nbr_;
+  }
   /// The tangential springs against the plane walls.
   const WallSprings<Dim>& wall_springs() const { return walls_; }
 
@@ -377,10 +380,33 @@ class DemSolver {
   std::vector<std::uint32_t> entry_contact_;
   std::vector<Vec<Dim>> contact_force_;    ///< per record: force on the lower slot
   std::vector<Spin<Dim>> contact_torque_;  ///< per record, two: torque on the lower slot, on the partner
+  // The pair springs after an evaluation (marked_), by record as contact_force_ numbers them, the lower slot's side
+  // (record 0: +0): the pair pass reads and writes them in its own order, where springs per list entry would be
+  // read and written at both entries of every pair, far apart. The entries' springs (nbr_.history, nbr_.rolling)
+  // hold those of a list no evaluation ran on (carried over, restored); sync_list_springs writes the records into
+  // them where the per-entry form is read. The _next_ arrays are the evaluation's output, swapped in after it.
+  std::vector<Vec<Dim>> spring_, spring_next_;
+  std::vector<Spin<Dim>> roll_spring_, roll_spring_next_;
+  /// Entry q's spring and rolling spring, from its record after an evaluation (the partner's side negated, as the
+  /// entries mirror them), else from the entry.
+  Vec<Dim> entry_spring(std::size_t q) const {
+    if (!marked_) return nbr_.history[q];
+    const std::uint32_t e = entry_contact_[q];
+    return (e & 1u) != 0 ? -spring_[e >> 1] : spring_[e >> 1];
+  }
+  Spin<Dim> entry_roll(std::size_t q) const {
+    if (!marked_) return nbr_.rolling[q];
+    const std::uint32_t e = entry_contact_[q];
+    return (e & 1u) != 0 ? -roll_spring_[e >> 1] : roll_spring_[e >> 1];
+  }
+  /// The records' springs into the list's entries (nbr_.history, nbr_.rolling), for the readers of the per-entry
+  /// form; const for them (the springs do not change, only where they are written).
+  void sync_list_springs() const;
   std::vector<std::size_t> contact_base_;  ///< first record of each block
   /// A touching pair of the force pass: its lower slot i and its place u in the half list.
   struct Contact {
     std::uint32_t i, u;
+    std::uint32_t record;  ///< the record of the pair's spring in the last evaluation (0: none, a new contact)
   };
   // The touching pairs of the force evaluation, one array per block of particles (one block per thread), with
   // their counts.

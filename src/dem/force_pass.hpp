@@ -66,6 +66,11 @@ struct DemSolver<Dim>::ForcePass {
   const std::uint32_t* partner;
   const std::uint32_t* upper;
   Vec<Dim>* history;
+  // The springs by record: of the last evaluation (read), of this one (written).
+  const Vec<Dim>* spring_in = nullptr;
+  const Spin<Dim>* roll_in = nullptr;
+  Vec<Dim>* spring_out = nullptr;
+  Spin<Dim>* roll_out = nullptr;
   // Every slot's packed state (pack), for the pair loops.
   PlaceRadius<Dim>* place = nullptr;
   Motion<Dim>* motion = nullptr;
@@ -123,22 +128,17 @@ struct DemSolver<Dim>::ForcePass {
     if constexpr (Periodic) dx = s.periodic_.min_image(dx);  // the partner's nearest image
     return dx;
   }
-  /// Release the pair of entries k and km (the partner's): springs to zero, the zero record.
+  /// Release the pair of entries k and km (the partner's): the zero record, whose spring is +0.
   [[gnu::always_inline]] void release(std::size_t k, std::size_t km) const {
-    history[k] = Vec<Dim>{};
-    history[km] = Vec<Dim>{};
-    if constexpr (Law::kRollingHistory) {
-      roll[k] = Spin<Dim>{};
-      roll[km] = Spin<Dim>{};
-    }
     s.entry_contact_[k] = 0;
     s.entry_contact_[km] = 0;
   }
 
   /// Pass 1, first part, for block b (particles lo .. hi): the touching pairs of particles lo .. hi into the block's
-  /// compact array, and the pairs apart whose springs are held released. After an evaluation on this list
-  /// (`marked`) the held ones are those the last evaluation found touching, which carry a record; on a new or
-  /// restored list any entry may hold a carried-over spring.
+  /// compact array, each with the record that holds its spring, and the pairs apart whose springs are held
+  /// released. After an evaluation on this list (`marked`) the held springs are the records of the pairs it found
+  /// touching; on a new or restored list they are in the entries (nbr_.history), and a pair apart keeps none: the
+  /// evaluation's records are all that is held after it.
   [[gnu::always_inline]] void gather_touching(std::size_t b, std::size_t lo, std::size_t hi, bool marked) const {
     std::vector<Contact>& found = s.contacts_[b];
     Contact* out = found.data();
@@ -157,16 +157,13 @@ struct DemSolver<Dim>::ForcePass {
         const Vec<Dim> dx = separation(xi, j);
         const double rsum = ri + place[j].r;
         const bool touching = !(dot(dx, dx) >= rsum * rsum);
-        out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(u)};
+        // The entry of the lower slot is the record's side 0: its record is e / 2.
+        const std::uint32_t e = s.entry_contact_[k];
+        out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(u), e >> 1};
         used += static_cast<std::size_t>(touching);
         // Both tests evaluated, then one branch, rarely taken (a contact ends seldom): a branch on either test
-        // alone would be taken at random.
-        bool held = s.entry_contact_[k] != 0;
-        if (!marked) {
-          held = held | !is_zero<Dim>(history[k]);
-          if constexpr (Law::kRollingHistory) held = held | (spin_norm2<Dim>(roll[k]) != 0.0);
-        }
-        if (held & !touching) release(k, s.upper_mirror_[u]);
+        // alone would be taken at random. A list no evaluation ran on has no record.
+        if (marked & (e != 0) & !touching) release(k, s.upper_mirror_[u]);
       }
     }
     s.contact_count_[b] = used;
@@ -217,7 +214,7 @@ struct DemSolver<Dim>::ForcePass {
   }
 
   /// The pairs ct[0 .. n) into the lanes: separation, relative velocity, spins, sizes, springs (and parameters).
-  [[gnu::always_inline]] void gather_pairs(const Contact* ct, std::size_t n, Lanes& L) const {
+  [[gnu::always_inline]] void gather_pairs(const Contact* ct, std::size_t n, bool marked, Lanes& L) const {
     for (std::size_t c = 0; c < n; ++c) {
       const std::size_t i = ct[c].i, k = s.upper_entry_[ct[c].u];
       const std::size_t j = partner[k];
@@ -235,8 +232,10 @@ struct DemSolver<Dim>::ForcePass {
         L.ii[c] = roll_inertia(i);
         L.ij[c] = roll_inertia(j);
       }
-      set_lane(L.xi, c, history[k]);
-      if constexpr (Law::kRollingHistory) set_lane(L.roll, c, roll[k]);
+      // The spring the last evaluation left in the pair's record (record 0: +0, a new contact), or on a list no
+      // evaluation ran on, the one carried into its entry.
+      set_lane(L.xi, c, marked ? spring_in[ct[c].record] : history[k]);
+      if constexpr (Law::kRollingHistory) set_lane(L.roll, c, marked ? roll_in[ct[c].record] : roll[k]);
       if constexpr (kLaneParams) {
         const std::size_t pair =
             Mixed ? static_cast<std::size_t>(s.p_.species[i]) * ns + static_cast<std::size_t>(s.p_.species[j]) : 0;
@@ -318,13 +317,8 @@ struct DemSolver<Dim>::ForcePass {
       const std::size_t k = s.upper_entry_[ct[c].u];
       const std::size_t km = s.upper_mirror_[ct[c].u];
       const std::size_t g = g0 + c;
-      const Vec<Dim> xi = lane<Vec<Dim>>(L.xi, c);
-      history[k] = xi;
-      history[km] = -xi;
-      if constexpr (Law::kRollingHistory) {
-        roll[k] = lane<Spin<Dim>>(L.roll, c);
-        roll[km] = -roll[k];
-      }
+      spring_out[g] = lane<Vec<Dim>>(L.xi, c);
+      if constexpr (Law::kRollingHistory) roll_out[g] = lane<Spin<Dim>>(L.roll, c);
       s.entry_contact_[k] = static_cast<std::uint32_t>(2 * g);
       s.entry_contact_[km] = static_cast<std::uint32_t>(2 * g + 1);
       // Component by component: a whole-vector copy lets GCC spill the sum to the stack in 8-byte halves and read
@@ -342,11 +336,12 @@ struct DemSolver<Dim>::ForcePass {
   }
 
   /// Pass 1, second part: the touching pairs ct[0 .. n) into records g0, g0 + 1, ..., a block at a time.
-  void pair_contacts(const Contact* ct, std::size_t n, std::size_t g0, double& max_ov, double& max_frac) const {
+  void pair_contacts(const Contact* ct, std::size_t n, std::size_t g0, bool marked, double& max_ov,
+                     double& max_frac) const {
     Lanes L;
     for (std::size_t c0 = 0; c0 < n; c0 += kBlock) {
       const std::size_t m = std::min(kBlock, n - c0);
-      gather_pairs(ct + c0, m, L);
+      gather_pairs(ct + c0, m, marked, L);
       pair_law(L, m);
       scatter_pairs(ct + c0, m, g0 + c0, L, max_ov, max_frac);
     }
@@ -492,9 +487,23 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   if (contact_force_.capacity() < base[nb]) {
     contact_force_.reserve(base[nb] + base[nb] / 2);
     contact_torque_.reserve(2 * (base[nb] + base[nb] / 2));
+    spring_next_.reserve(base[nb] + base[nb] / 2);
+    if (Law::kRollingHistory) roll_spring_next_.reserve(base[nb] + base[nb] / 2);
   }
   contact_force_.resize(base[nb]);
   contact_torque_.resize(2 * base[nb]);
+  // This evaluation's springs by record, record 0 the +0 of the pairs not in contact.
+  spring_next_.resize(base[nb]);
+  spring_next_[0] = Vec<Dim>{};
+  if (Law::kRollingHistory) {
+    roll_spring_next_.resize(base[nb]);
+    roll_spring_next_[0] = Spin<Dim>{};
+  }
+  const bool marked = marked_;
+  pass.spring_in = spring_.data();
+  pass.roll_in = roll_spring_.data();
+  pass.spring_out = spring_next_.data();
+  pass.roll_out = roll_spring_next_.data();
   // The zero record is -0: adding it leaves every sum as it was, -0 and +0 included (x + (-0) = x for every x),
   // so a particle's sum is that of its contacts alone, whatever other pairs its list holds (a list built at
   // another time, or on another rank, holds other pairs out of contact).
@@ -504,9 +513,11 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   {
     const auto [t0, nt] = team_slot();
     for (std::size_t b = t0; b < nb; b += nt) {
-      pass.pair_contacts(contacts_[b].data(), contact_count_[b], base[b], max_ov, max_frac);
+      pass.pair_contacts(contacts_[b].data(), contact_count_[b], base[b], marked, max_ov, max_frac);
     }
   }
+  spring_.swap(spring_next_);
+  roll_spring_.swap(roll_spring_next_);
   marked_ = true;
   pass.cforce = contact_force_.data();
   pass.ctorque = contact_torque_.data();
