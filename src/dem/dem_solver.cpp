@@ -320,9 +320,8 @@ void DemSolver<Dim>::rebuild(bool counted) {
     for (std::size_t k = 0; k < order.size(); ++k) rank[order[k]] = static_cast<std::uint32_t>(k);
   }
   build_neighbor_list(p_, n_owned_, cell_size_, config_.skin, nbr_, scratch_, periodic_, rank);
-  if (config_.contact.needs_rolling_history()) nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});
-  carry_held_springs();
   link_mirrors();
+  carry_held_springs();
   list_springs_ = true;
   list_stale_ = false;
   if (counted) {
@@ -387,33 +386,105 @@ void DemSolver<Dim>::gather_held_springs() {
 
 template <int Dim>
 void DemSolver<Dim>::carry_held_springs() {
-  // Each held spring to the new entry of the same pair, found by the partner's id (so that it does not matter
-  // where either partner is stored now); a pair that left the list had released its spring (it was beyond contact).
+  // Each held spring to the record of the same pair in the new list, found by the partner's id (so that it does not
+  // matter where either partner is stored now); a pair that left the list had released its spring (it was beyond
+  // contact). The lower slot's copy makes the record (its entry is the record's side 0, as the force pass numbers
+  // them); the partner holds the same spring negated. Records are numbered particle after particle.
   if (held_.particles() != n_owned_) return;  // nothing held (a fresh solver)
-  const bool rolling = !nbr_.rolling.empty() && held_.keeps_rolling();
-  const auto sn = static_cast<std::ptrdiff_t>(n_owned_);
+  const bool rolling = held_.keeps_rolling() && config_.contact.needs_rolling_history();
+  const std::size_t n = n_owned_;
+  std::vector<std::uint32_t>& at = carry_at_;  // per held spring: 1 + its place u in the half list, or 0
+  at.assign(held_.offset[n], 0);
+  std::vector<std::size_t>& first = carry_first_;
+  first.assign(n + 1, 0);
+  const auto sn = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const std::size_t k0 = nbr_.offset[i], k1 = nbr_.offset[i + 1];
-    // The search goes on from the last match, round the list once: both lists hold the partners in the canonical
-    // order, which changes only at a sorting rebuild, so each entry is usually looked at once. A partner is in a
-    // list at most once (a period spans more than two reaches), so the match is the one a search from the start
-    // finds.
-    std::size_t k = k0;
+    const std::size_t u0 = upper_offset_[i], u1 = upper_offset_[i + 1];
+    // The search goes on from the last match, round the half list once: both lists hold the partners in the
+    // canonical order, which changes only at a sorting rebuild, so each entry is usually looked at once. A partner
+    // is in a list at most once (a period spans more than two reaches). A partner below i is not found: its own
+    // copy makes the record.
+    std::size_t u = u0, found = 0;
     for (std::size_t q = held_.offset[i]; q < held_.offset[i + 1]; ++q) {
       const std::int64_t j = held_.partner_id[q];
-      for (std::size_t step = k0; step < k1; ++step, ++k) {
-        if (k == k1) k = k0;
-        if (p_.id[nbr_.partner[k]] == j) {
-          nbr_.history[k] = held_.xi[q];
-          if (rolling) nbr_.rolling[k] = held_.roll[q];
-          ++k;
+      for (std::size_t step = u0; step < u1; ++step, ++u) {
+        if (u == u1) u = u0;
+        if (p_.id[nbr_.partner[upper_entry_[u]]] == j) {
+          at[q] = static_cast<std::uint32_t>(u + 1);
+          ++found;
+          ++u;
           break;
         }
       }
     }
+    first[i + 1] = found;
   }
+  first[0] = 1;  // record 0 is the +0 spring
+  for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+  spring_.resize(first[n]);
+  spring_[0] = Vec<Dim>{};
+  roll_spring_.assign(config_.contact.needs_rolling_history() ? first[n] : 0, Spin<Dim>{});
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t g = first[i];
+    for (std::size_t q = held_.offset[i]; q < held_.offset[i + 1]; ++q) {
+      if (at[q] == 0) continue;
+      const std::size_t u = at[q] - 1;
+      spring_[g] = held_.xi[q];
+      if (rolling) roll_spring_[g] = held_.roll[q];
+      entry_contact_[upper_entry_[u]] = static_cast<std::uint32_t>(2 * g);
+      entry_contact_[upper_mirror_[u]] = static_cast<std::uint32_t>(2 * g + 1);
+      ++g;
+    }
+  }
+}
+
+template <int Dim>
+void DemSolver<Dim>::adopt_entry_springs() {
+  // The springs a list brings in its entries (a restored or copied list) into records, as carry_held_springs makes
+  // them: from the lower slot's entry of every pair that holds one (not +0), owned particles only (the force pass
+  // evaluates no other), numbered particle after particle. The entries are then let go.
+  const std::size_t m = nbr_.entries();
+  const bool rolling = config_.contact.needs_rolling_history() && nbr_.rolling.size() == m;
+  spring_.assign(1, Vec<Dim>{});
+  roll_spring_.assign(config_.contact.needs_rolling_history() ? 1 : 0, Spin<Dim>{});
+  if (nbr_.history.size() == m && m > 0) {
+    auto held = [&](std::size_t k) {
+      bool keep = !HeldSprings<Dim>::plus_zero(nbr_.history[k]);
+      if (rolling) keep = keep | !HeldSprings<Dim>::plus_zero(nbr_.rolling[k]);
+      return keep;
+    };
+    const std::size_t n = n_owned_;
+    std::vector<std::size_t>& first = carry_first_;
+    first.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t c = 0;
+      for (std::size_t u = upper_offset_[i]; u < upper_offset_[i + 1]; ++u) c += held(upper_entry_[u]) ? 1 : 0;
+      first[i + 1] = c;
+    }
+    first[0] = 1;
+    for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+    spring_.resize(first[n]);
+    if (config_.contact.needs_rolling_history()) roll_spring_.assign(first[n], Spin<Dim>{});
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t g = first[i];
+      for (std::size_t u = upper_offset_[i]; u < upper_offset_[i + 1]; ++u) {
+        const std::size_t k = upper_entry_[u];
+        if (!held(k)) continue;
+        spring_[g] = nbr_.history[k];
+        if (rolling) roll_spring_[g] = nbr_.rolling[k];
+        entry_contact_[k] = static_cast<std::uint32_t>(2 * g);
+        entry_contact_[upper_mirror_[u]] = static_cast<std::uint32_t>(2 * g + 1);
+        ++g;
+      }
+    }
+  }
+  nbr_.history = {};
+  nbr_.rolling = {};
+  marked_ = true;
 }
 
 template <int Dim>
@@ -760,6 +831,7 @@ void DemSolver<Dim>::link_mirrors() {
   const std::size_t m = nbr_.entries();
   if (entry_contact_.capacity() < m) entry_contact_.reserve(m + m / 2);
   entry_contact_.assign(m, 0);
+  adopt_entry_springs();
 }
 
 template <int Dim>

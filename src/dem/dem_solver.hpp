@@ -18,7 +18,6 @@
 #include "dem/contact_law.hpp"
 #include "dem/dem_config.hpp"
 #include "dem/held_springs.hpp"
-#include "dem/kernel_support.hpp"
 #include "dem/neighbor_list.hpp"
 #include "dem/particle_domain.hpp"
 #include "dem/particle_store.hpp"
@@ -380,28 +379,33 @@ class DemSolver {
   std::vector<std::uint32_t> entry_contact_;
   std::vector<Vec<Dim>> contact_force_;    ///< per record: force on the lower slot
   std::vector<Spin<Dim>> contact_torque_;  ///< per record, two: torque on the lower slot, on the partner
-  // The pair springs after an evaluation (marked_), by record as contact_force_ numbers them, the lower slot's side
+  // The pair springs of the linked list (marked_), by record as contact_force_ numbers them, the lower slot's side
   // (record 0: +0): the pair pass reads and writes them in its own order, where springs per list entry would be
-  // read and written at both entries of every pair, far apart. The entries' springs (nbr_.history, nbr_.rolling)
-  // hold those of a list no evaluation ran on (carried over, restored); sync_list_springs writes the records into
-  // them where the per-entry form is read. The _next_ arrays are the evaluation's output, swapped in after it.
+  // read and written at both entries of every pair, far apart, and held for every entry (three to four times the
+  // contacts). A new list gets records from the carried springs (carry_held_springs), a restored or copied one from
+  // its entries (adopt_entry_springs); sync_list_springs writes them into the entries (nbr_.history, nbr_.rolling)
+  // where that form is read. The _next_ arrays are an evaluation's output, swapped in after it.
   std::vector<Vec<Dim>> spring_, spring_next_;
   std::vector<Spin<Dim>> roll_spring_, roll_spring_next_;
   /// Entry q's spring and rolling spring, from its record after an evaluation (the partner's side negated, as the
   /// entries mirror them), else from the entry.
   Vec<Dim> entry_spring(std::size_t q) const {
-    if (!marked_) return nbr_.history[q];
+    if (!marked_) return q < nbr_.history.size() ? nbr_.history[q] : Vec<Dim>{};
     const std::uint32_t e = entry_contact_[q];
     return (e & 1u) != 0 ? -spring_[e >> 1] : spring_[e >> 1];
   }
   Spin<Dim> entry_roll(std::size_t q) const {
-    if (!marked_) return nbr_.rolling[q];
+    if (!marked_) return q < nbr_.rolling.size() ? nbr_.rolling[q] : Spin<Dim>{};
     const std::uint32_t e = entry_contact_[q];
     return (e & 1u) != 0 ? -roll_spring_[e >> 1] : roll_spring_[e >> 1];
   }
   /// The records' springs into the list's entries (nbr_.history, nbr_.rolling), for the readers of the per-entry
   /// form; const for them (the springs do not change, only where they are written).
   void sync_list_springs() const;
+  /// The springs in the entries of a list just linked into records (none: every record +0); the entries let go.
+  void adopt_entry_springs();
+  std::vector<std::uint32_t> carry_at_;  ///< carry_held_springs: per held spring, 1 + its half-list place (0: none)
+  std::vector<std::size_t> carry_first_;  ///< carry_held_springs, adopt_entry_springs: first record per particle
   std::vector<std::size_t> contact_base_;  ///< first record of each block
   /// A touching pair of the force pass: its lower slot i and its place u in the half list.
   struct Contact {
@@ -411,10 +415,6 @@ class DemSolver {
   // The touching pairs of the force evaluation, one array per block of particles (one block per thread), with
   // their counts.
   std::vector<std::vector<Contact>> contacts_;
-  // Every slot's centre and radius, velocity and spin, packed at the start of each force evaluation from the store
-  // for the pair loops' reads of partners (force_pass.hpp).
-  std::vector<dem_kernel::PlaceRadius<Dim>> place_;
-  std::vector<dem_kernel::Motion<Dim>> motion_;
   std::vector<std::size_t> contact_count_;
   /// A force evaluation ran on the current list: entry_contact_ marks its touching pairs, the only entries that
   /// can hold a spring to release.

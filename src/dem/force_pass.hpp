@@ -20,8 +20,6 @@ namespace fluidbed {
 using dem_kernel::AxisPtrs;
 using dem_kernel::axis_ptrs;
 using dem_kernel::is_zero;
-using dem_kernel::Motion;
-using dem_kernel::PlaceRadius;
 using dem_kernel::spin_norm2;
 
 template <int Dim>
@@ -62,18 +60,13 @@ struct DemSolver<Dim>::ForcePass {
   const double* R;
   const double* M;
   const double* IINV;
-  Spin<Dim>* roll;
   const std::uint32_t* partner;
   const std::uint32_t* upper;
-  Vec<Dim>* history;
   // The springs by record: of the last evaluation (read), of this one (written).
   const Vec<Dim>* spring_in = nullptr;
   const Spin<Dim>* roll_in = nullptr;
   Vec<Dim>* spring_out = nullptr;
   Spin<Dim>* roll_out = nullptr;
-  // Every slot's packed state (pack), for the pair loops.
-  PlaceRadius<Dim>* place = nullptr;
-  Motion<Dim>* motion = nullptr;
   // The contacts' records, for pass 2: set once pass 1 has sized them.
   const Vec<Dim>* cforce = nullptr;
   const Spin<Dim>* ctorque = nullptr;
@@ -91,10 +84,8 @@ struct DemSolver<Dim>::ForcePass {
         R(solver.p_.radius.data()),
         M(solver.p_.mass.data()),
         IINV(solver.p_.inv_inertia.data()),
-        roll(Law::kRollingHistory ? solver.nbr_.rolling.data() : nullptr),
         partner(solver.nbr_.partner.data()),
-        upper(solver.upper_offset_.data()),
-        history(solver.nbr_.history.data()) {
+        upper(solver.upper_offset_.data()) {
     const WallConfig& walls = solver.config_.walls;
     for (int w = 0; w < 2 * Dim; ++w) wall_on[static_cast<std::size_t>(w)] = walls.enabled(w / 2, w % 2);
   }
@@ -118,13 +109,8 @@ struct DemSolver<Dim>::ForcePass {
   }
   // Ai et al. 2011 Eq. 17: the rolling inertia of one partner, I + m r^2.
   [[gnu::always_inline]] double roll_inertia(std::size_t i) const { return 1.0 / IINV[i] + M[i] * R[i] * R[i]; }
-  /// Slot q's centre, radius, velocity and spin into the packed arrays.
-  [[gnu::always_inline]] void pack(std::size_t q) const {
-    place[q] = PlaceRadius<Dim>{pos(q), R[q]};
-    motion[q] = Motion<Dim>{vel(q), spin(q)};
-  }
   [[gnu::always_inline]] Vec<Dim> separation(const Vec<Dim>& xi, std::size_t j) const {
-    Vec<Dim> dx = place[j].x - xi;
+    Vec<Dim> dx = pos(j) - xi;
     if constexpr (Periodic) dx = s.periodic_.min_image(dx);  // the partner's nearest image
     return dx;
   }
@@ -135,11 +121,9 @@ struct DemSolver<Dim>::ForcePass {
   }
 
   /// Pass 1, first part, for block b (particles lo .. hi): the touching pairs of particles lo .. hi into the block's
-  /// compact array, each with the record that holds its spring, and the pairs apart whose springs are held
-  /// released. After an evaluation on this list (`marked`) the held springs are the records of the pairs it found
-  /// touching; on a new or restored list they are in the entries (nbr_.history), and a pair apart keeps none: the
-  /// evaluation's records are all that is held after it.
-  [[gnu::always_inline]] void gather_touching(std::size_t b, std::size_t lo, std::size_t hi, bool marked) const {
+  /// compact array, each with the record that holds its spring (the last evaluation's, or those a new list was
+  /// given), and the pairs apart whose springs are held released.
+  [[gnu::always_inline]] void gather_touching(std::size_t b, std::size_t lo, std::size_t hi) const {
     std::vector<Contact>& found = s.contacts_[b];
     Contact* out = found.data();
     std::size_t used = 0;
@@ -149,21 +133,21 @@ struct DemSolver<Dim>::ForcePass {
         found.resize(used + (upper[i + 1] - upper[i]) + found.size() / 2 + 64);
         out = found.data();
       }
-      const Vec<Dim> xi = place[i].x;
-      const double ri = place[i].r;
+      const Vec<Dim> xi = pos(i);
+      const double ri = R[i];
       for (std::size_t u = upper[i]; u < upper[i + 1]; ++u) {
         const std::size_t k = s.upper_entry_[u];
         const std::size_t j = partner[k];
         const Vec<Dim> dx = separation(xi, j);
-        const double rsum = ri + place[j].r;
+        const double rsum = ri + R[j];
         const bool touching = !(dot(dx, dx) >= rsum * rsum);
         // The entry of the lower slot is the record's side 0: its record is e / 2.
         const std::uint32_t e = s.entry_contact_[k];
         out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(u), e >> 1};
         used += static_cast<std::size_t>(touching);
         // Both tests evaluated, then one branch, rarely taken (a contact ends seldom): a branch on either test
-        // alone would be taken at random. A list no evaluation ran on has no record.
-        if (marked & (e != 0) & !touching) release(k, s.upper_mirror_[u]);
+        // alone would be taken at random.
+        if ((e != 0) & !touching) release(k, s.upper_mirror_[u]);
       }
     }
     s.contact_count_[b] = used;
@@ -214,16 +198,16 @@ struct DemSolver<Dim>::ForcePass {
   }
 
   /// The pairs ct[0 .. n) into the lanes: separation, relative velocity, spins, sizes, springs (and parameters).
-  [[gnu::always_inline]] void gather_pairs(const Contact* ct, std::size_t n, bool marked, Lanes& L) const {
+  [[gnu::always_inline]] void gather_pairs(const Contact* ct, std::size_t n, Lanes& L) const {
     for (std::size_t c = 0; c < n; ++c) {
       const std::size_t i = ct[c].i, k = s.upper_entry_[ct[c].u];
       const std::size_t j = partner[k];
-      set_lane(L.dx, c, separation(place[i].x, j));
-      set_lane(L.dv, c, motion[i].v - motion[j].v);
-      set_lane(L.wi, c, motion[i].w);
-      set_lane(L.wj, c, motion[j].w);
-      L.ri[c] = place[i].r;
-      L.rj[c] = place[j].r;
+      set_lane(L.dx, c, separation(pos(i), j));
+      set_lane(L.dv, c, vel(i) - vel(j));
+      set_lane(L.wi, c, spin(i));
+      set_lane(L.wj, c, spin(j));
+      L.ri[c] = R[i];
+      L.rj[c] = R[j];
       if constexpr (Law::kNeedsPairSize) {
         L.mi[c] = M[i];
         L.mj[c] = M[j];
@@ -232,10 +216,9 @@ struct DemSolver<Dim>::ForcePass {
         L.ii[c] = roll_inertia(i);
         L.ij[c] = roll_inertia(j);
       }
-      // The spring the last evaluation left in the pair's record (record 0: +0, a new contact), or on a list no
-      // evaluation ran on, the one carried into its entry.
-      set_lane(L.xi, c, marked ? spring_in[ct[c].record] : history[k]);
-      if constexpr (Law::kRollingHistory) set_lane(L.roll, c, marked ? roll_in[ct[c].record] : roll[k]);
+      // The spring in the pair's record (record 0: +0, a new contact).
+      set_lane(L.xi, c, spring_in[ct[c].record]);
+      if constexpr (Law::kRollingHistory) set_lane(L.roll, c, roll_in[ct[c].record]);
       if constexpr (kLaneParams) {
         const std::size_t pair =
             Mixed ? static_cast<std::size_t>(s.p_.species[i]) * ns + static_cast<std::size_t>(s.p_.species[j]) : 0;
@@ -336,12 +319,11 @@ struct DemSolver<Dim>::ForcePass {
   }
 
   /// Pass 1, second part: the touching pairs ct[0 .. n) into records g0, g0 + 1, ..., a block at a time.
-  void pair_contacts(const Contact* ct, std::size_t n, std::size_t g0, bool marked, double& max_ov,
-                     double& max_frac) const {
+  void pair_contacts(const Contact* ct, std::size_t n, std::size_t g0, double& max_ov, double& max_frac) const {
     Lanes L;
     for (std::size_t c0 = 0; c0 < n; c0 += kBlock) {
       const std::size_t m = std::min(kBlock, n - c0);
-      gather_pairs(ct + c0, m, marked, L);
+      gather_pairs(ct + c0, m, L);
       pair_law(L, m);
       scatter_pairs(ct + c0, m, g0 + c0, L, max_ov, max_frac);
     }
@@ -440,9 +422,10 @@ struct DemSolver<Dim>::ForcePass {
 template <int Dim>
 template <class Law, bool Mixed, bool Periodic, bool Sized>
 double DemSolver<Dim>::compute_forces_of(double dt) {
-  if (upper_offset_.size() != p_.size() + 1 || linked_entries_ != nbr_.entries()) link_mirrors();  // a restored list
-  if (Law::kRollingHistory && nbr_.rolling.size() != nbr_.entries()) {
-    nbr_.rolling.assign(nbr_.entries(), Spin<Dim>{});  // a list restored from a run without rolling springs
+  // A restored or copied list, or one grown by an insertion: linked, its springs into records.
+  if (!marked_ || upper_offset_.size() != p_.size() + 1 || linked_entries_ != nbr_.entries()) link_mirrors();
+  if (Law::kRollingHistory && roll_spring_.size() != spring_.size()) {
+    roll_spring_.assign(spring_.size(), Spin<Dim>{});  // springs restored from a run without rolling springs
   }
   // Only the owned particles take forces; a ghost's pairs with owned particles are in their owners' half lists (the
   // owned slots come first), and its pairs with other ghosts are its own rank's business.
@@ -467,18 +450,10 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     contacts_.assign(nb, {});
     contact_count_.assign(nb, 0);
   }
-  const std::size_t slots = p_.size();  // owned and ghosts: partners may be either
-  place_.resize(slots);
-  motion_.resize(slots);
-  pass.place = place_.data();
-  pass.motion = motion_.data();
-  const auto sslots = static_cast<std::ptrdiff_t>(slots);
 #pragma omp parallel num_threads(max_threads)
   {
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t q = 0; q < sslots; ++q) pass.pack(static_cast<std::size_t>(q));
     const auto [t0, nt] = team_slot();
-    for (std::size_t b = t0; b < nb; b += nt) pass.gather_touching(b, n * b / nb, n * (b + 1) / nb, marked_);
+    for (std::size_t b = t0; b < nb; b += nt) pass.gather_touching(b, n * b / nb, n * (b + 1) / nb);
   }
   // The contacts' records, numbered block after block from 1 (record 0 stays zero: the entries not in contact).
   std::vector<std::size_t>& base = contact_base_;
@@ -499,7 +474,6 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
     roll_spring_next_.resize(base[nb]);
     roll_spring_next_[0] = Spin<Dim>{};
   }
-  const bool marked = marked_;
   pass.spring_in = spring_.data();
   pass.roll_in = roll_spring_.data();
   pass.spring_out = spring_next_.data();
@@ -513,7 +487,7 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   {
     const auto [t0, nt] = team_slot();
     for (std::size_t b = t0; b < nb; b += nt) {
-      pass.pair_contacts(contacts_[b].data(), contact_count_[b], base[b], marked, max_ov, max_frac);
+      pass.pair_contacts(contacts_[b].data(), contact_count_[b], base[b], max_ov, max_frac);
     }
   }
   spring_.swap(spring_next_);

@@ -20,19 +20,6 @@ AxisPtrs<Dim> axis_ptrs(Get&& get, int n) {
   return p;
 }
 
-/// A particle's centre and radius in one 32-byte slot, and its velocity and spin in one more: the pair loops read
-/// a partner's state from one or two cache lines, where the store's arrays (one per component) take nine.
-template <int Dim>
-struct alignas(32) PlaceRadius {
-  Vec<Dim> x;
-  double r;
-};
-template <int Dim>
-struct Motion {
-  Vec<Dim> v;
-  Spin<Dim> w;
-};
-
 template <int Dim>
 double spin_norm2(Spin<Dim> w) {
   if constexpr (Dim == 2) {

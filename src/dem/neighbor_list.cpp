@@ -254,6 +254,7 @@ template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double skin, NeighborList<Dim>& out,
                          NeighborScratch& scratch, const PeriodicBox<Dim>& periodic) {
   build_neighbor_list(p, p.size(), cell_size, skin, out, scratch, periodic, {});
+  out.history.assign(out.entries(), Vec<Dim>{});
 }
 
 namespace {
@@ -380,10 +381,9 @@ void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double 
   }
   for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.partner.resize(out.offset[n]);
-  // assign() beyond the capacity allocates the exact size, so a list that grows as the bed compacts would be
-  // reallocated (and its pages faulted in) at every rebuild: leave room for growth instead.
-  if (out.history.capacity() < out.offset[n]) out.history.reserve(out.offset[n] + out.offset[n] / 2);
-  out.history.assign(out.offset[n], Vec<Dim>{});
+  // No springs per entry: the solver keeps them by contact (DemSolver::spring_).
+  out.history = {};
+  out.rolling = {};
   for (std::size_t t = 0; t < static_cast<std::size_t>(max_threads); ++t) {
     if (block[t] < block[t + 1]) std::copy(found[t].begin(), found[t].end(), out.partner.begin() + static_cast<std::ptrdiff_t>(out.offset[block[t]]));
   }

@@ -22,7 +22,9 @@ struct NeighborList {
   /// Storage slot of the partner (what the force loop reads). Its id, p.id[partner], is the key the contact
   /// history is carried by across rebuilds; it is read from the store, not kept per entry (8 bytes an entry).
   std::vector<std::uint32_t> partner;
-  std::vector<Vec<Dim>> history;        ///< tangential spring of the contact, mirrored in the partner's entry
+  /// Tangential spring of the contact, mirrored in the partner's entry: the per-entry form of a list's springs
+  /// (a saved state, a test's view); a stepping DemSolver keeps them by contact and leaves this empty.
+  std::vector<Vec<Dim>> history;
   /// Rolling spring torque of the contact (laws with a rolling spring only, else empty), mirrored like history.
   std::vector<Spin<Dim>> rolling;
 
@@ -59,7 +61,8 @@ void build_neighbor_list(const ParticleStore<Dim>& p, double cell_size, double s
 /// The same for a store whose slots from `owned` on are ghosts (copies of other ranks' particles): only the owned
 /// particles are searched, each ghost gets the mirror entries of its owned partners, and pairs of two ghosts are
 /// left out. Every particle's entries are in ascending rank[partner] (the partners' places in the canonical order,
-/// DemSolver::canonical_order), or in ascending slot when `rank` is empty (slots in that order).
+/// DemSolver::canonical_order), or in ascending slot when `rank` is empty (slots in that order). No springs per
+/// entry (history and rolling empty): the solver keeps them by contact.
 template <int Dim>
 void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double cell_size, double skin,
                          NeighborList<Dim>& out, NeighborScratch& scratch, const PeriodicBox<Dim>& periodic,
