@@ -423,9 +423,15 @@ void DemSolver<Dim>::carry_held_springs() {
   }
   first[0] = 1;  // record 0 is the +0 spring
   for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
-  spring_.resize(first[n]);
+  // With room for growth, as the force pass keeps its arrays (they take turns with these).
+  const std::size_t records = first[n];
+  if (spring_.capacity() < records) spring_.reserve(records + records / 2);
+  spring_.resize(records);
   spring_[0] = Vec<Dim>{};
-  roll_spring_.assign(config_.contact.needs_rolling_history() ? first[n] : 0, Spin<Dim>{});
+  if (config_.contact.needs_rolling_history() && roll_spring_.capacity() < records) {
+    roll_spring_.reserve(records + records / 2);
+  }
+  roll_spring_.assign(config_.contact.needs_rolling_history() ? records : 0, Spin<Dim>{});
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);

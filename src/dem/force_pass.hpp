@@ -462,16 +462,20 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   if (contact_force_.capacity() < base[nb]) {
     contact_force_.reserve(base[nb] + base[nb] / 2);
     contact_torque_.reserve(2 * (base[nb] + base[nb] / 2));
-    spring_next_.reserve(base[nb] + base[nb] / 2);
-    if (Law::kRollingHistory) roll_spring_next_.reserve(base[nb] + base[nb] / 2);
   }
   contact_force_.resize(base[nb]);
   contact_torque_.resize(2 * base[nb]);
-  // This evaluation's springs by record, record 0 the +0 of the pairs not in contact.
-  spring_next_.resize(base[nb]);
+  // This evaluation's springs by record, record 0 the +0 of the pairs not in contact. Each of the two arrays that
+  // take turns keeps room for growth (a resize beyond the capacity would allocate the exact size, and fault its
+  // pages in, at every evaluation while the bed compacts).
+  const auto sized = [](auto& v, std::size_t m) {
+    if (v.capacity() < m) v.reserve(m + m / 2);
+    v.resize(m);
+  };
+  sized(spring_next_, base[nb]);
   spring_next_[0] = Vec<Dim>{};
   if (Law::kRollingHistory) {
-    roll_spring_next_.resize(base[nb]);
+    sized(roll_spring_next_, base[nb]);
     roll_spring_next_[0] = Spin<Dim>{};
   }
   pass.spring_in = spring_.data();
