@@ -32,13 +32,4 @@ import csv; r = list(csv.DictReader(open('$work/run/monitor.csv'))); print(r[-1]
     echo "$which $wall $energy" >>"$work/results"
   done
 done
-python3 - "$work/results" <<'PY'
-import statistics, sys
-rows = [l.split() for l in open(sys.argv[1])]
-wall = {w: [float(r[1]) for r in rows if r[0] == w] for w in ("old", "new")}
-energy = {w: {r[2] for r in rows if r[0] == w} for w in ("old", "new")}
-mo, mn = statistics.median(wall["old"]), statistics.median(wall["new"])
-print(f"median wall: old {mo:.2f} s, new {mn:.2f} s, new/old {mn / mo:.3f}")
-print("final kinetic energy:", "identical" if energy["old"] == energy["new"] and len(energy["old"]) == 1
-      else f"differs: old {sorted(energy['old'])}, new {sorted(energy['new'])}")
-PY
+python3 "$here/ab_medians.py" "$work/results" wall "final kinetic energy"

@@ -22,13 +22,7 @@ for p in $(seq 1 "$pairs"); do
     echo "$which $wall" >>"$work/results"
   done
 done
-python3 - "$work/results" <<'PY'
-import statistics, sys
-rows = [l.split() for l in open(sys.argv[1])]
-wall = {w: [float(r[1]) for r in rows if r[0] == w] for w in ("old", "new")}
-mo, mn = statistics.median(wall["old"]), statistics.median(wall["new"])
-print(f"median loop wall: old {mo:.2f} s, new {mn:.2f} s, new/old {mn / mo:.3f}")
-PY
+python3 "$here/ab_medians.py" "$work/results" "loop wall"
 same=identical
 for w in old new; do cut -d, -f1-19 "$work/$w/monitor.csv" >"$work/$w.monitor"; done
 cmp -s "$work/old.monitor" "$work/new.monitor" || same=differ
