@@ -421,31 +421,39 @@ void DemSolver<Dim>::carry_held_springs() {
     }
     first[i + 1] = found;
   }
-  first[0] = 1;  // record 0 is the +0 spring
-  for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
-  // With room for growth, as the force pass keeps its arrays (they take turns with these).
-  const std::size_t records = first[n];
-  if (spring_.capacity() < records) spring_.reserve(records + records / 2);
-  spring_.resize(records);
-  spring_[0] = Vec<Dim>{};
-  if (config_.contact.needs_rolling_history() && roll_spring_.capacity() < records) {
-    roll_spring_.reserve(records + records / 2);
-  }
-  roll_spring_.assign(config_.contact.needs_rolling_history() ? records : 0, Spin<Dim>{});
+  number_records();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     std::size_t g = first[i];
     for (std::size_t q = held_.offset[i]; q < held_.offset[i + 1]; ++q) {
-      if (at[q] == 0) continue;
-      const std::size_t u = at[q] - 1;
-      spring_[g] = held_.xi[q];
-      if (rolling) roll_spring_[g] = held_.roll[q];
-      entry_contact_[upper_entry_[u]] = static_cast<std::uint32_t>(2 * g);
-      entry_contact_[upper_mirror_[u]] = static_cast<std::uint32_t>(2 * g + 1);
-      ++g;
+      if (at[q] != 0) set_record(g++, at[q] - 1, held_.xi[q], rolling ? held_.roll[q] : Spin<Dim>{});
     }
   }
+}
+
+template <int Dim>
+void DemSolver<Dim>::number_records() {
+  std::vector<std::size_t>& first = carry_first_;
+  const std::size_t n = first.size() - 1;
+  first[0] = 1;  // record 0 is the +0 spring
+  for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+  // With room for growth, as the force pass keeps its arrays (they take turns with these).
+  const std::size_t records = first[n];
+  const bool rolling = config_.contact.needs_rolling_history();
+  if (spring_.capacity() < records) spring_.reserve(records + records / 2);
+  spring_.resize(records);
+  spring_[0] = Vec<Dim>{};
+  if (rolling && roll_spring_.capacity() < records) roll_spring_.reserve(records + records / 2);
+  roll_spring_.assign(rolling ? records : 0, Spin<Dim>{});
+}
+
+template <int Dim>
+void DemSolver<Dim>::set_record(std::size_t g, std::size_t u, const Vec<Dim>& xi, const Spin<Dim>& roll) {
+  spring_[g] = xi;
+  if (!roll_spring_.empty()) roll_spring_[g] = roll;
+  entry_contact_[upper_entry_[u]] = static_cast<std::uint32_t>(2 * g);
+  entry_contact_[upper_mirror_[u]] = static_cast<std::uint32_t>(2 * g + 1);
 }
 
 template <int Dim>
@@ -454,38 +462,25 @@ void DemSolver<Dim>::adopt_entry_springs() {
   // them: from the lower slot's entry of every pair that holds one (not +0), owned particles only (the force pass
   // evaluates no other), numbered particle after particle. The entries are then let go.
   const std::size_t m = nbr_.entries();
+  const bool springs = nbr_.history.size() == m && m > 0;
   const bool rolling = config_.contact.needs_rolling_history() && nbr_.rolling.size() == m;
-  spring_.assign(1, Vec<Dim>{});
-  roll_spring_.assign(config_.contact.needs_rolling_history() ? 1 : 0, Spin<Dim>{});
-  if (nbr_.history.size() == m && m > 0) {
-    auto held = [&](std::size_t k) {
-      bool keep = !HeldSprings<Dim>::plus_zero(nbr_.history[k]);
-      if (rolling) keep = keep | !HeldSprings<Dim>::plus_zero(nbr_.rolling[k]);
-      return keep;
-    };
-    const std::size_t n = n_owned_;
-    std::vector<std::size_t>& first = carry_first_;
-    first.assign(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::size_t c = 0;
-      for (std::size_t u = upper_offset_[i]; u < upper_offset_[i + 1]; ++u) c += held(upper_entry_[u]) ? 1 : 0;
-      first[i + 1] = c;
-    }
-    first[0] = 1;
-    for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
-    spring_.resize(first[n]);
-    if (config_.contact.needs_rolling_history()) roll_spring_.assign(first[n], Spin<Dim>{});
-    for (std::size_t i = 0; i < n; ++i) {
-      std::size_t g = first[i];
-      for (std::size_t u = upper_offset_[i]; u < upper_offset_[i + 1]; ++u) {
-        const std::size_t k = upper_entry_[u];
-        if (!held(k)) continue;
-        spring_[g] = nbr_.history[k];
-        if (rolling) roll_spring_[g] = nbr_.rolling[k];
-        entry_contact_[k] = static_cast<std::uint32_t>(2 * g);
-        entry_contact_[upper_mirror_[u]] = static_cast<std::uint32_t>(2 * g + 1);
-        ++g;
-      }
+  auto held = [&](std::size_t k) {
+    bool keep = !HeldSprings<Dim>::plus_zero(nbr_.history[k]);
+    if (rolling) keep = keep | !HeldSprings<Dim>::plus_zero(nbr_.rolling[k]);
+    return keep;
+  };
+  const std::size_t n = n_owned_;
+  std::vector<std::size_t>& first = carry_first_;
+  first.assign(n + 1, 0);
+  for (std::size_t i = 0; springs && i < n; ++i) {
+    for (std::size_t u = upper_offset_[i]; u < upper_offset_[i + 1]; ++u) first[i + 1] += held(upper_entry_[u]) ? 1 : 0;
+  }
+  number_records();
+  for (std::size_t i = 0; springs && i < n; ++i) {
+    std::size_t g = first[i];
+    for (std::size_t u = upper_offset_[i]; u < upper_offset_[i + 1]; ++u) {
+      const std::size_t k = upper_entry_[u];
+      if (held(k)) set_record(g++, u, nbr_.history[k], rolling ? nbr_.rolling[k] : Spin<Dim>{});
     }
   }
   nbr_.history = {};

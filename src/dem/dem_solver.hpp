@@ -253,7 +253,7 @@ class DemSolver {
   HeldSprings<Dim> current_held_springs() const;
   /// A State with the clock, the removal and feed counters, and no particles or springs.
   State clock_state() const;
-  /// held_'s springs into the entries of the same partners in the new list.
+  /// held_'s springs into records named by the entries of the same pairs in the new list.
   void carry_held_springs();
   /// Keep the owned particles `order` names (in that order), with everything that is theirs; ghosts are dropped.
   void select_owned(const std::vector<std::size_t>& order);
@@ -389,21 +389,24 @@ class DemSolver {
   std::vector<Spin<Dim>> roll_spring_, roll_spring_next_;
   /// Entry q's spring and rolling spring, from its record after an evaluation (the partner's side negated, as the
   /// entries mirror them), else from the entry.
-  Vec<Dim> entry_spring(std::size_t q) const {
-    if (!marked_) return q < nbr_.history.size() ? nbr_.history[q] : Vec<Dim>{};
+  Vec<Dim> entry_spring(std::size_t q) const { return entry_value(q, spring_, nbr_.history); }
+  Spin<Dim> entry_roll(std::size_t q) const { return entry_value(q, roll_spring_, nbr_.rolling); }
+  template <class T>
+  T entry_value(std::size_t q, const std::vector<T>& records, const std::vector<T>& entries) const {
+    if (!marked_) return q < entries.size() ? entries[q] : T{};
     const std::uint32_t e = entry_contact_[q];
-    return (e & 1u) != 0 ? -spring_[e >> 1] : spring_[e >> 1];
-  }
-  Spin<Dim> entry_roll(std::size_t q) const {
-    if (!marked_) return q < nbr_.rolling.size() ? nbr_.rolling[q] : Spin<Dim>{};
-    const std::uint32_t e = entry_contact_[q];
-    return (e & 1u) != 0 ? -roll_spring_[e >> 1] : roll_spring_[e >> 1];
+    return (e & 1u) != 0 ? -records[e >> 1] : records[e >> 1];
   }
   /// The records' springs into the list's entries (nbr_.history, nbr_.rolling), for the readers of the per-entry
   /// form; const for them (the springs do not change, only where they are written).
   void sync_list_springs() const;
   /// The springs in the entries of a list just linked into records (none: every record +0); the entries let go.
   void adopt_entry_springs();
+  /// carry_first_'s per-particle counts (at i + 1) into each particle's first record, from 1; the record arrays
+  /// sized for them (record 0 +0; the rolling ones only for a law with a rolling spring).
+  void number_records();
+  /// Record g: spring xi (and rolling spring) of the pair at half-list place u, named by both its entries.
+  void set_record(std::size_t g, std::size_t u, const Vec<Dim>& xi, const Spin<Dim>& roll);
   std::vector<std::uint32_t> carry_at_;  ///< carry_held_springs: per held spring, 1 + its half-list place (0: none)
   std::vector<std::size_t> carry_first_;  ///< carry_held_springs, adopt_entry_springs: first record per particle
   std::vector<std::size_t> contact_base_;  ///< first record of each block

@@ -19,8 +19,6 @@ namespace fluidbed {
 
 using dem_kernel::AxisPtrs;
 using dem_kernel::axis_ptrs;
-using dem_kernel::is_zero;
-using dem_kernel::spin_norm2;
 
 template <int Dim>
 template <bool Periodic>
@@ -155,7 +153,7 @@ struct DemSolver<Dim>::ForcePass {
 
   // Pass 1, second part, a block of touching pairs at a time: their kinematics gathered into lanes (structure of
   // arrays), the law over the lanes in one loop with no branch (contact_law.hpp writes its cases as selects), which
-  // the compiler turns into vector code, then the results scattered to the records and both springs. Each lane
+  // the compiler turns into vector code, then the results scattered to the pair's records. Each lane
   // computes what the pair's own evaluation would, operation for operation, so the bits do not depend on the
   // block or the lane a pair lands in.
   static constexpr std::size_t kBlock = 32;
@@ -293,7 +291,7 @@ struct DemSolver<Dim>::ForcePass {
     L.overlap[c] = overlap;
   }
 
-  /// The lanes back: pair c of the block into record g0 + c, its springs into both entries.
+  /// The lanes back: pair c of the block into record g0 + c (force, torques, springs), named by both its entries.
   [[gnu::always_inline]] void scatter_pairs(const Contact* ct, std::size_t n, std::size_t g0, const Lanes& L,
                                             double& max_ov, double& max_frac) const {
     for (std::size_t c = 0; c < n; ++c) {

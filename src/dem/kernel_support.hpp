@@ -1,6 +1,6 @@
 #pragma once
 // Small helpers of the DEM kernels, shared by the solver's units (dem_solver.cpp, the force pass of force_pass.hpp):
-// raw per-axis pointers hoisted out of the particle loops, and pointwise tests on vectors and spins.
+// raw per-axis pointers hoisted out of the particle loops, and the squared length of a spin.
 #include <array>
 
 #include "core/vec.hpp"
@@ -27,13 +27,6 @@ double spin_norm2(Spin<Dim> w) {
   } else {
     return dot(w, w);
   }
-}
-
-template <int Dim>
-bool is_zero(Vec<Dim> v) {
-  bool z = true;
-  for (int a = 0; a < Dim; ++a) z = z && v[a] == 0.0;
-  return z;
 }
 
 }  // namespace fluidbed::dem_kernel
