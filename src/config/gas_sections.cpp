@@ -242,6 +242,9 @@ void read_gas_phase(CaseReader& r, CaseConfig& c, const GasKeys& k) {
                               R::positive());
   g.momentum_tolerance = r.number("gas.momentum_tolerance", 1e-8, "", "SIMPLE also needs the normalised momentum "
                                   "residual below this", R::positive());
+  g.coupling_tolerance = r.number("gas.coupling_tolerance", 0.01, "", "SIMPLE also ends when an iteration moves the "
+                                  "mass flux by less than this fraction of the step's change, the particles' one-step "
+                                  "lag (0: the fixed tolerances only)", R::Range{0.0, 1.0, false, true});
   g.momentum_solver_tolerance = r.number("gas.momentum_solver_tolerance", 1e-4, "", "each momentum solve reduces "
                                          "its residual by this factor", R::Range{0.0, 1.0, true, true});
   g.pressure_solver_tolerance = r.number("gas.pressure_solver_tolerance", 1e-3, "", "relative residual of the "

@@ -480,6 +480,7 @@ void validate(const GasConfig& c) {
   require(c.max_simple_iterations >= 1, "max_simple_iterations must be at least 1");
   require(c.mass_tolerance > 0.0, "mass_tolerance must be positive");
   require(c.momentum_tolerance > 0.0, "momentum_tolerance must be positive");
+  require(c.coupling_tolerance >= 0.0 && c.coupling_tolerance < 1.0, "coupling_tolerance must lie in [0, 1)");
   require(c.momentum_solver_tolerance > 0.0 && c.momentum_solver_tolerance < 1.0,
           "momentum_solver_tolerance must lie in (0, 1)");
   require(c.pressure_solver_tolerance > 0.0 && c.pressure_solver_tolerance < 1.0,

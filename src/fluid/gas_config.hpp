@@ -145,6 +145,11 @@ struct GasConfig {
   /// ... and the normalised momentum residual of the iterate entering the iteration (GasStepReport::
   /// momentum_residual) below this, so that loose inner solves cannot end SIMPLE on a stalled iterate.
   double momentum_tolerance = 1e-8;
+  /// ... or both residuals below this fraction of the step's change of the mass flux (GasStepReport::flux_change,
+  /// normalised as the mass residual): in CFD-DEM the particles feel the gas one step late, so the coupling already
+  /// errs by about that change, and converging SIMPLE far below it buys nothing (docs/model-gas.md). 0 (a gas on its
+  /// own, whose steps may be pseudo-time): the two tolerances above only; a CFD-DEM case's default is 0.01.
+  double coupling_tolerance = 0.0;
   /// Each momentum solve reduces the residual of its iterate by this factor (it solves for the increment), so its
   /// precision follows the outer residual down (inexact Newton, Dembo et al. 1982) rather than a fixed 1e-10.
   double momentum_solver_tolerance = 1e-4;

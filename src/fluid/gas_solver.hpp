@@ -25,6 +25,13 @@ struct GasStepReport {
   /// sum_faces |b - A u| / (U_ref sum_faces a_P), U_ref = reference_mass_flow / (rho_g x cross-section).
   double momentum_residual = 0.0;
   double reference_mass_flow = 0.0;  ///< the normalisation of mass_residual (see GasConfig::mass_tolerance)
+  /// With GasConfig::coupling_tolerance, after the last correction: sum_faces rho_g eps A |u - u_old| /
+  /// reference_mass_flow, the step's change of the mass flux (the scale of the coupling's one-step lag) ...
+  double flux_change = 0.0;
+  /// ... and the same sum of |u - u_prev|, the change of the last SIMPLE iteration.
+  double iterate_change = 0.0;
+  /// True when the step ended on iterate_change < coupling_tolerance x flux_change, not on the fixed tolerances.
+  bool stopped_on_coupling = false;
   double mass_in = 0.0;              ///< through the bottom
   double mass_out = 0.0;             ///< through the top
   double accumulation = 0.0;         ///< rho_g sum (eps_new - eps_old) V / dt

@@ -110,6 +110,7 @@ class MultigridCg final : public StructuredSolver<Dim> {
  public:
   MultigridCg(const Grid<Dim>& grid, const Comm& comm, MultigridCgOptions options);
   const char* name() const override { return "cg-multigrid"; }
+  void set_tolerance(double relative) override { options_.tolerance = relative; }
   void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override;
   MultigridCgStats stats;
 

@@ -67,6 +67,10 @@ class EigenStructuredSolver final : public StructuredSolver<Dim> {
   }
 
   const char* name() const override { return "eigen"; }
+  void set_tolerance(double relative) override {
+    cg_.setTolerance(relative);
+    pcg_.setTolerance(relative);
+  }
 
   void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override {
     const bool has_boundary = couples_to_boundary<Dim>(cells_, coeff, periodic_);

@@ -32,6 +32,10 @@ class StructuredSolver {
   /// Throws a simulation error when the coefficients or the right-hand side are not finite or the solve fails.
   virtual void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x,
                      bool reuse_factorisation) = 0;
+  /// The relative residual the iterative solves stop at from now on (a direct backend's solves are exact and
+  /// ignore it). The CFD-DEM gas tightens it for the last correction of a step that SIMPLE ends early, so that
+  /// continuity still holds to its mass tolerance.
+  virtual void set_tolerance(double relative) = 0;
   /// The backend's name, for reports.
   virtual const char* name() const = 0;
 };

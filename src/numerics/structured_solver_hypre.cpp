@@ -94,6 +94,10 @@ class HypreStructuredSolver final : public StructuredSolver<Dim> {
   HypreStructuredSolver& operator=(const HypreStructuredSolver&) = delete;
 
   const char* name() const override { return "hypre-pfmg"; }
+  void set_tolerance(double relative) override {
+    tol_ = relative;
+    if (solver_) HYPRE_StructPCGSetTol(solver_, tol_);
+  }
 
   void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override {
     const bool has_boundary = couples_to_boundary(cells_, coeff);
