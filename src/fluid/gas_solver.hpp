@@ -30,7 +30,11 @@ struct GasStepReport {
   double flux_change = 0.0;
   /// ... and the same sum of |u - u_prev|, the change of the last SIMPLE iteration.
   double iterate_change = 0.0;
-  /// True when the step ended on iterate_change < coupling_tolerance x flux_change, not on the fixed tolerances.
+  /// ... and the largest ratio of one iteration's change to the one before's, from the third iteration on (0
+  /// before): SIMPLE's observed contraction.
+  double contraction = 0.0;
+  /// True when the step ended on the coupling bound, iterate_change x max(1, r / (1 - r)) < coupling_tolerance x
+  /// flux_change with r the contraction, not on the fixed tolerances.
   bool stopped_on_coupling = false;
   double mass_in = 0.0;              ///< through the bottom
   double mass_out = 0.0;             ///< through the top

@@ -51,11 +51,16 @@ failed overlap 't = [0-9.e-]+ s: a contact overlaps by 0\.0008 m, .*more than .*
 check "overlap: the pair is named (particles 3 and 4)" grep -Eq 'particles? 3( \(d = [^)]*\))? and 4' "$WORK/overlap/log.txt"
 
 # 3. The gas: SIMPLE that cannot converge in 30 iterations once a 300 m/s jet opens at t = 1 ms. The remedy must
-#    name a key that exists (gas.max_iterations).
-write_cfd_case "$WORK/simple.toml" simple 'gas.max_iterations = 30'
+#    name a key that exists (gas.max_iterations). The fixed tolerances alone: under the coupling bound this jet's
+#    steps end on the bound in 6 iterations and the bed fails later, on a contact's overlap.
+write_cfd_case "$WORK/simple.toml" simple 'gas.max_iterations = 30' 'gas.coupling_tolerance = 0'
 sed -i -e 's/^velocity = 20.0/velocity = 300.0/' -e 's/^start = 0.0/start = 0.001/' "$WORK/simple.toml"
 failed simple 'gas: SIMPLE did not converge at t = [0-9.e-]+ s.*residual.*gas\.max_iterations' "$WORK/simple.toml"
 check "simple: it failed after the jet opened, not before" grep -Eq 'converge at t = 0\.001[0-9]* s' "$WORK/simple/log.txt"
+# Under the bound, a SIMPLE stopped short of both says so: the last move, the step's change, the contraction.
+write_cfd_case "$WORK/bound.toml" bound 'gas.max_iterations = 3'
+expect 3 'SIMPLE did not converge at t = 0 s.*nor the coupling bound \(last move [0-9.e+-]+ of a step.s change [0-9.e+-]+, contraction [0-9.]+, gas\.coupling_tolerance = 0\.01\)' \
+  "bound: the diagnosis names the coupling bound" "$FLUIDBED" run "$WORK/bound.toml" --out "$WORK/bound" --quiet
 
 # 4. An absurd jet (1e6 m/s) makes the momentum solve produce NaN: the diagnosis must say when and what to do.
 write_cfd_case "$WORK/absurd.toml" absurd
