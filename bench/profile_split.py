@@ -13,13 +13,18 @@ RULES = [  # first match wins
             r"load_cells|pressure|inlet_superficial|fill_velocity|fill_periodic|tvd|cells_to_faces"),
     ("OpenMP, kernel, libc", r"GOMP|gomp|\[k\]|futex|memset|memmove|memcpy|malloc|free|_int_"),
 ]
-shares = {}
-for line in sys.stdin:
-    m = re.match(r"\s*([0-9.]+)%\s+(\S.*)", line)
-    if not m:
-        continue
-    pct, text = float(m.group(1)), m.group(2)
-    cat = next((c for c, rx in RULES if re.search(rx, text)), "other")
-    shares[cat] = shares.get(cat, 0.0) + pct
-for c in [r[0] for r in RULES] + ["other"]:
-    print(f"{c:24s} {shares.get(c, 0.0):6.1f}%")
+def main():
+    shares = {}
+    for line in sys.stdin:
+        m = re.match(r"\s*([0-9.]+)%\s+(\S.*)", line)
+        if not m:
+            continue
+        pct, text = float(m.group(1)), m.group(2)
+        cat = next((c for c, rx in RULES if re.search(rx, text)), "other")
+        shares[cat] = shares.get(cat, 0.0) + pct
+    for c in [r[0] for r in RULES] + ["other"]:
+        print(f"{c:24s} {shares.get(c, 0.0):6.1f}%")
+
+
+if __name__ == "__main__":
+    main()
