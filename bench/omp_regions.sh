@@ -18,9 +18,12 @@ for end in "$from" "$to"; do
 done
 nm -C --defined-only "$bin" | awk '{ addr = $1; $1 = ""; $2 = ""; sub(/^  /, ""); print addr "\t" $0 }' >"$work/symbols"
 echo "$(basename "$bin"), $threads threads, window $from-$to s, gas step $gas_dt s, $(date -u +%H:%M:%S) UTC"
-python3 - "$work/regions.$from" "$work/regions.$to" "$work/symbols" "$from" "$to" "$gas_dt" "$threads" <<'PY'
+python3 - "$work/regions.$from" "$work/regions.$to" "$work/symbols" "$from" "$to" "$gas_dt" "$threads" \
+  "$root/bench" <<'PY'
 import re, sys
-a_path, b_path, sym_path, t0, t1, dt, threads = sys.argv[1:]
+sys.path.insert(0, sys.argv[8])
+from profile_split import without_templates
+a_path, b_path, sym_path, t0, t1, dt, threads = sys.argv[1:8]
 def load(path):
     wall, rows = 0.0, {}
     for line in open(path):
@@ -39,12 +42,7 @@ for line in open(sym_path):
 steps = (float(t1) - float(t0)) / float(dt)
 def short(name):
     # the enclosing function of an outlined body, without its template arguments and parameters
-    name = re.sub(r" \[clone \._omp_fn\.(\d+)\]$", r" #\1", name)
-    while True:
-        shorter = re.sub(r"<[^<>]*>", "", name)
-        if shorter == name:
-            break
-        name = shorter
+    name = without_templates(re.sub(r" \[clone \._omp_fn\.(\d+)\]$", r" #\1", name))
     name = re.sub(r"\([^()]*\)", "", name).replace("fluidbed::", "").replace("::operator const", "")
     return re.sub(r"^(void|double|auto|int) ", "", name)
 rows = []
@@ -56,7 +54,8 @@ for fn, now in rb.items():
 rows.sort(key=lambda r: -r[0])
 team = int(threads)
 ms = lambda s: 1e3 * s / steps
-print(f"{'on a team':>9} {'use':>5} {'alone':>6} | {'regions':>7} {'1-thread':>8} {'nested':>6}  (ms or count a gas step) outlined body of")
+print(f"{'on a team':>9} {'use':>5} {'alone':>6} | {'regions':>7} {'1-thread':>8} {'nested':>6}  "
+      "(ms or count a gas step) outlined body of")
 par = busy = alone = 0.0
 for _, d, name in rows:
     calls, single, nested, sec, b, al = d

@@ -13,6 +13,21 @@ RULES = [  # first match wins
             r"load_cells|pressure|inlet_superficial|fill_velocity|fill_periodic|tvd|cells_to_faces"),
     ("OpenMP, kernel, libc", r"GOMP|gomp|\[k\]|futex|memset|memmove|memcpy|malloc|free|_int_"),
 ]
+
+
+def category(symbol):
+    return next((c for c, rx in RULES if re.search(rx, symbol)), "other")
+
+
+def without_templates(symbol):
+    """The symbol without its template arguments (innermost first, so nested ones go too)."""
+    while True:
+        shorter = re.sub(r"<[^<>]*>", "", symbol)
+        if shorter == symbol:
+            return symbol
+        symbol = shorter
+
+
 def main():
     shares = {}
     for line in sys.stdin:
@@ -20,7 +35,7 @@ def main():
         if not m:
             continue
         pct, text = float(m.group(1)), m.group(2)
-        cat = next((c for c, rx in RULES if re.search(rx, text)), "other")
+        cat = category(text)
         shares[cat] = shares.get(cat, 0.0) + pct
     for c in [r[0] for r in RULES] + ["other"]:
         print(f"{c:24s} {shares.get(c, 0.0):6.1f}%")

@@ -12,7 +12,7 @@ import re
 import sys
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
-from profile_split import RULES  # noqa: E402
+from profile_split import category, without_templates  # noqa: E402
 
 per = collections.defaultdict(lambda: collections.Counter())
 for line in sys.stdin:
@@ -20,12 +20,7 @@ for line in sys.stdin:
     if m:
         samples, tid, where, sym = int(m.group(1)), m.group(2), m.group(3), m.group(4)
         # template arguments dropped: the two momentum components, solved one a thread, are one function here
-        while True:
-            shorter = re.sub(r"<[^<>]*>", "", sym)
-            if shorter == sym:
-                break
-            sym = shorter
-        sym = sym.replace("fluidbed::", "").replace("(anonymous namespace)::", "")
+        sym = without_templates(sym).replace("fluidbed::", "").replace("(anonymous namespace)::", "")
         per[("[k] " if where == "k" else "") + sym][tid] += samples
 threads = collections.Counter()
 for counts in per.values():
@@ -44,7 +39,7 @@ for sym, counts in per.items():
     extra = counts[main] - counts[worker]
     if extra <= 0:
         continue
-    cat = next((c for c, rx in RULES if re.search(rx, sym)), "other")
+    cat = category(sym)
     alone[cat] += extra
     items[cat].append((extra, sym))
 print(f"main thread {threads[main]} samples, worker {threads[worker]}; main less worker, by symbol ({unit}):")
