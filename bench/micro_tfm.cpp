@@ -54,7 +54,7 @@ void bm_band_pressure(benchmark::State& state) {
     });
   Field<2> rhs(cells, 0), x(cells, 0);
   for_each(cells, [&](const Index<2>& c) { rhs[c] = std::cos(0.3 * c[0]) * std::sin(0.2 * c[1] + 0.1); });
-  auto solver = tfm::make_band_structured_solver<2>(grid);
+  auto solver = make_band_structured_solver<2>(grid);
   solver->solve(coeff, rhs, x, false);
   const bool reuse = state.range(0) == 1;
   for (auto _ : state) {

@@ -1,5 +1,6 @@
 #include "fluid/gas_solver.hpp"
 #include "numerics/structured_solver_hypre.hpp"
+#include "numerics/band_pressure_solver.hpp"
 #include "numerics/multigrid_cg.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -205,6 +206,11 @@ std::unique_ptr<StructuredSolver<Dim>> make_pressure_backend(const Grid<Dim>& g,
       // The gas is solved whole on every rank in this version: one process's solve.
       return make_multigrid_cg_solver<Dim>(g, serial_comm(), {.tolerance = c.pressure_solver_tolerance});
     case PressureBackend::Eigen: break;
+  }
+  // The direct solve: the band LDL^T where the rows couple within a narrow band (2D beds, thin slabs), its
+  // factorisation preconditioning the later SIMPLE iterations of a step; else Eigen's sparse Cholesky, alike.
+  if (kind == PressureSolverKind::Direct) {
+    if (auto band = make_band_structured_solver<Dim>(g, BandReuse::Preconditioner, c.pressure_solver_tolerance)) return band;
   }
   return make_eigen_structured_solver<Dim>(g, kind, c.pressure_solver_tolerance);
 }

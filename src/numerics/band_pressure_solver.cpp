@@ -9,15 +9,15 @@
 #include "core/error.hpp"
 #include "numerics/stencil_matrix.hpp"
 
-namespace fluidbed::tfm {
+namespace fluidbed {
 namespace {
 
 template <int Dim>
 class BandStructuredSolver final : public StructuredSolver<Dim> {
  public:
   // Rows numbered with the axes in `order`, the first fastest; the band is the stride of the last.
-  BandStructuredSolver(const IndexBox<Dim>& cells, const std::array<int, Dim>& order)
-      : cells_(cells), n_(static_cast<int>(cells.count())) {
+  BandStructuredSolver(const IndexBox<Dim>& cells, const std::array<int, Dim>& order, BandReuse reuse, double tolerance)
+      : cells_(cells), n_(static_cast<int>(cells.count())), reuse_(reuse), tolerance_(tolerance) {
     for (int i = 0, s = 1; i < Dim; ++i) {
       const int a = order[static_cast<std::size_t>(i)];
       stride_[static_cast<std::size_t>(a)] = s;
@@ -30,21 +30,28 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
     band_.resize(n * static_cast<std::size_t>(kd_ + 1) + kLanes);  // + the last block's whole-vector overrun
     b_.resize(n);
     x_.resize(n);
+    if (reuse_ == BandReuse::Preconditioner)
+      for (auto* v : {&r_, &z_, &p_, &q_}) v->resize(n);
   }
 
   const char* name() const override { return "band"; }
-  void set_tolerance(double) override {}  // an exact factorisation: nothing to stop early
+  // Only the preconditioned reuse stops early; a factorisation's answer is exact.
+  void set_tolerance(double relative) override { tolerance_ = relative; }
 
   void solve(const FaceFields<Dim>& coeff, const Field<Dim>& rhs, Field<Dim>& x, bool reuse_factorisation) override {
     assemble(coeff, rhs);
     bool solved = false;
     if (reuse_factorisation && factorised_) {
-      substitute();
-      solved = backward_error() <= kDirectBackwardError;  // the same matrix, unless the caller's coefficients moved
+      if (reuse_ == BandReuse::Preconditioner) {
+        solved = preconditioned_cg(x);
+      } else {
+        substitute(b_, x_);
+        solved = backward_error() <= kDirectBackwardError;  // the same matrix, unless the caller's coefficients moved
+      }
     }
     if (!solved) {
       factorise();
-      substitute();
+      substitute(b_, x_);
       const double err = backward_error();
       // Finite and backward stable, or not accepted.
       if (!(err <= kDirectBackwardError)) {
@@ -170,17 +177,18 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
     }
   }
 
-  // x = L^-T D^-1 L^-1 b.
-  __attribute__((target_clones("avx512f", "avx2", "default"))) void substitute() {
+  // out = L^-T D^-1 L^-1 in.
+  __attribute__((target_clones("avx512f", "avx2", "default"))) void substitute(const std::vector<double>& in,
+                                                                               std::vector<double>& out) const {
     const int w = kd_ + 1;
-    x_ = b_;
+    out = in;
     // A zero right-hand side (the second P' solve of a TFM step has one) has the answer zero.
-    if (std::all_of(b_.begin(), b_.end(), [](double v) { return v == 0.0; })) return;
+    if (std::all_of(in.begin(), in.end(), [](double v) { return v == 0.0; })) return;
     // L y = b by columns, four at a time: the four's own rows first (the triangle, in column order), then each
     // column's update of the rows below the four, column after column. Every entry takes the same updates in the
     // same order as one column at a time; the four column passes start on the same row, so each reads what the
     // one before stored at the same place (a stored vector is read back whole, not from a shifted place).
-    double* y = x_.data();
+    double* y = out.data();
     int k = 0;
     for (; k + 4 <= n_; k += 4) {
       std::array<const double*, 4> c{};
@@ -239,6 +247,66 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
     }
   }
 
+  // Conjugate gradients on the new matrix, preconditioned by the last factorisation (Golub & Van Loan, 4th ed.,
+  // Alg. 11.5.1), from the caller's guess; converged when |r|_2 <= tolerance |b|_2, as Eigen's
+  // ConjugateGradient. Serial, every sum in row order: the same bits on every run. False when it has not
+  // converged within kBandReuseIterations or a curvature is not positive (the caller factorises then).
+  bool preconditioned_cg(const Field<Dim>& guess) {
+    for_each(cells_, [&](const Index<Dim>& c) { x_[row(c)] = guess[c]; });
+    const double bb = dot(b_, b_);
+    if (bb == 0.0) {
+      std::fill(x_.begin(), x_.end(), 0.0);
+      return true;
+    }
+    const double threshold = tolerance_ * tolerance_ * bb;
+    apply(x_, q_);
+    for (std::size_t i = 0; i < r_.size(); ++i) r_[i] = b_[i] - q_[i];
+    if (dot(r_, r_) <= threshold) return true;
+    substitute(r_, z_);
+    p_ = z_;
+    double rz = dot(r_, z_);
+    for (int k = 0; k < kBandReuseIterations; ++k) {
+      apply(p_, q_);
+      const double pq = dot(p_, q_);
+      if (!(pq > 0.0) || !std::isfinite(pq)) return false;
+      const double alpha = rz / pq;
+      for (std::size_t i = 0; i < x_.size(); ++i) {
+        x_[i] += alpha * p_[i];
+        r_[i] -= alpha * q_[i];
+      }
+      const double rr = dot(r_, r_);
+      if (!std::isfinite(rr)) return false;
+      if (rr <= threshold) return true;
+      substitute(r_, z_);
+      const double rz_next = dot(r_, z_);
+      const double beta = rz_next / rz;
+      rz = rz_next;
+      for (std::size_t i = 0; i < p_.size(); ++i) p_[i] = z_[i] + beta * p_[i];
+    }
+    return false;
+  }
+
+  // out = A v, with the assembled diagonal and lower couplings (the upper ones by symmetry).
+  void apply(const std::vector<double>& v, std::vector<double>& out) const {
+    for (int r = 0; r < n_; ++r) {
+      const auto ur = static_cast<std::size_t>(r);
+      double s = diag_[ur] * v[ur];
+      for (int a = 0; a < Dim; ++a) {
+        const int st = stride_[static_cast<std::size_t>(a)];
+        const auto& low = low_[static_cast<std::size_t>(a)];
+        if (r - st >= 0) s += low[ur] * v[ur - static_cast<std::size_t>(st)];
+        if (r + st < n_) s += low[ur + static_cast<std::size_t>(st)] * v[ur + static_cast<std::size_t>(st)];
+      }
+      out[ur] = s;
+    }
+  }
+
+  static double dot(const std::vector<double>& a, const std::vector<double>& b) {
+    double s = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+    return s;
+  }
+
   // |A x - b|_inf / (|A|_inf |x|_inf + |b|_inf), as fluid/stencil_matrix.hpp's backward_error.
   double backward_error() const {
     double r_max = 0.0, a_max = 0.0, x_max = 0.0, b_max = 0.0;
@@ -275,6 +343,9 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
   std::array<std::vector<double>, Dim> low_;
   std::vector<double> band_;
   std::vector<double> b_, x_;
+  BandReuse reuse_;
+  double tolerance_;
+  std::vector<double> r_, z_, p_, q_;  // the preconditioned reuse's residual, preconditioned residual, direction, A p
   std::array<std::array<double, kMaxPressureBand + kPivots + kLanes>, kPivots> t_{};  // the block's unscaled columns
   bool factorised_ = false;
 };
@@ -282,7 +353,8 @@ class BandStructuredSolver final : public StructuredSolver<Dim> {
 }  // namespace
 
 template <int Dim>
-std::unique_ptr<StructuredSolver<Dim>> make_band_structured_solver(const Grid<Dim>& grid) {
+std::unique_ptr<StructuredSolver<Dim>> make_band_structured_solver(const Grid<Dim>& grid, BandReuse reuse,
+                                                                   double tolerance) {
   if (!(grid.owned == grid.domain)) return nullptr;
   for (int a = 0; a < Dim; ++a)
     if (grid.periodic[static_cast<std::size_t>(a)]) return nullptr;
@@ -298,10 +370,10 @@ std::unique_ptr<StructuredSolver<Dim>> make_band_structured_solver(const Grid<Di
     std::stable_partition(order.begin(), order.end(), [&](int a) { return a != longest; });
   }
   if (count / grid.domain.extent(order[Dim - 1]) > kMaxPressureBand) return nullptr;
-  return std::make_unique<BandStructuredSolver<Dim>>(grid.domain, order);
+  return std::make_unique<BandStructuredSolver<Dim>>(grid.domain, order, reuse, tolerance);
 }
 
-template std::unique_ptr<StructuredSolver<2>> make_band_structured_solver(const Grid<2>&);
-template std::unique_ptr<StructuredSolver<3>> make_band_structured_solver(const Grid<3>&);
+template std::unique_ptr<StructuredSolver<2>> make_band_structured_solver(const Grid<2>&, BandReuse, double);
+template std::unique_ptr<StructuredSolver<3>> make_band_structured_solver(const Grid<3>&, BandReuse, double);
 
-}  // namespace fluidbed::tfm
+}  // namespace fluidbed
