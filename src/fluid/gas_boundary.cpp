@@ -45,17 +45,21 @@ double background_inlet_velocity(const GasBoundaryConfig& bc, double t) {
   return bc.ramp_from + f * (bc.inlet_velocity - bc.ramp_from);
 }
 
-InletVelocities inlet_velocities(const GasBoundaryConfig& bc, double t) {
-  InletVelocities v;
+void inlet_velocities(const GasBoundaryConfig& bc, double t, InletVelocities& v) {
   v.background = background_inlet_velocity(bc, t);
-  v.jet.resize(bc.jets.size(), 0.0);
-  v.active.resize(bc.jets.size(), 0);
+  v.jet.assign(bc.jets.size(), 0.0);
+  v.active.assign(bc.jets.size(), 0);
   for (std::size_t k = 0; k < bc.jets.size(); ++k) {
     const InletJet& jet = bc.jets[k];
     if (t < jet.t_start || t >= jet.t_end) continue;
     v.active[k] = 1;
     v.jet[k] = schedule_velocity(jet.schedule, jet.velocity, t);
   }
+}
+
+InletVelocities inlet_velocities(const GasBoundaryConfig& bc, double t) {
+  InletVelocities v;
+  inlet_velocities(bc, t, v);
   return v;
 }
 
@@ -140,8 +144,14 @@ double inlet_superficial_velocity(const GasBoundaryConfig& bc, double x_lo, doub
 }
 
 std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx) {
-  std::vector<double> f(static_cast<std::size_t>(std::max(nx, 0)), 1.0);
-  if (bc.inlet_noise <= 0.0 || nx <= 0) return f;
+  std::vector<double> f;
+  inlet_noise_factors(bc, nx, f);
+  return f;
+}
+
+void inlet_noise_factors(const GasBoundaryConfig& bc, int nx, std::vector<double>& f) {
+  f.assign(static_cast<std::size_t>(std::max(nx, 0)), 1.0);
+  if (bc.inlet_noise <= 0.0 || nx <= 0) return;
   double sum = 0.0;
   for (int i = 0; i < nx; ++i) {
     // splitmix64 of (seed, face): the same factors on every platform, independent of any other random stream.
@@ -154,20 +164,21 @@ std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx) {
     sum += f[static_cast<std::size_t>(i)];
   }
   for (double& x : f) x *= static_cast<double>(nx) / sum;
-  return f;
 }
 
 namespace {
 
 // The 2D bottom: slots across x, each face's background part through its distributor factor.
 void inlet_profile_2d(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<2>& grid,
-                      std::vector<double>& out) {
+                      std::vector<double>& out, InletWork& w) {
   const int nx = grid.n(0);
   const std::size_t n = static_cast<std::size_t>(nx);
   out.resize(n);
-  const std::vector<double> noise = inlet_noise_factors(bc, nx);
+  inlet_noise_factors(bc, nx, w.noise);
+  const std::vector<double>& noise = w.noise;
   const double u_bg = v.background;
-  std::vector<double> fraction(n);
+  std::vector<double>& fraction = w.fraction;
+  fraction.resize(n);
   for (int i = 0; i < nx; ++i) {
     const double x_lo = grid.face(0, grid.domain.lo[0] + i);
     const std::size_t f = static_cast<std::size_t>(i);
@@ -265,20 +276,24 @@ double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_
   return 0.0;
 }
 
+namespace {
 template <int Dim>
-void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<Dim>& grid,
-                               std::vector<double>& out) {
+void inlet_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<Dim>& grid,
+                   std::vector<double>& out, InletWork& w) {
   if constexpr (Dim == 2) {
-    inlet_profile_2d(bc, v, grid, out);
+    inlet_profile_2d(bc, v, grid, out, w);
   } else {
     const int nx = grid.n(0);
     const int nz = grid.n(2);
     out.resize(static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz));
-    const std::vector<double> noise = inlet_noise_factors(bc, nx * nz);
+    inlet_noise_factors(bc, nx * nz, w.noise);
+    const std::vector<double>& noise = w.noise;
     const double u_bg = v.background;
     const double area = grid.h[0] * grid.h[2];
-    std::vector<double> flux(out.size(), u_bg * area);
-    std::vector<double> covered(out.size(), 0.0);
+    std::vector<double>& flux = w.flux;
+    flux.assign(out.size(), u_bg * area);
+    std::vector<double>& covered = w.covered;
+    covered.assign(out.size(), 0.0);
     const double x0 = grid.face(0, grid.domain.lo[0]);
     const double z0 = grid.face(2, grid.domain.lo[2]);
     // Each jet visits only the faces its bounding box touches (one face of margin), so a plate of many holes costs
@@ -307,7 +322,8 @@ void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocitie
           covered[f] += a;
         }
     }
-    std::vector<double> fraction(out.size());
+    std::vector<double>& fraction = w.fraction;
+    fraction.resize(out.size());
     for (std::size_t f = 0; f < out.size(); ++f) {
       // Only the background flow passes through the perturbed distributor; a jet keeps its own velocity.
       fraction[f] = std::max(0.0, 1.0 - covered[f] / area);
@@ -317,9 +333,26 @@ void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocitie
   }
 }
 
+}  // namespace
+
+template <int Dim>
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<Dim>& grid,
+                               std::vector<double>& out) {
+  InletWork w;
+  inlet_profile(bc, v, grid, out, w);
+}
+
 template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out) {
-  inlet_superficial_profile(bc, inlet_velocities(bc, t), grid, out);
+  InletWork w;
+  inlet_superficial_profile(bc, grid, t, out, w);
+}
+
+template <int Dim>
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out,
+                               InletWork& work) {
+  inlet_velocities(bc, t, work.v);
+  inlet_profile(bc, work.v, grid, out, work);
 }
 
 namespace {
@@ -342,6 +375,8 @@ double inlet_mean_velocity(const GasBoundaryConfig& bc, const Grid<Dim>& grid, d
   template void inlet_superficial_profile(const GasBoundaryConfig&, const InletVelocities&, const Grid<D>&,     \
                                           std::vector<double>&);                                                 \
   template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<D>&, double, std::vector<double>&); \
+  template void inlet_superficial_profile(const GasBoundaryConfig&, const Grid<D>&, double, std::vector<double>&,  \
+                                          InletWork&);                                                           \
   template double inlet_mean_velocity(const GasBoundaryConfig&, const Grid<D>&, double);
 FLUIDBED_INLET_INSTANCES(2)
 FLUIDBED_INLET_INSTANCES(3)

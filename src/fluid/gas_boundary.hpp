@@ -27,6 +27,8 @@ struct InletVelocities {
   std::vector<std::uint8_t> active; ///< 1 while jet k is open, t_start <= t < t_end
 };
 InletVelocities inlet_velocities(const GasBoundaryConfig& bc, double t);
+/// The same into `out`, whose vectors keep their room between gas steps.
+void inlet_velocities(const GasBoundaryConfig& bc, double t, InletVelocities& out);
 
 /// The largest |superficial velocity| any region reaches at any time (the background before its distributor
 /// factors), for time-step and sanity limits [m/s].
@@ -40,6 +42,8 @@ double inlet_superficial_velocity(const GasBoundaryConfig& bc, const InletVeloci
 
 /// The fixed distributor factors of the nx bottom faces (all 1 without inlet_noise), mean exactly 1 up to rounding.
 std::vector<double> inlet_noise_factors(const GasBoundaryConfig& bc, int nx);
+/// The same into `f` (resized to nx).
+void inlet_noise_factors(const GasBoundaryConfig& bc, int nx, std::vector<double>& f);
 
 /// The holes of a perforated plate as jets (2D: slots; 3D: discs), row by row in z, x fastest.
 std::vector<InletJet> perforated_plate_holes(const PerforatedPlate& plate, int dimension);
@@ -55,6 +59,16 @@ double jet_overlap_area(const InletJet& jet, double x_lo, double x_hi, double z_
 /// inlet_noise_factors(bc, nx nz).
 template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out);
+
+/// The work arrays of a profile, kept by a model between its gas steps so that a step allocates nothing.
+struct InletWork {
+  InletVelocities v;
+  std::vector<double> noise, fraction, flux, covered;
+};
+/// The same profile with the caller's work arrays.
+template <int Dim>
+void inlet_superficial_profile(const GasBoundaryConfig& bc, const Grid<Dim>& grid, double t, std::vector<double>& out,
+                               InletWork& work);
 /// The same from the step's region velocities (inlet_velocities).
 template <int Dim>
 void inlet_superficial_profile(const GasBoundaryConfig& bc, const InletVelocities& v, const Grid<Dim>& grid,

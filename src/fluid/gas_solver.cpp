@@ -229,10 +229,14 @@ struct GasSolver<Dim>::Impl {
   FaceFields<Dim> eps_f, eps_f_old, beta_f, us_f, mflux, u_old, u_prev, coeff;
   Field<Dim> eps_cell, work, imbalance, p_corr;
   std::vector<double> inlet;
+  InletWork inlet_work;
+  std::vector<Index<Dim>> domain_lines;  // line_starts(grid.domain), the rows of the per-line sums
+  std::vector<double> line_sums;         // continuity's sum of |imbalance| per line
   int linear_fallbacks = 0;  // momentum solves of the current step answered by the LU
 
   Impl(const Grid<Dim>& g, const GasConfig& c, PressureSolverKind kind, const Comm& cm)
-      : grid(g), cfg(c), comm(&cm), pressure(make_pressure_backend<Dim>(g, c, kind)) {
+      : grid(g), cfg(c), comm(&cm), pressure(make_pressure_backend<Dim>(g, c, kind)),
+        domain_lines(line_starts(g.domain)), line_sums(domain_lines.size(), 0.0) {
     if constexpr (Dim == 2) {
       gravity = {c.gravity.x, c.gravity.y};
     } else {
@@ -359,9 +363,9 @@ template <int Dim>
 double GasSolver<Dim>::Impl::continuity(const Field<Dim>& eps_old, const Field<Dim>& eps_new, double dt) {
   const IndexBox<Dim>& cells = grid.domain;
   const double vol = grid.cell_measure();
-  const std::vector<Index<Dim>> starts = line_starts(cells);
+  const std::vector<Index<Dim>>& starts = domain_lines;
   const int n_lines = static_cast<int>(starts.size());
-  std::vector<double> line_sum(starts.size(), 0.0);
+  std::vector<double>& line_sum = line_sums;
 #pragma omp parallel for schedule(static) if (static_cast<int>(cells.count()) >= kParallelCells)
   for (int l = 0; l < n_lines; ++l) {
     Index<Dim> c = starts[static_cast<std::size_t>(l)];
@@ -884,7 +888,7 @@ void GasSolver<Dim>::Impl::load_step(double t_new, double dt, const Field<Dim>& 
   for (int a = 0; a < Dim; ++a)
     for (bool high : {false, true})
       if (g.at_domain_side(a, high) && (a != 1 || (high && !outlet))) fix_wall_normal(f.u[a], a, high);
-  inlet_superficial_profile(cfg.boundary, g, t_new - 0.5 * dt, inlet);
+  inlet_superficial_profile(cfg.boundary, g, t_new - 0.5 * dt, inlet, inlet_work);
   if (g.at_domain_side(1, false)) {
     std::size_t k = 0;
     for_each(bottom(), [&](const Index<Dim>& c) { f.u[1][c] = inlet[k++] / eps_new[c]; });
@@ -949,7 +953,7 @@ void GasSolver<Dim>::Impl::mass_balance(GasStepReport& rep, const Field<Dim>& ep
   const double vol = g.cell_measure();
   for_each(bottom(), [&](const Index<Dim>& c) { rep.mass_in += mflux[1][c]; });
   for_each(top(), [&](const Index<Dim>& c) { rep.mass_out += mflux[1][c]; });
-  for (Index<Dim> c : line_starts(cells)) {
+  for (Index<Dim> c : domain_lines) {
     double row = 0.0;
     for (c[0] = cells.lo[0]; c[0] < cells.hi[0]; ++c[0]) row += eps_new[c] - eps_old[c];
     rep.accumulation += cfg.rho_g * row * vol / dt;
@@ -1128,7 +1132,7 @@ template <int Dim>
 void GasSolver<Dim>::cell_velocity(CellVector<Dim>& u) const {
   const IndexBox<Dim>& cells = impl_->grid.domain;
   for (int a = 0; a < Dim; ++a) {
-    u[a] = Field<Dim>(cells, 0);
+    if (u[a].box() != cells) u[a] = Field<Dim>(cells, 0);  // kept between calls: no allocation per gas step
     const Field<Dim>& face = impl_->f.u[a];
     for_each(cells, [&](const Index<Dim>& c) { u[a][c] = 0.5 * (face[c] + face[shifted<Dim>(c, a, 1)]); });
   }
@@ -1138,7 +1142,7 @@ template <int Dim>
 void GasSolver<Dim>::cell_pressure_gradient(CellVector<Dim>& grad) const {
   const Grid<Dim>& g = impl_->grid;
   for (int a = 0; a < Dim; ++a) {
-    grad[a] = Field<Dim>(g.domain, 0);
+    if (grad[a].box() != g.domain) grad[a] = Field<Dim>(g.domain, 0);
     for_each(g.domain, [&](const Index<Dim>& c) { grad[a][c] = cell_gradient<Dim>(g, impl_->f.p, c, impl_->f.p.index(c), a); });
   }
 }

@@ -252,7 +252,8 @@ LinearSolveOutcome CheckedSparseSolver::solve(const Matrix& a, const Eigen::Vect
     out.why = "non-finite coefficient or right-hand side in row " + std::to_string(out.bad_row);
     return out;
   }
-  Eigen::VectorXd y = x;
+  Eigen::VectorXd& y = trial_;  // kept between solves: the swap below trades two buffers of the same size
+  y = x;
   if (bicgstab(a, b, y, out) && y.allFinite()) {
     out.ok = true;
     x.swap(y);

@@ -107,6 +107,7 @@ class CheckedSparseSolver {
   int max_iterations_ = -1;                                 // -1: twice the size, as Eigen
   Eigen::VectorXd invdiag_;  // the Jacobi preconditioner: 1 / a_jj (1 where a_jj is absent or zero)
   Eigen::VectorXd r_, r0_, v_, p_, y_, z_, s_, t_;
+  Eigen::VectorXd trial_;  // solve()'s iterate, swapped into the caller's x when accepted
 };
 
 }  // namespace fluidbed
