@@ -264,6 +264,7 @@ struct TfmSolver<Dim>::Work {
   std::array<Field<Dim>, Dim> normal;                       // Eq. 19 normal stress of each cell, per component
   Eigen::VectorXd out_g, out_s;
   std::vector<double> inlet;
+  InletWork inlet_work;  // the inlet profile's work arrays, kept between steps
   double dense_change = 0.0;
   std::unique_ptr<StructuredSolver<Dim>> pressure;  // shared with the gas solver (src/fluid)
   // The solids-fraction correction E': its rows, solver and vectors (the same bits on any rank count).
@@ -923,7 +924,7 @@ void TfmSolver<Dim>::set_boundary_faces(double t) {
   const bool top_open = config_.boundary.top == TopBoundary::PressureOutlet;
   // Jets, the start-up ramp and the distributor non-uniformity, as for the CFD-DEM gas (src/fluid/gas_boundary).
   std::vector<double>& inlet = w_->inlet;
-  inlet_superficial_profile<Dim>(config_.boundary, grid_, t, inlet);
+  inlet_superficial_profile<Dim>(config_.boundary, grid_, t, inlet, w_->inlet_work);
   for (int a = 0; a < Dim; ++a)
     for (bool high : {false, true}) {
       if (periodic(a)) continue;  // no wall: face 0 is an unknown of the momentum step
