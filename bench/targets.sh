@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Issue 31's five targets one after the other on this machine (docs/performance.md section 37): the 3D and 2D
+# DEM-only settling against LAMMPS (one core each; the 3D run also gives the bytes per sphere), the paper's CFD-DEM
+# case over one simulated second (RUNS runs) and the van Wachem bed over VW_END seconds (2 runs), both on THREADS
+# threads from their settled beds (settled and cached by a first, untimed run).
+# Usage: bash bench/targets.sh [BUILD_DIR] [THREADS=2] [RUNS=3] [VW_END=0.3]
+set -uo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(dirname "$here")"
+build="${1:-$root/build}" threads="${2:-2}" runs="${3:-3}" vw_end="${4:-0.3}"
+fluidbed="$build/fluidbed"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+last_wall() { tail -1 "$1" | awk -F, '{ print $NF }'; }
+echo "== start $(date -u +%H:%M:%S) UTC, $(git -C "$root" rev-parse --short HEAD)"
+echo "== 3D settling of 100,000 spheres against LAMMPS, one core, 2000 steps, 3 repeats, and the bytes per sphere"
+REPEATS=3 bash "$here/peer_lammps_3d.sh" "$build" 2000 2>&1 | grep -v "^#"
+echo "== 2D settle-22k against LAMMPS, one core, 5000 steps"
+bash "$here/peer_lammps.sh" "$build" 5000 2>&1 | grep -v "^#"
+echo "== the paper's case, $threads threads, one simulated second, $runs runs"
+"$fluidbed" run "$root/cases/gera1998/dem.toml" --end-time 0.001 --set "settle.cache=$work/paper.csv" \
+  --out "$work/warm" --overwrite --quiet --threads "$threads" >/dev/null
+for r in $(seq 1 "$runs"); do
+  "$fluidbed" run "$root/cases/gera1998/dem.toml" --end-time 1.0 --set "settle.cache=$work/paper.csv" \
+    --threads "$threads" --out "$work/paper" --overwrite --quiet >/dev/null
+  echo "run $r $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/paper/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
+done
+echo "== the van Wachem bed, $threads threads, $vw_end s from the settled bed, 2 runs"
+"$fluidbed" run "$root/cases/vanwachem2001/dem.toml" --end-time 0.001 --set "settle.cache=$work/vw.csv" \
+  --out "$work/warm" --overwrite --quiet --threads "$threads" >/dev/null
+for r in 1 2; do
+  "$fluidbed" run "$root/cases/vanwachem2001/dem.toml" --end-time "$vw_end" --set "settle.cache=$work/vw.csv" \
+    --threads "$threads" --out "$work/vw" --overwrite --quiet >/dev/null
+  echo "run $r $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/vw/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
+done
+echo "== end $(date -u +%H:%M:%S) UTC"
