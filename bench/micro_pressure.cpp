@@ -61,8 +61,9 @@ void BM_PressureStep(benchmark::State& state, Index<Dim> n) {
 void BM_PressureStepPaperGrid(benchmark::State& state) { BM_PressureStep<2>(state, {30, 50}); }
 void BM_PressureStep3d100k(benchmark::State& state) { BM_PressureStep<3>(state, {40, 60, 42}); }
 
-// Argument: the backend, 0 eigen (Cholesky, reused as CG preconditioner), 1 eigen-cg (IC-CG), 2 hypre-pfmg, 3
-// cg-multigrid, 4 the band LDL^T reused as CG preconditioner (what "eigen" runs on a 2D grid since section 35). In 3D Eigen's factorisation of 100,800 cells takes minutes: only the iterative backends, IC-CG once.
+// Argument: the backend, 0 Eigen's Cholesky reused as CG preconditioner, 1 eigen-cg (IC-CG), 2 hypre-pfmg, 3
+// cg-multigrid, 4 the band LDL^T reused as CG preconditioner (what "eigen" runs on a 2D grid since section 35).
+// In 3D Eigen's factorisation of 100,800 cells takes minutes: only the iterative backends, IC-CG once.
 BENCHMARK(BM_PressureStepPaperGrid)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PressureStep3d100k)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PressureStep3d100k)->Arg(2)->Arg(3)->Repetitions(5)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond);

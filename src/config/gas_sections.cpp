@@ -210,8 +210,8 @@ void read_gas_phase(CaseReader& r, CaseConfig& c, const GasKeys& k) {
                  : conv == "minmod" ? ConvectionScheme::Minmod : ConvectionScheme::VanLeer;
   const std::string pc = r.string("gas.pressure_coupling", "simplec", "pressure-velocity coupling", {"simple", "simplec"});
   g.coupling = pc == "simple" ? PressureCoupling::Simple : PressureCoupling::Simplec;
-  const std::string ps = r.string("gas.pressure_solver", "eigen", "pressure-correction solver: eigen (direct: band LDLT on 2D "
-                                  "grids and thin slabs, else sparse Cholesky), "
+  const std::string ps = r.string("gas.pressure_solver", "eigen", "pressure-correction solver: eigen (direct: band "
+                                  "LDLT on 2D grids and thin slabs, else sparse Cholesky), "
                                   "eigen-cg (incomplete-Cholesky CG), hypre-pfmg (structured multigrid CG; needs a build "
                                   "with hypre) or cg-multigrid (multigrid CG with exact inner products: the same bits on "
                                   "any rank count)", {"eigen", "eigen-cg", "hypre-pfmg", "cg-multigrid"});

@@ -148,8 +148,9 @@ struct GasConfig {
   /// ... or, from the fourth iteration, the iterate's estimated distance to the converged answer (the last
   /// iteration's move of the mass flux, times r / (1 - r) where the slowest contraction r seen exceeds 1/2) below
   /// this fraction of the step's change of the mass flux (GasStepReport::flux_change): in CFD-DEM the particles
-  /// feel the gas one step late, so the coupling already errs by about that change, and converging SIMPLE far below it buys nothing (docs/model-gas.md). 0 (a gas on its
-  /// own, whose steps may be pseudo-time): the two tolerances above only; a CFD-DEM case's default is 0.01.
+  /// feel the gas one step late, so the coupling already errs by about that change, and converging SIMPLE far
+  /// below it buys nothing (docs/model-gas.md). 0 (a gas on its own, whose steps may be pseudo-time): the two
+  /// tolerances above only; a CFD-DEM case's default is 0.01.
   double coupling_tolerance = 0.0;
   /// Each momentum solve reduces the residual of its iterate by this factor (it solves for the increment), so its
   /// precision follows the outer residual down (inexact Newton, Dembo et al. 1982) rather than a fixed 1e-10.

@@ -210,7 +210,8 @@ std::unique_ptr<StructuredSolver<Dim>> make_pressure_backend(const Grid<Dim>& g,
   // The direct solve: the band LDL^T where the rows couple within a narrow band (2D beds, thin slabs), its
   // factorisation preconditioning the later SIMPLE iterations of a step; else Eigen's sparse Cholesky, alike.
   if (kind == PressureSolverKind::Direct) {
-    if (auto band = make_band_structured_solver<Dim>(g, BandReuse::Preconditioner, c.pressure_solver_tolerance)) return band;
+    auto band = make_band_structured_solver<Dim>(g, BandReuse::Preconditioner, c.pressure_solver_tolerance);
+    if (band) return band;
   }
   return make_eigen_structured_solver<Dim>(g, kind, c.pressure_solver_tolerance);
 }

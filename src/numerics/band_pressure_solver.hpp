@@ -1,7 +1,7 @@
 #pragma once
 // A direct solve of a pressure correction (the TFM's and the CFD-DEM gas's) for grids whose rows couple only within
-// a narrow band: the 2D case (bandwidth = the cells along axis 0, 30 in the paper's bed) and thin 3D slabs. A dense band
-// LDL^T factorisation (Golub & Van Loan, Matrix Computations, 4th ed., Alg. 4.3.5) walks contiguous memory and
+// a narrow band: the 2D case (bandwidth = the cells along axis 0, 30 in the paper's bed) and thin 3D slabs. A dense
+// band LDL^T factorisation (Golub & Van Loan, Matrix Computations, 4th ed., Alg. 4.3.5) walks contiguous memory and
 // vectorises; on the 30 x 50 grid it costs about half of Eigen's sparse LDL^T with AMD ordering, although it does
 // about as many operations (docs/performance.md section 17).
 #include <memory>

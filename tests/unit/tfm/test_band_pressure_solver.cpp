@@ -74,6 +74,14 @@ double rel_error(const Field<Dim>& x, const Field<Dim>& exact) {
 
 constexpr double kTol = 1e-10;
 
+// The relative error of a solve of `pr` from a zero start that asks to reuse the last factorisation.
+template <int Dim>
+double reuse_error(StructuredSolver<Dim>& solver, const Problem<Dim>& pr) {
+  Field<Dim> x(pr.grid.owned, 0);
+  solver.solve(pr.coeff, pr.rhs, x, true);
+  return rel_error(x, pr.exact);
+}
+
 template <int Dim>
 void check(const Index<Dim>& n, bool open_top) {
   Problem<Dim> pr = make_problem<Dim>(n, open_top);
@@ -91,12 +99,8 @@ void check(const Index<Dim>& n, bool open_top) {
 
   // The same matrix again with the kept factorisation, then new coefficients with reuse asked: the backend must
   // notice the change (backward error) and factorise them.
-  Field<Dim> x2(pr.grid.owned, 0);
-  band->solve(pr.coeff, pr.rhs, x2, true);
-  EXPECT_LT(rel_error(x2, pr.exact), kTol);
-  Problem<Dim> moved = make_problem<Dim>(n, open_top, 0.9);
-  band->solve(moved.coeff, moved.rhs, x2, true);
-  const double em = rel_error(x2, moved.exact);
+  EXPECT_LT(reuse_error(*band, pr), kTol);
+  const double em = reuse_error(*band, make_problem<Dim>(n, open_top, 0.9));
   std::printf("  reuse asked after the coefficients moved: error %.2e\n", em);
   EXPECT_LT(em, kTol);
 }
@@ -130,9 +134,7 @@ void check_preconditioned_reuse(const Index<Dim>& n, bool open_top) {
   Problem<Dim> near = make_problem<Dim>(n, open_top, 0.01);  // faces moved by up to 0.4%
   for (const double tolerance : {1e-12, 1e-3}) {
     band->set_tolerance(tolerance);
-    Field<Dim> xn(pr.grid.owned, 0);
-    band->solve(near.coeff, near.rhs, xn, true);
-    const double e = rel_error(xn, near.exact);
+    const double e = reuse_error(*band, near);
     std::printf("%dD %s, nearby coefficients, tolerance %.0e: error %.2e\n", Dim, open_top ? "open top" : "pinned",
                 tolerance, e);
     EXPECT_LT(e, kKappa * tolerance);
@@ -141,10 +143,7 @@ void check_preconditioned_reuse(const Index<Dim>& n, bool open_top) {
     }
   }
   band->set_tolerance(1e-3);
-  Problem<Dim> far = make_problem<Dim>(n, open_top, 0.0, 3.0);
-  Field<Dim> xf(pr.grid.owned, 0);
-  band->solve(far.coeff, far.rhs, xf, true);
-  const double ef = rel_error(xf, far.exact);
+  const double ef = reuse_error(*band, make_problem<Dim>(n, open_top, 0.0, 3.0));
   std::printf("  far moved coefficients, tolerance 1e-3: error %.2e\n", ef);
   EXPECT_LT(ef, kTol);
 }

@@ -8,7 +8,6 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdio>
-#include <random>
 
 #include "../dem/dem_closed_form.hpp"
 #include "coupling/cfd_dem.hpp"
@@ -57,8 +56,8 @@ long allocations_in(F&& work) {
   return g_calls.load();
 }
 
-// 2000 of the paper's particles falling into a 0.1 m box from random places with random velocities: contacts
-// made and broken, the neighbour list rebuilt every few steps.
+// 2000 of the paper's particles falling into a 0.1 m box from random places: contacts made and broken, the
+// neighbour list rebuilt every few steps.
 ParticleStore<2> falling_bed(const DemConfig& c) {
   PackingConfig pc;
   pc.count = 2000;
@@ -90,7 +89,8 @@ Window count_steps(int n, Step&& step, Rebuilds&& rebuilds) {
 }
 
 TEST(NoAllocation, DemStepsBetweenRebuilds2d) {
-  const DemConfig c = test::one_species_config(0.004, 2700.0, 800.0, 0.9, 0.3, 2e-4, {0.0, -9.81}, 0.1, 1.0, WallConfig{});
+  const DemConfig c =
+      test::one_species_config(0.004, 2700.0, 800.0, 0.9, 0.3, 2e-4, {0.0, -9.81}, 0.1, 1.0, WallConfig{});
   DemSolver<2> dem(c, falling_bed(c));
   for (int s = 0; s < 4000; ++s) dem.step();  // the bed lands: lists and springs grow to their size
   const Window w = count_steps(500, [&] { dem.step(); }, [&] { return dem.rebuild_count(); });
@@ -115,7 +115,8 @@ TEST(NoAllocation, DemStepsBetweenRebuilds3d) {
 // fluid forces on the particles. A 5 m/s jet keeps the bed moving: contacts made and broken, the list rebuilt
 // every other step or so.
 TEST(NoAllocation, CoupledStepsBetweenRebuilds2d) {
-  const DemConfig c = test::one_species_config(0.004, 2700.0, 800.0, 0.9, 0.3, 1e-4, {0.0, -9.81}, 0.1, 1.0, WallConfig{});
+  const DemConfig c =
+      test::one_species_config(0.004, 2700.0, 800.0, 0.9, 0.3, 1e-4, {0.0, -9.81}, 0.1, 1.0, WallConfig{});
   GasConfig gas;
   gas.boundary.inlet_velocity = 1.0;
   gas.boundary.jets = {InletJet{0.05, 0.02, 1.5, 0.0, 10.0}};
@@ -123,7 +124,8 @@ TEST(NoAllocation, CoupledStepsBetweenRebuilds2d) {
   cc.dem_substeps = 2;
   DemSolver<2> landed(c, falling_bed(c));
   for (int s = 0; s < 4000; ++s) landed.step();  // the bed lands without gas first (cheaper)
-  CfdDemSimulation<2> sim(DemSolver<2>(c, landed.particles()), GasSolver<2>(Grid<2>::uniform({0.1, 1.0}, {10, 100}), gas), cc);
+  CfdDemSimulation<2> sim(DemSolver<2>(c, landed.particles()),
+                          GasSolver<2>(Grid<2>::uniform({0.1, 1.0}, {10, 100}), gas), cc);
   sim.initialize();
   for (int s = 0; s < 600; ++s) sim.advance();
   const Window w = count_steps(200, [&] { sim.advance(); }, [&] { return sim.dem().rebuild_count(); });
