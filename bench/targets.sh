@@ -2,8 +2,9 @@
 # Issue 31's five targets one after the other on this machine (docs/performance.md section 37): the 3D and 2D
 # DEM-only settling against LAMMPS (one core each; the 3D run also gives the bytes per sphere), the paper's CFD-DEM
 # case over one simulated second (RUNS runs) and the van Wachem bed over VW_END seconds (2 runs), both on THREADS
-# threads from their settled beds (settled and cached by a first, untimed run).
-# Usage: bash bench/targets.sh [BUILD_DIR] [THREADS=2] [RUNS=3] [VW_END=0.3]
+# threads from their settled beds (settled and cached by a first, untimed run), and the paper's second once on one
+# thread (the bounds of section 38 are given for both). VW_RUNS=1 with VW_END=6 runs the van Wachem row whole.
+# Usage: [VW_RUNS=2] bash bench/targets.sh [BUILD_DIR] [THREADS=2] [RUNS=3] [VW_END=0.3]
 set -uo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
@@ -25,10 +26,15 @@ for r in $(seq 1 "$runs"); do
     --threads "$threads" --out "$work/paper" --overwrite --quiet >/dev/null
   echo "run $r $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/paper/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
 done
-echo "== the van Wachem bed, $threads threads, $vw_end s from the settled bed, 2 runs"
+echo "== the paper's case, one thread, one simulated second, 1 run"
+"$fluidbed" run "$root/cases/gera1998/dem.toml" --end-time 1.0 --set "settle.cache=$work/paper.csv" \
+  --threads 1 --out "$work/paper" --overwrite --quiet >/dev/null
+echo "run 1 $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/paper/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
+vw_runs="${VW_RUNS:-2}"
+echo "== the van Wachem bed, $threads threads, $vw_end s from the settled bed, $vw_runs runs"
 "$fluidbed" run "$root/cases/vanwachem2001/dem.toml" --end-time 0.001 --set "settle.cache=$work/vw.csv" \
   --out "$work/warm" --overwrite --quiet --threads "$threads" >/dev/null
-for r in 1 2; do
+for r in $(seq 1 "$vw_runs"); do
   "$fluidbed" run "$root/cases/vanwachem2001/dem.toml" --end-time "$vw_end" --set "settle.cache=$work/vw.csv" \
     --threads "$threads" --out "$work/vw" --overwrite --quiet >/dev/null
   echo "run $r $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/vw/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
