@@ -112,11 +112,6 @@ struct DemSolver<Dim>::ForcePass {
     if constexpr (Periodic) dx = s.periodic_.min_image(dx);  // the partner's nearest image
     return dx;
   }
-  /// Release the pair of entries k and km (the partner's): the zero record, whose spring is +0.
-  [[gnu::always_inline]] void release(std::size_t k, std::size_t km) const {
-    s.entry_contact_[k] = 0;
-    s.entry_contact_[km] = 0;
-  }
 
   /// Pass 1, first part, for block b (particles lo .. hi): the touching pairs of particles lo .. hi into the block's
   /// compact array, each with the record that holds its spring (the last evaluation's, or those a new list was
@@ -125,6 +120,7 @@ struct DemSolver<Dim>::ForcePass {
     std::vector<Contact>& found = s.contacts_[b];
     Contact* out = found.data();
     std::size_t used = 0;
+    std::uint32_t sink = 0;  // where a touching pair's release goes
     for (std::size_t i = lo; i < hi; ++i) {
       // Room for every entry of i (the writes below are unconditional); grown by half, so rarely.
       if (found.size() < used + (upper[i + 1] - upper[i])) {
@@ -133,7 +129,8 @@ struct DemSolver<Dim>::ForcePass {
       }
       const Vec<Dim> xi = pos(i);
       const double ri = R[i];
-      for (std::size_t u = upper[i]; u < upper[i + 1]; ++u) {
+      // The end read once: the stores below could alias it for all the compiler knows.
+      for (std::size_t u = upper[i], u_end = upper[i + 1]; u < u_end; ++u) {
         const std::size_t k = s.upper_entry_[u];
         const std::size_t j = partner[k];
         const Vec<Dim> dx = separation(xi, j);
@@ -143,9 +140,17 @@ struct DemSolver<Dim>::ForcePass {
         const std::uint32_t e = s.entry_contact_[k];
         out[used] = Contact{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(u), e >> 1};
         used += static_cast<std::size_t>(touching);
-        // Both tests evaluated, then one branch, rarely taken (a contact ends seldom): a branch on either test
-        // alone would be taken at random.
-        if ((e != 0) & !touching) release(k, s.upper_mirror_[u]);
+        // A pair apart releases its record (both entries zeroed; a no-op where it held none) without a branch:
+        // in a fluidized bed, where contacts begin and end all the time, a branch on either test is taken at
+        // random, and GCC turns a select of the two entries back into one. The mask goes through an empty asm,
+        // so the compiler cannot tell that it is all ones or zero: the store reaches the partner's entry when
+        // the pair is apart and a local word when it touches.
+        std::uintptr_t apart = 0 - static_cast<std::uintptr_t>(!touching);
+        asm("" : "+r"(apart));
+        s.entry_contact_[k] = e & ~static_cast<std::uint32_t>(apart);
+        const auto here = reinterpret_cast<std::uintptr_t>(&sink);
+        const auto there = reinterpret_cast<std::uintptr_t>(&s.entry_contact_[s.upper_mirror_[u]]);
+        *reinterpret_cast<std::uint32_t*>(here ^ ((here ^ there) & apart)) = 0u;
       }
     }
     s.contact_count_[b] = used;
