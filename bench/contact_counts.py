@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Neighbour-list entries and contacts per particle in the particle frames of a fluidbed DEM run.
 
-For every particle frame of a run folder (`particles/NNNNNN.vtu`, written by default, or `particles/NNNNNN.csv`
-with `output.particles_csv = true` when there are no .vtu frames) this counts
+For every particle frame of a run folder (the `particles/NNNNNN.vtu` files its `particles.pvd` lists, written by
+default; read with post/report.py's readers) this counts
 
   E  neighbour-list entries per particle: pairs with centre distance < r_i + r_j + skin (surface gap below the
      skin, the test of src/dem/neighbor_list.cpp), counted once for each partner, E = 2 pairs / N;
@@ -27,95 +27,40 @@ RUN_DIR is a `fluidbed run ... --out RUN_DIR` folder. Example:
 
 import argparse
 import csv
+import os
 import pathlib
-import re
 import sys
 import tomllib
-import xml.etree.ElementTree as ET
-import zlib
 
 import numpy as np
 from scipy.spatial import cKDTree
 
-VTK_TYPES = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4", "UInt8": "u1", "UInt64": "<u8"}
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "post"))
+from report import read_pvd, read_vtu  # noqa: E402  (the project's frame readers)
+
 PERIODIC_LENGTH_KEY = {"x": "width", "y": "height", "z": "depth"}
-
-
-def decode_appended(raw, offset, dtype):
-    """One zlib-compressed appended DataArray (header_type UInt64, vtkZLibDataCompressor) as a flat array."""
-    n_blocks = int(np.frombuffer(raw, "<u8", 1, offset)[0])
-    sizes = np.frombuffer(raw, "<u8", 3 + n_blocks, offset)[3:]
-    pos = offset + 8 * (3 + n_blocks)
-    chunks = []
-    for size in sizes:
-        chunks.append(zlib.decompress(raw[pos:pos + int(size)]))
-        pos += int(size)
-    return np.frombuffer(b"".join(chunks), dtype)
-
-
-def read_vtu(path):
-    """Time, centres (N x 3) and diameters of one particles/*.vtu frame."""
-    data = path.read_bytes()
-    start = data.index(b"<AppendedData")
-    marker = data.index(b"_", start) + 1
-    head = data[:start].decode() + "</VTKFile>"
-    root = ET.fromstring(re.sub(r"<VTKFile[^>]*>", "<VTKFile>", head, count=1))
-    time = float(root.find(".//FieldData/DataArray[@Name='TimeValue']").text)
-    arrays = {}
-    for node in root.iter("DataArray"):
-        if node.get("format") == "appended":
-            arrays[node.get("Name")] = decode_appended(data, marker + int(node.get("offset")),
-                                                       VTK_TYPES[node.get("type")])
-    return time, arrays["Points"].reshape(-1, 3), arrays["diameter"].copy()
-
-
-def pvd_times(run):
-    """Frame file name -> time, from particles.pvd (the CSV frames carry no time)."""
-    root = ET.parse(run / "particles.pvd").getroot()
-    return {pathlib.Path(d.get("file")).stem: float(d.get("timestep")) for d in root.iter("DataSet")}
-
-
-def read_csv_frame(path, time, species_d):
-    """Time, centres (N x 3) and diameters of one particles/*.csv frame (diameter column or species')."""
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    head, body = [h.strip() for h in rows[0]], np.array(rows[1:], dtype=float)
-    col = {name: k for k, name in enumerate(head)}
-    xyz = np.zeros((len(body), 3))
-    for k, axis in enumerate("xyz"):
-        if axis in col:
-            xyz[:, k] = body[:, col[axis]]
-    if "diameter" in col:
-        d = body[:, col["diameter"]]
-    else:
-        d = np.asarray(species_d)[body[:, col["species"]].astype(int)]
-    return time, xyz, d
 
 
 def case_info(run, skin_arg):
     """Dimension, skin, DEM step and periodic lengths (0: not periodic) from the run's case.toml."""
     case = tomllib.loads((run / "case.toml").read_text())
     dim = int(case.get("case", {}).get("dimension", 2))
-    species_d = [s["diameter"] for s in case.get("species", [])]
+    d_max = max(s["diameter"] for s in case.get("species", []))
     dem = case.get("dem", {})
-    skin = skin_arg if skin_arg is not None else dem.get("skin", 0.5 * max(species_d))
+    skin = skin_arg if skin_arg is not None else dem.get("skin", 0.5 * d_max)
     domain = case.get("domain", {})
     box = np.zeros(dim)
     for axis in domain.get("periodic", []):
         box["xyz".index(axis)] = domain[PERIODIC_LENGTH_KEY[axis]]
-    return dim, float(skin), dem.get("time_step"), box, species_d
+    return dim, float(skin), dem.get("time_step"), box, d_max
 
 
-def frames(run, species_d):
-    """Yield (time, centres, diameters) for each particle frame of the run, in order."""
-    vtus = sorted((run / "particles").glob("*.vtu"))
-    if vtus:
-        for path in vtus:
-            yield read_vtu(path)
-        return
-    times = pvd_times(run)
-    for path in sorted((run / "particles").glob("*.csv")):
-        yield read_csv_frame(path, times[path.stem], species_d)
+def frames(run):
+    """Yield (time, centres N x 3, diameters) for each particle frame of the run, in time order."""
+    for time, path in read_pvd(str(run / "particles.pvd")):
+        f = read_vtu(path)
+        if f is not None:
+            yield time, np.column_stack([f["x"], f["y"], f["z"]]), f["diameter"]
 
 
 def count_pairs(xyz, d, skin, box):
@@ -161,12 +106,12 @@ def parse_args(argv):
 
 def main(argv=None):
     args = parse_args(argv)
-    dim, skin, dt, box, species_d = case_info(args.run, args.skin)
+    dim, skin, dt, box, d_max = case_info(args.run, args.skin)
     periodic = ", ".join("xyz"[k] for k in range(dim) if box[k] > 0) or "none"
-    print(f"# run {args.run}: {dim}D, skin {skin:.6g} m ({skin / max(species_d):.3g} d_max), periodic: {periodic}")
+    print(f"# run {args.run}: {dim}D, skin {skin:.6g} m ({skin / d_max:.3g} d_max), periodic: {periodic}")
     print(f"{'time_s':>10} {'N':>7} {'E':>8} {'C':>8}")
     rows = []
-    for time, xyz, d in frames(args.run, species_d):
+    for time, xyz, d in frames(args.run):
         if not args.t_min - 1e-12 <= time <= args.t_max + 1e-12:
             continue
         n_list, n_contact = count_pairs(xyz[:, :dim], d, skin, box)
