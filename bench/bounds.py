@@ -98,8 +98,8 @@ def coupling_passes(dim, n, pows):
         # Counting sort of the shares by cell (count, place), then per cell the sums of volume, K and K-weighted
         # velocity over its shares (the particle's radius, velocity and K read once).
         Pass("deposition", n, 2 * weights + k * 12 + k * 12 + (dim + 2) * w, k * (4 + 2 * dim)),
-        # Interpolation: voidage, gas velocity and pressure gradient gathered with the weights; the drag law
-        # (Eqs. 13-14: one pow, a division or two); K, the gas velocity and the fluid force written.
+        # Interpolation: voidage, gas velocity and pressure gradient gathered with the weights; the drag law (a
+        # slip speed, three divisions, `pows` pow calls); K, the gas velocity and the fluid force written.
         Pass("interpolation and drag", n, weights + (dim + 1) * w + (1 + 2 * dim) * w,
              (1 + 2 * dim) * 2 * k + 40, sqrt=1, div=3, pow=pows),
     ]
@@ -114,7 +114,7 @@ def gas_passes(dim, cells, simple, bicgstab, band):
     stencil = 2 * dim + 1
     rows = cells * d  # one momentum row a face, about one face a cell per component
     solves = simple + 1
-    out = [
+    return [
         # Per row: the component, its old value, voidage (new, old), drag coefficient, solids velocity, the mass
         # fluxes along and across, the cell voidage and pressure, the unknown number, the row's place; written:
         # the stencil's values (through their offsets), rhs, x, a_P, d. Operations: four (2D) or six faces of
@@ -143,7 +143,6 @@ def gas_passes(dim, cells, simple, bicgstab, band):
         Pass("band substitutions", cells * solves, 2 * (band + 1) * w, 4 * band, div=1, lanes=4),
         Pass("CG products and vectors", cells * simple, 2 * (stencil + 2) * w + 6 * 2 * w, 2 * 2 * stencil + 12),
     ]
-    return out
 
 
 def bound(machine, passes, level, threads, detail, title):

@@ -12,7 +12,14 @@ build="${1:-$root/build}" threads="${2:-2}" runs="${3:-3}" vw_end="${4:-0.3}"
 fluidbed="$build/fluidbed"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-last_wall() { tail -1 "$1" | awk -F, '{ print $NF }'; }
+# One timed run of CASE to END on THREADS threads from its cached settled bed CACHE, reported as run number R.
+timed_run() {
+  local case="$1" end="$2" threads="$3" cache="$4" r="$5"
+  "$fluidbed" run "$case" --end-time "$end" --set "settle.cache=$cache" --threads "$threads" --out "$work/run" \
+    --overwrite --quiet >/dev/null
+  echo "run $r $(date -u +%H:%M:%S) loop_wall_s $(tail -1 "$work/run/monitor.csv" | awk -F, '{ print $NF }')" \
+    "load $(cut -d' ' -f1 /proc/loadavg)"
+}
 echo "== start $(date -u +%H:%M:%S) UTC, $(git -C "$root" rev-parse --short HEAD)"
 echo "== 3D settling of 100,000 spheres against LAMMPS, one core, 2000 steps, 3 repeats, and the bytes per sphere"
 REPEATS=3 bash "$here/peer_lammps_3d.sh" "$build" 2000 2>&1 | grep -v "^#"
@@ -21,22 +28,14 @@ bash "$here/peer_lammps.sh" "$build" 5000 2>&1 | grep -v "^#"
 echo "== the paper's case, $threads threads, one simulated second, $runs runs"
 "$fluidbed" run "$root/cases/gera1998/dem.toml" --end-time 0.001 --set "settle.cache=$work/paper.csv" \
   --out "$work/warm" --overwrite --quiet --threads "$threads" >/dev/null
-for r in $(seq 1 "$runs"); do
-  "$fluidbed" run "$root/cases/gera1998/dem.toml" --end-time 1.0 --set "settle.cache=$work/paper.csv" \
-    --threads "$threads" --out "$work/paper" --overwrite --quiet >/dev/null
-  echo "run $r $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/paper/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
-done
+for r in $(seq 1 "$runs"); do timed_run "$root/cases/gera1998/dem.toml" 1.0 "$threads" "$work/paper.csv" "$r"; done
 echo "== the paper's case, one thread, one simulated second, 1 run"
-"$fluidbed" run "$root/cases/gera1998/dem.toml" --end-time 1.0 --set "settle.cache=$work/paper.csv" \
-  --threads 1 --out "$work/paper" --overwrite --quiet >/dev/null
-echo "run 1 $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/paper/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
+timed_run "$root/cases/gera1998/dem.toml" 1.0 1 "$work/paper.csv" 1
 vw_runs="${VW_RUNS:-2}"
 echo "== the van Wachem bed, $threads threads, $vw_end s from the settled bed, $vw_runs runs"
 "$fluidbed" run "$root/cases/vanwachem2001/dem.toml" --end-time 0.001 --set "settle.cache=$work/vw.csv" \
   --out "$work/warm" --overwrite --quiet --threads "$threads" >/dev/null
 for r in $(seq 1 "$vw_runs"); do
-  "$fluidbed" run "$root/cases/vanwachem2001/dem.toml" --end-time "$vw_end" --set "settle.cache=$work/vw.csv" \
-    --threads "$threads" --out "$work/vw" --overwrite --quiet >/dev/null
-  echo "run $r $(date -u +%H:%M:%S) loop_wall_s $(last_wall "$work/vw/monitor.csv") load $(cut -d' ' -f1 /proc/loadavg)"
+  timed_run "$root/cases/vanwachem2001/dem.toml" "$vw_end" "$threads" "$work/vw.csv" "$r"
 done
 echo "== end $(date -u +%H:%M:%S) UTC"
