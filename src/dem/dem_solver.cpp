@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "core/team.hpp"
+#include "dem/growth.hpp"
 #include "dem/kernel_support.hpp"
 
 namespace fluidbed {
@@ -441,10 +442,9 @@ void DemSolver<Dim>::number_records() {
   // With room for growth, as the force pass keeps its arrays (they take turns with these).
   const std::size_t records = first[n];
   const bool rolling = config_.contact.needs_rolling_history();
-  if (spring_.capacity() < records) spring_.reserve(records + records / 2);
-  spring_.resize(records);
+  resize_with_room(spring_, records);
   spring_[0] = Vec<Dim>{};
-  if (rolling && roll_spring_.capacity() < records) roll_spring_.reserve(records + records / 2);
+  if (rolling && roll_spring_.capacity() < records) roll_spring_.reserve(records + records / 8);
   roll_spring_.assign(rolling ? records : 0, Spin<Dim>{});
 }
 
@@ -794,8 +794,8 @@ void DemSolver<Dim>::link_mirrors() {
     upper_offset_[i + 1] = static_cast<std::uint32_t>(c);
   }
   for (std::size_t i = 0; i < n; ++i) upper_offset_[i + 1] += upper_offset_[i];
-  upper_entry_.resize(upper_offset_[n]);
-  upper_mirror_.resize(upper_offset_[n]);
+  resize_with_room(upper_entry_, upper_offset_[n]);
+  resize_with_room(upper_mirror_, upper_offset_[n]);
   int missing = 0;
   // Several ranks sort by the canonical order, not by slot: their lists go to the search directly.
   if (domain_ || !link_sorted_mirrors()) {
@@ -830,7 +830,7 @@ void DemSolver<Dim>::link_mirrors() {
   // With room for growth: assign() beyond the capacity allocates the exact size, which a list growing as the bed
   // compacts would pay (in page faults) at every rebuild.
   const std::size_t m = nbr_.entries();
-  if (entry_contact_.capacity() < m) entry_contact_.reserve(m + m / 2);
+  if (entry_contact_.capacity() < m) entry_contact_.reserve(m + m / 8);
   entry_contact_.assign(m, 0);
   adopt_entry_springs();
 }
@@ -1302,15 +1302,10 @@ typename DemSolver<Dim>::State DemSolver<Dim>::state() const {
 }
 
 template <int Dim>
-HeldSprings<Dim> DemSolver<Dim>::current_held_springs() const {
-  // From the list when it holds the current springs (held_ is then stale), else held_ itself.
-  if (!list_springs_) return held_;
-  DemSolver& self = const_cast<DemSolver&>(*this);
-  HeldSprings<Dim> saved = std::move(self.held_);
-  self.gather_held_springs();
-  HeldSprings<Dim> now = std::move(self.held_);
-  self.held_ = std::move(saved);
-  return now;
+const HeldSprings<Dim>& DemSolver<Dim>::current_held_springs() const {
+  // Gathered into held_ itself: a copy beside it would be the largest array of a settled bed's checkpoint.
+  if (list_springs_) const_cast<DemSolver&>(*this).gather_held_springs();
+  return held_;
 }
 
 template <int Dim>
@@ -1349,13 +1344,12 @@ typename DemSolver<Dim>::CheckpointView DemSolver<Dim>::checkpoint_view() const 
     for (std::size_t k = 0; k < v.order.size(); ++k) v.order[k] = k;
     return v;
   }
-  // One process: the arrays where they are, read in ascending id; only the springs by partner id are made anew.
+  // One process: the arrays where they are, read in ascending id.
   v.state = clock_state();
   v.order = ascending_id_order(p_);
-  const HeldSprings<Dim> held = current_held_springs();
+  const HeldSprings<Dim>& held = current_held_springs();
   if (held.particles() == n_owned_) {
-    v.state.held = held;
-    v.state.held.select(v.order);
+    v.own_held = &held;
   } else {
     v.state.held.clear(n_owned_, config_.contact.needs_rolling_history());
   }
@@ -1372,8 +1366,7 @@ typename DemSolver<Dim>::CheckpointView DemSolver<Dim>::checkpoint_view() const 
 template <int Dim>
 typename DemSolver<Dim>::State DemSolver<Dim>::portable_state() const {
   // Every owned particle with its springs by partner id (from the list when it is current), gathered on rank 0.
-  const HeldSprings<Dim> held_now = current_held_springs();
-  const HeldSprings<Dim>* held = &held_now;
+  const HeldSprings<Dim>* held = &current_held_springs();
   State st = clock_state();
   if (!domain_) {
     // One rank: the arrays themselves (no ghosts), without a message between.

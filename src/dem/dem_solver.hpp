@@ -186,11 +186,12 @@ class DemSolver {
   /// a state without particles.
   State portable_state() const;
   /// What a checkpoint writes: the portable state, with the particle arrays read where they are. On one process
-  /// the store, the wall springs and the list-build positions are the solver's own, read through `order` (the
-  /// slot of each particle in ascending id), and `state` holds the clock, the feed and the springs by partner id
-  /// (ascending id): no copy of the store, which was the run's memory peak at its last checkpoint. On several
-  /// ranks `state` is portable_state() (rank 0 holds every particle, the others none) and `order` the identity.
-  /// Collective. The arrays stay valid until the solver steps.
+  /// the store, the wall springs, the list-build positions and the springs by partner id are the solver's own,
+  /// read through `order` (the slot of each particle in ascending id), and `state` holds the clock and the feed:
+  /// no copy of the store, which was the run's memory peak at its last checkpoint, nor of the springs (the peak
+  /// of a settled bed's, section 39 of docs/performance.md). On several ranks `state` is portable_state() (rank 0
+  /// holds every particle, the others none) and `order` the identity. Collective. The arrays stay valid until the
+  /// solver steps.
   struct CheckpointView {
     State state;
     std::vector<std::size_t> order;
@@ -198,7 +199,10 @@ class DemSolver {
     const WallSprings<Dim>* own_walls = nullptr;
     const std::vector<Spin<Dim>>* own_wall_roll = nullptr;
     std::array<const std::vector<double>*, Dim> own_build{};
+    const HeldSprings<Dim>* own_held = nullptr;  ///< one process: the solver's, in its storage order
     const Store& particles() const { return own_particles ? *own_particles : state.particles; }
+    /// The springs by partner id, particle order[k]'s k-th (in ascending id).
+    const HeldSprings<Dim>& held() const { return own_held ? *own_held : state.held; }
     const WallSprings<Dim>& walls() const { return own_walls ? *own_walls : state.walls; }
     const std::vector<Spin<Dim>>& wall_roll() const { return own_wall_roll ? *own_wall_roll : state.wall_roll; }
     const std::vector<double>& build(int a) const {
@@ -249,8 +253,9 @@ class DemSolver {
   void rebuild(bool counted);
   /// The springs of the owned particles' list entries into held_ (by partner id).
   void gather_held_springs();
-  /// The owned particles' springs by partner id as they are now (gathered from the list when it holds them).
-  HeldSprings<Dim> current_held_springs() const;
+  /// The owned particles' springs by partner id as they are now: held_, gathered from the list first when the list
+  /// holds them (held_ is then out of date, and no one reads it before the next rebuild gathers it anew).
+  const HeldSprings<Dim>& current_held_springs() const;
   /// A State with the clock, the removal and feed counters, and no particles or springs.
   State clock_state() const;
   /// held_'s springs into records named by the entries of the same pairs in the new list.

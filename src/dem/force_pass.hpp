@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/team.hpp"
 #include "dem/dem_solver.hpp"
+#include "dem/growth.hpp"
 #include "dem/kernel_support.hpp"
 
 namespace fluidbed {
@@ -122,9 +123,9 @@ struct DemSolver<Dim>::ForcePass {
     std::size_t used = 0;
     std::uint32_t sink = 0;  // where a touching pair's release goes
     for (std::size_t i = lo; i < hi; ++i) {
-      // Room for every entry of i (the writes below are unconditional); grown by half, so rarely.
+      // Room for every entry of i (the writes below are unconditional); grown by an eighth (dem/growth.hpp).
       if (found.size() < used + (upper[i + 1] - upper[i])) {
-        found.resize(used + (upper[i + 1] - upper[i]) + found.size() / 2 + 64);
+        resize_with_room(found, used + (upper[i + 1] - upper[i]) + 64);
         out = found.data();
       }
       const Vec<Dim> xi = pos(i);
@@ -463,22 +464,18 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   base.assign(nb + 1, 1);
   for (std::size_t b = 0; b < nb; ++b) base[b + 1] = base[b] + contact_count_[b];
   if (contact_force_.capacity() < base[nb]) {
-    contact_force_.reserve(base[nb] + base[nb] / 2);
-    contact_torque_.reserve(2 * (base[nb] + base[nb] / 2));
+    contact_force_.reserve(base[nb] + base[nb] / 8);
+    contact_torque_.reserve(2 * (base[nb] + base[nb] / 8));
   }
   contact_force_.resize(base[nb]);
   contact_torque_.resize(2 * base[nb]);
   // This evaluation's springs by record, record 0 the +0 of the pairs not in contact. Each of the two arrays that
-  // take turns keeps room for growth (a resize beyond the capacity would allocate the exact size, and fault its
-  // pages in, at every evaluation while the bed compacts).
-  const auto sized = [](auto& v, std::size_t m) {
-    if (v.capacity() < m) v.reserve(m + m / 2);
-    v.resize(m);
-  };
-  sized(spring_next_, base[nb]);
+  // take turns keeps room for growth (dem/growth.hpp), so that a compacting bed does not reallocate, and fault
+  // its pages in, at every evaluation.
+  resize_with_room(spring_next_, base[nb]);
   spring_next_[0] = Vec<Dim>{};
   if (Law::kRollingHistory) {
-    sized(roll_spring_next_, base[nb]);
+    resize_with_room(roll_spring_next_, base[nb]);
     roll_spring_next_[0] = Spin<Dim>{};
   }
   pass.spring_in = spring_.data();

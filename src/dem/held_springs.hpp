@@ -4,6 +4,7 @@
 // particle to another rank, and what a checkpoint keeps (docs/parallel.md), so that none of these depends on
 // where either partner is stored. A spring of -0 is held too: a rebuilt list then holds the same bits as the
 // list it replaces.
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -37,13 +38,23 @@ struct HeldSprings {
     ++offset.back();
   }
   void add_particle() { offset.push_back(offset.back()); }
-  /// New particle k takes old particle order[k]'s entries; particles order does not name are dropped.
+  /// New particle k takes old particle order[k]'s entries; particles order does not name are dropped. The new
+  /// arrays are sized exactly (counted first): appended one by one they would hold up to twice their entries.
   void select(const std::vector<std::size_t>& order) {
     HeldSprings out;
-    out.clear(0, rolling_);
-    for (std::size_t k : order) {
-      out.add_particle();
-      for (std::size_t q = offset[k]; q < offset[k + 1]; ++q) out.add(partner_id[q], xi[q], rolling_ ? roll[q] : Spin<Dim>{});
+    out.rolling_ = rolling_;
+    out.offset.resize(order.size() + 1);
+    out.offset[0] = 0;
+    for (std::size_t k = 0; k < order.size(); ++k) out.offset[k + 1] = out.offset[k] + offset[order[k] + 1] - offset[order[k]];
+    const std::size_t m = out.offset[order.size()];
+    out.partner_id.resize(m);
+    out.xi.resize(m);
+    out.roll.resize(rolling_ ? m : 0);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::size_t from = offset[order[k]], count = offset[order[k] + 1] - from, to = out.offset[k];
+      std::copy_n(partner_id.begin() + static_cast<std::ptrdiff_t>(from), count, out.partner_id.begin() + static_cast<std::ptrdiff_t>(to));
+      std::copy_n(xi.begin() + static_cast<std::ptrdiff_t>(from), count, out.xi.begin() + static_cast<std::ptrdiff_t>(to));
+      if (rolling_) std::copy_n(roll.begin() + static_cast<std::ptrdiff_t>(from), count, out.roll.begin() + static_cast<std::ptrdiff_t>(to));
     }
     *this = std::move(out);
   }

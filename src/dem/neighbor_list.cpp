@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/team.hpp"
+#include "dem/growth.hpp"
 
 namespace fluidbed {
 
@@ -200,7 +201,7 @@ std::size_t append_near(const ParticleStore<Dim>& p, const CellBins<Dim>& b, std
     const std::size_t k_begin = b.start[b.flat(rc)];
     rc[0] = c[0] + d_hi[0];
     const std::size_t k_end = b.start[b.flat(rc) + 1];
-    if (out.size() < used + (k_end - k_begin)) out.resize(2 * (used + (k_end - k_begin)));
+    if (out.size() < used + (k_end - k_begin)) resize_with_room(out, used + (k_end - k_begin) + 64);
     std::uint32_t* dst = out.data();
     const double* xs = b.xs[0].data();
     const double* ys = b.xs[1].data();
@@ -340,19 +341,24 @@ void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double 
   // One search pass over the owned particles (all of them on one rank): each thread fills its own buffer for a
   // contiguous block of particles, and the blocks are joined in block order, so the list is the same for any
   // number of threads. Ghosts (slots from `owned` on) are not searched: they take the mirror entries of their
-  // owned partners below, and pairs of two ghosts are left to the ranks that own them.
+  // owned partners below, and pairs of two ghosts are left to the ranks that own them. The first block's entries
+  // are the list's first: its buffer is the list itself (the old list is not read here), so one thread needs no
+  // second copy of the list.
   const int max_threads = omp_get_max_threads();
   std::vector<std::vector<std::uint32_t>>& found = scratch.found;
   if (found.size() < static_cast<std::size_t>(max_threads)) found.resize(static_cast<std::size_t>(max_threads));
+  found[0] = {};
   std::vector<std::size_t> block(static_cast<std::size_t>(max_threads) + 1, owned);
   block[0] = 0;
+  auto buffer = [&](std::size_t t) -> std::vector<std::uint32_t>& { return t == 0 ? out.partner : found[t]; };
 #pragma omp parallel num_threads(max_threads)
   {
     const auto [t, nt] = team_slot();
     const std::size_t lo = owned * t / nt, hi = owned * (t + 1) / nt;
     block[t + 1] = hi;
-    std::vector<std::uint32_t>& mine = found[t];
+    std::vector<std::uint32_t>& mine = buffer(t);
     const auto room = static_cast<std::size_t>(per_particle * static_cast<double>(hi - lo)) + 64;
+    if (mine.capacity() < room) mine.reserve(room);  // exactly: the room has its quarter to spare
     if (mine.size() < room) mine.resize(room);
     std::size_t used = 0;
     for (std::size_t i = lo; i < hi; ++i) {
@@ -367,7 +373,7 @@ void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double 
   if (owned < n) {
     for (std::size_t t = 0; t < static_cast<std::size_t>(max_threads); ++t) {
       if (block[t] >= block[t + 1]) continue;
-      for (std::uint32_t j : found[t]) {
+      for (std::uint32_t j : buffer(t)) {
         if (j >= owned) ++ghost_count[j - owned];
       }
     }
@@ -380,11 +386,11 @@ void build_neighbor_list(const ParticleStore<Dim>& p, std::size_t owned, double 
     throw_simulation_error("neighbour list too long for 32-bit offsets (" + std::to_string(total) + " entries)");
   }
   for (std::size_t i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
-  out.partner.resize(out.offset[n]);
+  resize_with_room(out.partner, out.offset[n]);  // the first block's entries stay where they are
   // No springs per entry: the solver keeps them by contact (DemSolver::spring_).
   out.history = {};
   out.rolling = {};
-  for (std::size_t t = 0; t < static_cast<std::size_t>(max_threads); ++t) {
+  for (std::size_t t = 1; t < static_cast<std::size_t>(max_threads); ++t) {
     if (block[t] < block[t + 1]) std::copy(found[t].begin(), found[t].end(), out.partner.begin() + static_cast<std::ptrdiff_t>(out.offset[block[t]]));
   }
   if (owned < n) {

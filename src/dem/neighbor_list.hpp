@@ -33,6 +33,7 @@ struct NeighborList {
 
 /// Per-thread partner buffers of build_neighbor_list, kept between rebuilds by their owner: for 100,000 spheres
 /// they are ~6 MB, over malloc's mmap threshold, so a fresh allocation per rebuild costs page faults each time.
+/// The first thread's buffer is the list's own partner array (found[0] stays empty).
 struct NeighborScratch {
   std::vector<std::vector<std::uint32_t>> found;
 };

@@ -1,5 +1,6 @@
 #include "models/dem_model.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -97,16 +98,28 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::CheckpointView& s, boo
         for (std::size_t k = first; k < first + m; ++k) *d++ = b[order[k]];
       });
     }
-    // The pair springs each particle holds, by its partner's id (CSR over the particles): no storage slot is
-    // written, so the state restarts on any number of ranks.
-    const HeldSprings<Dim>& h = s.state.held;
-    f.write("dem/held_offset", h.offset.size(), [&h](std::size_t first, std::size_t m, std::int64_t* d) {
-      for (std::size_t k = first; k < first + m; ++k) *d++ = static_cast<std::int64_t>(h.offset[k]);
+    // The pair springs each particle holds, by its partner's id (CSR over the particles, in ascending id): no
+    // storage slot is written, so the state restarts on any number of ranks. Read through the order too: `at`
+    // is the CSR's offsets in ascending id, and the e-th spring written is entry e - at[k] of particle order[k].
+    const HeldSprings<Dim>& h = s.held();
+    std::vector<std::size_t> at(n + 1, 0);
+    for (std::size_t k = 0; k < n; ++k) at[k + 1] = at[k] + h.offset[order[k] + 1] - h.offset[order[k]];
+    const auto each_spring = [&h, &at, &order](std::size_t first, std::size_t m, auto&& put) {
+      std::size_t k = static_cast<std::size_t>(std::upper_bound(at.begin(), at.end(), first) - at.begin()) - 1;
+      for (std::size_t e = first; e < first + m; ++e) {
+        while (e >= at[k + 1]) ++k;
+        put(h.offset[order[k]] + (e - at[k]));
+      }
+    };
+    f.write("dem/held_offset", at.size(), [&at](std::size_t first, std::size_t m, std::int64_t* d) {
+      for (std::size_t k = first; k < first + m; ++k) *d++ = static_cast<std::int64_t>(at[k]);
     });
-    f.write("dem/held_partner_id", h.partner_id);
+    f.write("dem/held_partner_id", at[n], [&](std::size_t first, std::size_t m, std::int64_t* d) {
+      each_spring(first, m, [&](std::size_t q) { *d++ = h.partner_id[q]; });
+    });
     for (int a = 0; a < Dim; ++a) {
-      f.write(std::string("dem/held_xi_") + kAxis[a], h.xi.size(), [&h, a](std::size_t first, std::size_t m, double* d) {
-        for (std::size_t k = first; k < first + m; ++k) *d++ = h.xi[k][a];
+      f.write(std::string("dem/held_xi_") + kAxis[a], at[n], [&](std::size_t first, std::size_t m, double* d) {
+        each_spring(first, m, [&](std::size_t q) { *d++ = h.xi[q][a]; });
       });
     }
     // One spin component of a rolling spring (a scalar in 2D).
@@ -121,8 +134,8 @@ void save_dem(Hdf5File& f, const typename DemSolver<Dim>::CheckpointView& s, boo
     // Rolling springs (laws with one): one array per spin component, absent when the law has none.
     if (h.keeps_rolling()) {
       for (int c = 0; c < kSpinComponents<Dim>; ++c) {
-        f.write(fmt::format("dem/held_roll_{}", c), h.roll.size(), [&](std::size_t first, std::size_t m, double* d) {
-          for (std::size_t k = first; k < first + m; ++k) *d++ = spin_component(h.roll[k], c);
+        f.write(fmt::format("dem/held_roll_{}", c), at[n], [&](std::size_t first, std::size_t m, double* d) {
+          each_spring(first, m, [&](std::size_t q) { *d++ = spin_component(h.roll[q], c); });
         });
       }
     }
