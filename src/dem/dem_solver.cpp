@@ -1415,6 +1415,7 @@ template <int Dim>
 void DemSolver<Dim>::restore(State s) {
   const bool portable = s.neighbors.offset.empty() && s.neighbors.partner.empty();
   p_ = std::move(s.particles);
+  p_.hold_fluid_arrays(fluid_);  // a state saved with or without them (a DEM-only run's has none)
   nbr_ = std::move(s.neighbors);
   walls_ = std::move(s.walls);
   if (walls_.size() == 0) walls_.reset(p_.size());  // a state without wall springs: none held

@@ -79,8 +79,11 @@ class DemSolver {
                   const Vec<Dim>& kernel_reach, double rebalance_threshold = 1.2);
   bool distributed() const { return domain_.has_value(); }
   /// Whether a fluid acts on the particles: the update reads drag_k, the gas velocity and force_ext (the default,
-  /// right for whatever the store holds), or, for a run known to have no gas, leaves those arrays (at zero) unread.
-  void couple_to_fluid(bool on) { fluid_ = on; }
+  /// right for whatever the store holds), or, for a run known to have no gas, the store gives those arrays up.
+  void couple_to_fluid(bool on) {
+    fluid_ = on;
+    p_.hold_fluid_arrays(on);
+  }
   const Comm& comm() const { return domain_ ? domain_->comm() : serial_comm(); }
   /// The block layout of a distributed run (null on one rank).
   const BlockLayout<Dim>* layout() const { return domain_ ? &domain_->layout() : nullptr; }

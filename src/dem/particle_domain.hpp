@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/periodic.hpp"
 #include "core/vec.hpp"
 #include "dem/particle_store.hpp"
@@ -22,10 +23,12 @@
 
 namespace fluidbed {
 
-/// Appends particles `slots` of p (every attribute) to a message: their count, then attribute after attribute.
+/// Appends particles `slots` of p (every attribute) to a message: their count, whether the fluid's arrays come,
+/// then attribute after attribute.
 template <int Dim>
 void pack_particles(Bytes& b, const ParticleStore<Dim>& p, std::span<const std::uint32_t> slots) {
   pack(b, static_cast<std::uint64_t>(slots.size()));
+  pack(b, static_cast<std::uint64_t>(p.holds_fluid_arrays()));
   p.for_each_array([&](const std::string&, const auto& a, ArrayRole) {
     using T = typename std::decay_t<decltype(a)>::value_type;
     const std::size_t at = b.size();
@@ -34,10 +37,14 @@ void pack_particles(Bytes& b, const ParticleStore<Dim>& p, std::span<const std::
     for (std::size_t k = 0; k < slots.size(); ++k) std::memcpy(out + k, &a[slots[k]], sizeof(T));
   });
 }
-/// Appends the particles of such a message to p; returns how many.
+/// Appends the particles of such a message to p; returns how many. An empty p takes the message's arrays (with
+/// or without the fluid's); a store that holds particles must hold the same arrays.
 template <int Dim>
 std::size_t unpack_particles(Unpacker& u, ParticleStore<Dim>& p) {
   const auto n = static_cast<std::size_t>(u.get<std::uint64_t>());
+  const bool fluid = u.get<std::uint64_t>() != 0;
+  if (p.size() == 0) p.hold_fluid_arrays(fluid);
+  if (fluid != p.holds_fluid_arrays()) throw_simulation_error("particle message without the store's fluid arrays (internal error)");
   p.for_each_array([&](const std::string&, auto& a, ArrayRole) {
     using T = typename std::decay_t<decltype(a)>::value_type;
     const std::size_t at = a.size();

@@ -168,16 +168,39 @@ struct ParticleStore : ParticleAxes<Dim> {
     for (int c = 0; c < kSpinComponents<Dim>; ++c) {
       f(std::string(this->kTorqueName[c]), torque_component(c), ArrayRole::Derived);
     }
+    if (fluid_arrays_) for_each_fluid_array(f);
+  }
+  /// The arrays only a run with gas uses (for_each_array's last), with their names and roles.
+  template <class F>
+  void for_each_fluid_array(F&& f) {
+    static constexpr const char* kAxis[3] = {"x", "y", "z"};
     for (int a = 0; a < Dim; ++a) f(std::string("f") + kAxis[a] + "_ext", force_ext(a), ArrayRole::State);
     f(std::string("drag_k"), drag_k, ArrayRole::State);
     for (int a = 0; a < Dim; ++a) f(std::string("ug") + kAxis[a], gas_velocity(a), ArrayRole::State);
+  }
+  /// Whether the store holds the fluid's arrays (force_ext, drag_k, gas_velocity). A run without gas leaves them
+  /// out: nothing writes them, and they are 56 of a 3D particle's 232 bytes. for_each_array lists them only when
+  /// held, so every copy, permutation, message and checkpoint follows.
+  bool holds_fluid_arrays() const { return fluid_arrays_; }
+  /// Gives the fluid's arrays up (emptied, their memory freed) or takes them (zero for every particle).
+  void hold_fluid_arrays(bool on) {
+    if (on == fluid_arrays_) return;
+    const std::size_t n = size();
+    for_each_fluid_array([&](const std::string&, std::vector<double>& a, ArrayRole) {
+      if (on) {
+        a.assign(n, 0.0);
+      } else {
+        std::vector<double>().swap(a);
+      }
+    });
+    fluid_arrays_ = on;
   }
   template <class F>
   void for_each_array(F&& f) const {
     const_cast<ParticleStore*>(this)->for_each_array(
         [&](const std::string& name, auto& a, ArrayRole role) { f(name, std::as_const(a), role); });
   }
-  /// Bytes of one particle over all its arrays.
+  /// Bytes of one particle over all its arrays (the fluid's included).
   static std::size_t bytes_per_particle() {
     std::size_t b = 0;
     ParticleStore p;
@@ -266,6 +289,9 @@ struct ParticleStore : ParticleAxes<Dim> {
   void clear() {
     for_each_array([](const std::string&, auto& a, ArrayRole) { a.clear(); });
   }
+
+ private:
+  bool fluid_arrays_ = true;
 };
 
 extern template struct ParticleStore<2>;

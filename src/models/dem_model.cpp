@@ -189,6 +189,8 @@ void load_dem_particles(const Hdf5File& f, const CaseConfig& config_, typename D
     throw_input_error(fmt::format("{}: inconsistent particle arrays", f.path().string()));
   }
   ParticleStore<Dim>& p = s.particles;
+  // A run without gas saves no fluid arrays (the solver takes them again, at zero, if this case has gas).
+  p.hold_fluid_arrays(f.has("dem/drag_k"));
   p.reserve(id.size());
   for (std::size_t i = 0; i < id.size(); ++i) {
     if (species[i] < 0 || static_cast<std::size_t>(species[i]) >= config_.dem.n_species()) {
