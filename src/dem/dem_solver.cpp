@@ -293,7 +293,9 @@ void DemSolver<Dim>::rebuild(bool counted) {
   // Re-sort by cell only every few rebuilds: the list itself does not need sorted storage, and particles drift
   // from their cells slowly, so memory locality is kept at a fraction of the permutation cost.
   if (counted && rebuilds_ % kSortEvery == 0) {
-    select_owned(assign_order_keys());
+    std::vector<std::size_t> order = assign_order_keys();
+    select_owned(order, true);
+    if (held_.particles() == order.size()) held_from_ = std::move(order);
     key_sorted_ = true;
   } else if (!domain_) {
     walls_.compact();  // springs back at +0 give up their records
@@ -394,6 +396,11 @@ void DemSolver<Dim>::carry_held_springs() {
   if (held_.particles() != n_owned_) return;  // nothing held (a fresh solver)
   const bool rolling = held_.keeps_rolling() && config_.contact.needs_rolling_history();
   const std::size_t n = n_owned_;
+  // Slot i's springs: held_'s particle i, or the one it was before a sort (held_from_). held_'s entries are
+  // numbered in its own order, which `at` follows.
+  const std::vector<std::size_t> from = std::move(held_from_);
+  held_from_ = {};
+  const auto row = [&from](std::size_t i) { return from.empty() ? i : from[i]; };
   std::vector<std::uint32_t>& at = carry_at_;  // per held spring: 1 + its place u in the half list, or 0
   at.assign(held_.offset[n], 0);
   std::vector<std::size_t>& first = carry_first_;
@@ -408,7 +415,7 @@ void DemSolver<Dim>::carry_held_springs() {
     // is in a list at most once (a period spans more than two reaches). A partner below i is not found: its own
     // copy makes the record.
     std::size_t u = u0, found = 0;
-    for (std::size_t q = held_.offset[i]; q < held_.offset[i + 1]; ++q) {
+    for (std::size_t q = held_.offset[row(i)]; q < held_.offset[row(i) + 1]; ++q) {
       const std::int64_t j = held_.partner_id[q];
       for (std::size_t step = u0; step < u1; ++step, ++u) {
         if (u == u1) u = u0;
@@ -427,7 +434,7 @@ void DemSolver<Dim>::carry_held_springs() {
   for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     std::size_t g = first[i];
-    for (std::size_t q = held_.offset[i]; q < held_.offset[i + 1]; ++q) {
+    for (std::size_t q = held_.offset[row(i)]; q < held_.offset[row(i) + 1]; ++q) {
       if (at[q] != 0) set_record(g++, at[q] - 1, held_.xi[q], rolling ? held_.roll[q] : Spin<Dim>{});
     }
   }
@@ -585,13 +592,13 @@ void DemSolver<Dim>::drop_ghosts() {
 }
 
 template <int Dim>
-void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order) {
+void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order, bool springs_later) {
   // What is the particles' own goes with them: the store, the springs against the walls and of the pairs, the
   // positions of the last build. The ghosts (slots from n_owned_ on) are never named, so they go.
   p_.permute(order);
   walls_.permute(order);
   permute_wall_roll(order);
-  if (held_.particles() == n_owned_) held_.select(order);
+  if (held_.particles() == n_owned_ && !springs_later) held_.select(order);
   for (int a = 0; a < Dim; ++a) {
     std::vector<double>& b = build_[static_cast<std::size_t>(a)];
     if (b.size() != n_owned_) continue;

@@ -264,7 +264,9 @@ class DemSolver {
   /// held_'s springs into records named by the entries of the same pairs in the new list.
   void carry_held_springs();
   /// Keep the owned particles `order` names (in that order), with everything that is theirs; ghosts are dropped.
-  void select_owned(const std::vector<std::size_t>& order);
+  /// With `springs_later` the springs by partner id stay where they are, read through held_from_ by the
+  /// carry_held_springs that follows (a rebuild's sort: a copy of them would be its peak of memory).
+  void select_owned(const std::vector<std::size_t>& order, bool springs_later = false);
   /// Distributed: the ghosts leave the store (the owned slots stay as they are).
   void drop_ghosts();
   /// Distributed: the particles whose block belongs to another rank go there, with their springs.
@@ -351,6 +353,8 @@ class DemSolver {
   /// The owned particles' springs by partner id, in store order: gathered from the list when it is rebuilt, or
   /// restored from a portable state (list_springs_ false until the list is built).
   HeldSprings<Dim> held_;
+  /// Between a rebuild's sort and its carry_held_springs: the particle of held_ that slot i was (else empty).
+  std::vector<std::size_t> held_from_;
   bool list_springs_ = false;  ///< nbr_ holds the current springs (else held_ does)
   bool list_stale_ = true;     ///< nbr_ must be built anew before the next force evaluation (not counted)
   std::size_t n_owned_ = 0;
