@@ -556,6 +556,26 @@ bool frictionless(const DemConfig& dem) {
   return none;
 }
 
+// The DEM solver's data a particle of a packed bed, as it holds it (docs/performance.md section 39, within 10% of
+// the settled 3D bed's measured heap): the store, 8 bytes a double array and 24 of ids and keys, the fluid's five
+// (2D) or seven (3D) arrays only with gas; the list-build positions; per-particle offsets and orders, 36; E list
+// entries of 18 bytes (partner, contact mark, half-list links, the scan's room); C / 2 contact records (force, two
+// torques, the spring and its next value, the rolling springs' too for a law with them); the C springs by
+// partner id a rebuild carries (id, spring, its place). Lists and records keep an eighth to spare (dem/growth.hpp).
+// E and C are those counted on packed beds at the default skin (bench/contact_counts.py): 6 and 3.7 in 2D, 15 and
+// 7 in 3D.
+double dem_bytes_per_particle(const CaseConfig& c) {
+  const bool three_d = c.domain.dimension == 3;
+  const double dim = three_d ? 3.0 : 2.0, spin = three_d ? 3.0 : 1.0;
+  const double entries = three_d ? 15.0 : 6.0, contacts = three_d ? 7.0 : 3.7;
+  const bool rolling = c.dem.contact.needs_rolling_history();
+  const double doubles = 3.0 * dim + 2.0 * spin + 4.0 + (c.gas_enabled ? 2.0 * dim + 1.0 : 0.0);
+  const double store = 8.0 * doubles + 24.0 + 8.0 * dim + 36.0;
+  const double record = 8.0 * (dim + 2.0 * spin + 2.0 * dim + (rolling ? 2.0 * spin : 0.0));
+  const double held = 8.0 + 8.0 * dim + (rolling ? 8.0 * spin : 0.0) + 4.0;
+  return store + 1.125 * (18.0 * entries + 0.5 * contacts * record) + contacts * held;
+}
+
 void describe_dem_bed(Report& r, const CaseConfig& c, BedTotals& bed) {
   const DemConfig& dem = c.dem;
   const auto n = c.particles.packing.count;
@@ -590,13 +610,8 @@ void describe_dem_bed(Report& r, const CaseConfig& c, BedTotals& bed) {
     r.line(fmt::format("{} at eps_mf = {}", bed_minimum_fluidisation_label(c), kDemEpsMf),
            fmt::format("{:.3f} m/s{}", *u, dem.n_species() > 1 ? " (the mixture's d32 and density)" : ""));
   }
-  // The solver's data per particle (docs/performance.md, section 4) with E = 6 list entries (a packed bed):
-  // store 152, last-rebuild positions and wall springs 80, list and its previous copy 2 x (8 + 20 E), per-entry
-  // mirror, force and torque 28 E. The program and its libraries add about 25 MB.
-  constexpr double entries = 6.0;
-  const double bytes_per_particle = 152.0 + 80.0 + 2.0 * (8.0 + 20.0 * entries) + 28.0 * entries;
   r.line("memory estimate", fmt::format("{:.1f} MB for the particles (plus about 25 MB for the program)",
-                                        static_cast<double>(n) * bytes_per_particle / 1e6));
+                                        static_cast<double>(n) * dem_bytes_per_particle(c) / 1e6));
 }
 
 void describe_dem_boundaries(Report& r, const CaseConfig& c) {

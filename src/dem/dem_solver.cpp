@@ -1348,12 +1348,12 @@ typename DemSolver<Dim>::CheckpointView DemSolver<Dim>::checkpoint_view() const 
   if (domain_) {
     v.state = portable_state();
     v.order.resize(v.state.particles.size());
-    for (std::size_t k = 0; k < v.order.size(); ++k) v.order[k] = k;
+    for (std::size_t k = 0; k < v.order.size(); ++k) v.order[k] = static_cast<std::uint32_t>(k);
     return v;
   }
   // One process: the arrays where they are, read in ascending id.
   v.state = clock_state();
-  v.order = ascending_id_order(p_);
+  v.order = p_.slots_in_id_order();
   const HeldSprings<Dim>& held = current_held_springs();
   if (held.particles() == n_owned_) {
     v.own_held = &held;

@@ -197,7 +197,7 @@ class DemSolver {
   /// solver steps.
   struct CheckpointView {
     State state;
-    std::vector<std::size_t> order;
+    std::vector<std::uint32_t> order;
     const Store* own_particles = nullptr;  ///< one process: the solver's store; else state.particles
     const WallSprings<Dim>* own_walls = nullptr;
     const std::vector<Spin<Dim>>* own_wall_roll = nullptr;

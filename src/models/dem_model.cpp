@@ -63,7 +63,7 @@ template <int Dim>
 void save_dem(Hdf5File& f, const typename DemSolver<Dim>::CheckpointView& s, bool own_sizes) {
     static constexpr const char* kAxis[3] = {"x", "y", "z"};
     const ParticleStore<Dim>& p = s.particles();
-    const std::vector<std::size_t>& order = s.order;
+    const std::vector<std::uint32_t>& order = s.order;
     const std::size_t n = order.size();
     f.create_group("dem");
     // Every state attribute of the store under its own name (ParticleStore::for_each_array), then the
