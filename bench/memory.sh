@@ -19,6 +19,7 @@ fluidbed="$build/fluidbed"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 results="$work/results.txt"
+source "$here/rss_plateau.sh"
 : > "$results"
 end=$(python3 -c "print($steps * 2e-4)")
 
@@ -29,16 +30,9 @@ run() {
   rm -rf "$out"
   /usr/bin/time -f "%M" -o "$work/time" "$fluidbed" run "$case" --out "$out" --end-time "$end" --threads 2 --quiet \
     --set output.fields=false --set output.interval=100 --set dem.max_overlap_fraction=0.5 "$@" &
-  local pid=$! plateau=0 rss child=""
-  while kill -0 "$pid" 2>/dev/null; do
-    [ -n "$child" ] || child=$(pgrep -P "$pid" -n || true)
-    if [ -n "$child" ] && [ -z "$(ls "$out/checkpoints" 2>/dev/null)" ] &&
-       { [ "$variant" = noframe ] || [ -n "$(ls "$out/particles" 2>/dev/null | grep 'vtu$' || true)" ]; }; then
-      rss=$(awk '/^VmRSS/{print $2}' "/proc/$child/status" 2>/dev/null || echo 0)
-      [ "${rss:-0}" -gt "$plateau" ] && plateau=$rss
-    fi
-    sleep 0.01
-  done
+  local pid=$! frames=1 plateau
+  [ "$variant" != noframe ] || frames=0
+  plateau="$(rss_plateau "$pid" "$out" "$frames")"
   wait "$pid"
   echo "$name $variant $(cat "$work/time") $plateau" >> "$results"
 }

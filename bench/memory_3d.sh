@@ -6,22 +6,24 @@
 # its contacts; STEPS = 10 the placement, nearly without contacts (the figure bench/peer_lammps_3d.sh reports).
 # One core each. Figures a particle, (X_2N - X_N) / N:
 #   peak      /usr/bin/time's maximum resident set (fluidbed: the final checkpoint included);
-#   stepping  fluidbed only: the largest VmRSS sampled every 20 ms before the final checkpoint is begun.
-# Usage: bash bench/memory_3d.sh [BUILD_DIR] [STEPS] [RUNS]; writes bench/log.<date>.memory-3d-<STEPS>.<cc>.1
+#   stepping  fluidbed only: the largest VmRSS sampled every 10 ms before the final checkpoint is begun.
+# Usage: bash bench/memory_3d.sh [BUILD_DIR] [STEPS] [RUNS]   (env: LAMMPS=0 leaves LAMMPS out)
+# Writes bench/log.<date>.memory-3d-<STEPS>.<cc>.1
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
 build="${1:-$root/build}"
 steps="${2:-2000}"
 runs="${3:-1}"
+with_lammps="${LAMMPS:-1}"
 fluidbed="$build/fluidbed"
 [ -x "$fluidbed" ] || { echo "no $fluidbed: build first (make build)" >&2; exit 2; }
 SUDO=""; [ "$(id -u)" = 0 ] || SUDO="sudo"
-if ! command -v lmp >/dev/null; then
+if [ "$with_lammps" = 1 ] && ! command -v lmp >/dev/null; then
   echo "installing the Debian package lammps" >&2
   $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends lammps >&2 || true
 fi
-command -v lmp >/dev/null || { echo "LAMMPS (lmp) is not installed and could not be installed" >&2; exit 2; }
+[ "$with_lammps" != 1 ] || command -v lmp >/dev/null || { echo "LAMMPS (lmp) is not installed and could not be installed" >&2; exit 2; }
 export OMP_NUM_THREADS=1
 n=100000
 width=0.3 height=0.6 depth=0.08 diameter=0.004 skin=0.002 dt=2e-4
@@ -36,38 +38,34 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 end_time="$(python3 -c "print($steps * $dt)")"
 results="$work/results.txt"
+source "$here/rss_plateau.sh"
 : > "$results"
 
 # fb NAME CSV DEPTH: one fluidbed run; appends "fluidbed NAME peak_kB stepping_kB"
 fb() {
-  local name=$1 csv=$2 d=$3 out="$work/out" plateau=0 rss child=""
+  local name=$1 csv=$2 d=$3 out="$work/out" plateau
   rm -rf "$out"
   /usr/bin/time -f "%M" -o "$work/time" "$fluidbed" run "$root/cases/bench/settle-100k-3d.toml" --out "$out" \
     --end-time "$end_time" --threads 1 --quiet --set "dem.skin=$skin" --set output.particles=false \
     --set particles.source=file --set "particles.file=$csv" --set "domain.depth=$d" &
   local pid=$!
-  while kill -0 "$pid" 2>/dev/null; do
-    [ -n "$child" ] || child=$(pgrep -P "$pid" -n || true)
-    if [ -n "$child" ] && [ -z "$(ls "$out/checkpoints" 2>/dev/null)" ]; then
-      rss=$(awk '/^VmRSS/{print $2}' "/proc/$child/status" 2>/dev/null || echo 0)
-      [ "${rss:-0}" -gt "$plateau" ] && plateau=$rss
-    fi
-    sleep 0.02
-  done
+  plateau="$(rss_plateau "$pid" "$out")"
   wait "$pid"
   echo "fluidbed $name $(cat "$work/time") $plateau" >> "$results"
 }
-# lm NAME DATA: one LAMMPS run; appends "lammps NAME peak_kB 0"
+# lm NAME DATA DEPTH: one LAMMPS run; appends "lammps NAME peak_kB 0"
 lm() {
   (cd "$work" && /usr/bin/time -f "%M" -o "$work/time" lmp -in "$here/lammps/settle-100k-3d.in" -var data "$2" \
-    -var steps "$steps" -var skin "$skin" -log none -screen none)
+    -var steps "$steps" -var skin "$skin" -var depth "$3" -log none -screen none)
   echo "lammps $1 $(cat "$work/time") 0" >> "$results"
 }
 for r in $(seq 1 "$runs"); do
   fb n "$bed-n.csv" "$depth"
   fb 2n "$bed-2n.csv" "$depth2"
-  lm n "$bed-n.data"
-  lm 2n "$bed-2n.data"
+  if [ "$with_lammps" = 1 ]; then
+    lm n "$bed-n.data" "$depth"
+    lm 2n "$bed-2n.data" "$depth2"
+  fi
 done
 
 compiler="$(c++ -v 2>&1 | grep -q '^gcc version' && echo g++ || echo clang++)"
@@ -79,11 +77,12 @@ for line in open(sys.argv[1]):
     code, name, peak, step = line.split()
     rows.setdefault((code, name), []).append((float(peak), float(step)))
 n, steps = int(sys.argv[2]), int(sys.argv[3])
-rev = subprocess.run(["git", "-C", sys.argv[4].rsplit("/", 2)[0], "rev-parse", "--short", "HEAD"],
-                     capture_output=True, text=True).stdout.strip()
+ver = subprocess.run([sys.argv[4], "--version"], capture_output=True, text=True).stdout.strip()
 print(f"# 3D settle, bytes a particle at step {steps}: (RSS(2N) - RSS(N)) / N, N = {n}, the 2N bed twice as deep;"
-      f" medians of {len(rows[('lammps', 'n')])} runs; fluidbed {rev}")
+      f" medians of {len(rows[('fluidbed', 'n')])} runs; {sys.argv[4]} ({ver})")
 for code in ("fluidbed", "lammps"):
+    if (code, "n") not in rows:
+        continue
     med = {name: (statistics.median(p for p, _ in rows[(code, name)]),
                   statistics.median(s for _, s in rows[(code, name)])) for name in ("n", "2n")}
     peak = (med["2n"][0] - med["n"][0]) * 1024 / n
