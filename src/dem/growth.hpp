@@ -1,7 +1,8 @@
 #pragma once
 // How the DEM's long-lived buffers grow. libstdc++'s resize beyond the capacity allocates twice the old size, so a
 // list or a record array that grows by a few percent as a bed compacts would keep up to twice what it holds, for
-// the rest of the run (docs/performance.md section 39: 1.7 kB a sphere of a settled 3D bed, a third of it slack).
+// the rest of the run (docs/performance.md section 39: with the copies, 2.6 kB of heap a settled 3D sphere; 1.5 kB
+// without).
 // An eighth to spare instead: a bed that grows from nothing reallocates an array about nine times its final
 // size in all (page faults of a few ms over a run), and holds at most an eighth more than it needs.
 #include <cstddef>
