@@ -398,8 +398,7 @@ void DemSolver<Dim>::carry_held_springs() {
   const std::size_t n = n_owned_;
   // Slot i's springs: held_'s particle i, or the one it was before a sort (held_from_). held_'s entries are
   // numbered in its own order, which `at` follows.
-  const std::vector<std::size_t> from = std::move(held_from_);
-  held_from_ = {};
+  const std::vector<std::size_t> from = std::exchange(held_from_, {});
   const auto row = [&from](std::size_t i) { return from.empty() ? i : from[i]; };
   std::vector<std::uint32_t>& at = carry_at_;  // per held spring: 1 + its place u in the half list, or 0
   at.assign(held_.offset[n], 0);
@@ -451,7 +450,7 @@ void DemSolver<Dim>::number_records() {
   const bool rolling = config_.contact.needs_rolling_history();
   resize_with_room(spring_, records);
   spring_[0] = Vec<Dim>{};
-  if (rolling && roll_spring_.capacity() < records) roll_spring_.reserve(records + records / 8);
+  if (rolling) reserve_with_room(roll_spring_, records);
   roll_spring_.assign(rolling ? records : 0, Spin<Dim>{});
 }
 
@@ -837,7 +836,7 @@ void DemSolver<Dim>::link_mirrors() {
   // With room for growth: assign() beyond the capacity allocates the exact size, which a list growing as the bed
   // compacts would pay (in page faults) at every rebuild.
   const std::size_t m = nbr_.entries();
-  if (entry_contact_.capacity() < m) entry_contact_.reserve(m + m / 8);
+  reserve_with_room(entry_contact_, m);
   entry_contact_.assign(m, 0);
   adopt_entry_springs();
 }

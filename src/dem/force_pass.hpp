@@ -463,12 +463,8 @@ double DemSolver<Dim>::compute_forces_of(double dt) {
   std::vector<std::size_t>& base = contact_base_;
   base.assign(nb + 1, 1);
   for (std::size_t b = 0; b < nb; ++b) base[b + 1] = base[b] + contact_count_[b];
-  if (contact_force_.capacity() < base[nb]) {
-    contact_force_.reserve(base[nb] + base[nb] / 8);
-    contact_torque_.reserve(2 * (base[nb] + base[nb] / 8));
-  }
-  contact_force_.resize(base[nb]);
-  contact_torque_.resize(2 * base[nb]);
+  resize_with_room(contact_force_, base[nb]);
+  resize_with_room(contact_torque_, 2 * base[nb]);
   // This evaluation's springs by record, record 0 the +0 of the pairs not in contact. Each of the two arrays that
   // take turns keeps room for growth (dem/growth.hpp), so that a compacting bed does not reallocate, and fault
   // its pages in, at every evaluation.

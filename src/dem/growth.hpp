@@ -9,10 +9,16 @@
 
 namespace fluidbed {
 
+/// Capacity for m, with room for m + m / 8 when it must grow (for a caller that then fills v itself).
+template <class V>
+void reserve_with_room(V& v, std::size_t m) {
+  if (v.capacity() < m) v.reserve(m + m / 8);
+}
+
 /// v.resize(m), with room for m + m / 8 when it must grow.
 template <class V>
 void resize_with_room(V& v, std::size_t m) {
-  if (v.capacity() < m) v.reserve(m + m / 8);
+  reserve_with_room(v, m);
   v.resize(m);
 }
 
