@@ -18,12 +18,8 @@ runs="${3:-1}"
 with_lammps="${LAMMPS:-1}"
 fluidbed="$build/fluidbed"
 [ -x "$fluidbed" ] || { echo "no $fluidbed: build first (make build)" >&2; exit 2; }
-SUDO=""; [ "$(id -u)" = 0 ] || SUDO="sudo"
-if [ "$with_lammps" = 1 ] && ! command -v lmp >/dev/null; then
-  echo "installing the Debian package lammps" >&2
-  $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends lammps >&2 || true
-fi
-[ "$with_lammps" != 1 ] || command -v lmp >/dev/null || { echo "LAMMPS (lmp) is not installed and could not be installed" >&2; exit 2; }
+source "$here/lammps/ensure_lammps.sh"
+[ "$with_lammps" != 1 ] || ensure_lammps
 export OMP_NUM_THREADS=1
 n=100000
 width=0.3 height=0.6 depth=0.08 diameter=0.004 skin=0.002 dt=2e-4

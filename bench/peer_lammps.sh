@@ -13,13 +13,8 @@ skin="${3:-0.002}"
 fluidbed="$build/fluidbed"
 case_file="$root/cases/bench/settle-22k.toml"
 [ -x "$fluidbed" ] || { echo "no $fluidbed: build first (make build)" >&2; exit 2; }
-if ! command -v lmp >/dev/null; then
-  # The peer is a Debian package like the rest of the tool chain: install it when missing.
-  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
-  echo "installing the Debian package lammps" >&2
-  $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends lammps >&2 || true
-fi
-command -v lmp >/dev/null || { echo "LAMMPS (lmp, Debian package lammps) is not installed and could not be installed" >&2; exit 2; }
+source "$here/lammps/ensure_lammps.sh"
+ensure_lammps
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

@@ -25,12 +25,8 @@ export OMP_NUM_THREADS=1
 if [ "$lammps_only" != 1 ]; then
   [ -x "$fluidbed" ] || { echo "no $fluidbed: build first (make build)" >&2; exit 2; }
 fi
-if ! command -v lmp >/dev/null; then
-  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
-  echo "installing the Debian package lammps" >&2
-  $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends lammps >&2 || true
-fi
-command -v lmp >/dev/null || { echo "LAMMPS (lmp, Debian package lammps) is not installed and could not be installed" >&2; exit 2; }
+source "$here/lammps/ensure_lammps.sh"
+ensure_lammps
 
 # The placements: N spheres in the benchmark box, read by both codes, and 2N in a box twice as tall at the same
 # packing, for the memory measurement.
