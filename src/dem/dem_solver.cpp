@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/team.hpp"
 #include "dem/growth.hpp"
+#include "dem/selection.hpp"
 #include "dem/kernel_support.hpp"
 
 namespace fluidbed {
@@ -281,11 +282,10 @@ void DemSolver<Dim>::rebuild(bool counted) {
   list_springs_ = false;
   marked_ = false;  // the records belong to the list about to go (measure_costs reads only its contact marks)
   if (domain_) {
-    if (counted) measure_costs();  // from the list about to go
-    drop_ghosts();  // the new set comes after migration
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = domain_->comm().seconds_communicating();
-    const bool dealt_again = counted && rebalance_if_needed();
+    const bool dealt_again = counted && rebalance_if_needed();  // from the list about to go, when it deals
+    drop_ghosts();  // the new set comes after migration
     migrate(dealt_again);
     comm_stats_.rebuild_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     comm_stats_.rebuild_comm_s += domain_->comm().seconds_communicating() - c0;
@@ -601,6 +601,10 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order, bool sp
   for (int a = 0; a < Dim; ++a) {
     std::vector<double>& b = build_[static_cast<std::size_t>(a)];
     if (b.size() != n_owned_) continue;
+    if (is_ascending_selection(order)) {
+      select_in_place(b, order);
+      continue;
+    }
     std::vector<double> nb(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) nb[k] = b[order[k]];
     b.swap(nb);
@@ -699,23 +703,30 @@ bool DemSolver<Dim>::rebalance_if_needed() {
   const BlockLayout<Dim>& layout = domain_->layout();
   const auto nr = static_cast<std::size_t>(c.size());
   const auto me = static_cast<std::size_t>(c.rank());
-  double counted = 0.0;
-  for (std::size_t i = 0; i < n_owned_; ++i) counted += i < cost_.size() ? cost_[i] : 1.0;
-  std::vector<double> figures(2 * nr, 0.0);  // per rank: seconds busy, counted cost
-  figures[me] = busy_s_;
-  figures[nr + me] = counted;
-  c.max(std::span<double>(figures));  // each rank's own entries, the others zero
+  std::vector<double> busy(nr, 0.0);  // per rank: seconds busy
+  busy[me] = busy_s_;
+  c.max(std::span<double>(busy));  // each rank's own entry, the others zero
   busy_s_ = 0.0;
-  const std::vector<double> busy(figures.begin(), figures.begin() + static_cast<std::ptrdiff_t>(nr));
-  const std::vector<double> cost(figures.begin() + static_cast<std::ptrdiff_t>(nr), figures.end());
   // Without time measured yet (the first build, after a restore) or with an idle rank, the counts decide alone.
   const bool timed = std::all_of(busy.begin(), busy.end(), [](double t) { return t > 0.0; });
-  imbalance_ = imbalance(timed ? busy : cost);
-  if (imbalance_ <= rebalance_threshold_) return false;
+  if (timed) {
+    imbalance_ = imbalance(busy);
+    if (imbalance_ <= rebalance_threshold_) return false;  // the usual verdict: no costs counted
+  }
+  measure_costs();
+  double counted = 0.0;
+  for (std::size_t i = 0; i < n_owned_; ++i) counted += cost_[i];
+  if (!timed) {
+    std::vector<double> cost(nr, 0.0);
+    cost[me] = counted;
+    c.max(std::span<double>(cost));
+    imbalance_ = imbalance(cost);
+    if (imbalance_ <= rebalance_threshold_) return false;
+  }
   const double per_cost = timed && counted > 0.0 ? busy[me] / counted : 1.0;
   std::vector<double> weight(static_cast<std::size_t>(layout.blocks()), 0.0);
   for (std::size_t i = 0; i < n_owned_; ++i) {
-    weight[static_cast<std::size_t>(layout.block_at(p_.pos(i)))] += (i < cost_.size() ? cost_[i] : 1.0) * per_cost;
+    weight[static_cast<std::size_t>(layout.block_at(p_.pos(i)))] += cost_[i] * per_cost;
   }
   c.max(std::span<double>(weight));  // a block's particles are all on its owner: the maximum is its weight
   const std::vector<int> before = layout.owners();
@@ -729,6 +740,10 @@ template <int Dim>
 void DemSolver<Dim>::permute_wall_roll(const std::vector<std::size_t>& order) {
   constexpr std::size_t nw = 2 * Dim;
   if (wall_roll_.empty()) return;
+  if (is_ascending_selection(order)) {
+    select_in_place(wall_roll_, order, nw);
+    return;
+  }
   std::vector<Spin<Dim>> next(order.size() * nw);
   for (std::size_t k = 0; k < order.size(); ++k) {
     for (std::size_t w = 0; w < nw; ++w) next[k * nw + w] = wall_roll_[order[k] * nw + w];
@@ -737,22 +752,29 @@ void DemSolver<Dim>::permute_wall_roll(const std::vector<std::size_t>& order) {
 }
 
 template <int Dim>
-bool DemSolver<Dim>::link_sorted_mirrors() {
-  // Lists sorted by partner slot (one rank, after a sorting rebuild: the usual case) hold each particle's lower
-  // partners first, in ascending order; taken in ascending order, the particles naming j as an upper partner are
-  // those same partners in the same order, so the c-th of them finds its mirror at j's c-th entry, with no search.
-  // One pass over the list (serial: the count per partner is a running one); any entry out of that order sends
-  // the list to the search instead.
+bool DemSolver<Dim>::link_sorted_mirrors(std::span<const std::uint32_t> visit) {
+  // Every list holds its partners in the canonical order (ascending order key and id: build_neighbor_list), which
+  // after a sorting rebuild on one rank is the slots' own (visit empty). Taken in that order, the particles that
+  // evaluate a pair with j (its partners in lower slots) come in the order j's list holds them, so each finds its
+  // mirror at the next of j's entries that names a lower slot, with no search: one pass over the list (serial: the
+  // cursor per partner is a running one), the entries of j's own pairs stepped over once. On one rank after a
+  // sorting rebuild j's lower partners are its list's head and nothing is stepped over. Any entry out of that
+  // order sends the list to the search instead.
   const std::size_t n = p_.size();
-  std::vector<std::uint32_t>& seen = mirror_cursor_;
-  seen.assign(n, 0);
+  std::vector<std::uint32_t>& cursor = mirror_cursor_;
+  cursor.assign(nbr_.offset.begin(), nbr_.offset.begin() + static_cast<std::ptrdiff_t>(n));
   const std::uint32_t* partner = nbr_.partner.data();
-  for (std::size_t i = 0, u = 0; i < n; ++i) {
+  for (std::size_t c = 0; c < n; ++c) {
+    const std::size_t i = visit.empty() ? c : visit[c];
+    std::size_t u = upper_offset_[i];
     for (std::size_t k = nbr_.offset[i]; k < nbr_.offset[i + 1]; ++k) {
       const std::size_t j = partner[k];
       if (j <= i) continue;
-      const std::size_t q = nbr_.offset[j] + seen[j]++;
-      if (q >= nbr_.offset[j + 1] || partner[q] != i) return false;
+      std::size_t q = cursor[j];
+      const std::size_t end = nbr_.offset[j + 1];
+      while (q < end && partner[q] > j) ++q;
+      if (q == end || partner[q] != i) return false;
+      cursor[j] = static_cast<std::uint32_t>(q + 1);
       upper_entry_[u] = static_cast<std::uint32_t>(k);
       upper_mirror_[u] = static_cast<std::uint32_t>(q);
       ++u;
@@ -803,8 +825,15 @@ void DemSolver<Dim>::link_mirrors() {
   resize_with_room(upper_entry_, upper_offset_[n]);
   resize_with_room(upper_mirror_, upper_offset_[n]);
   int missing = 0;
-  // Several ranks sort by the canonical order, not by slot: their lists go to the search directly.
-  if (domain_ || !link_sorted_mirrors()) {
+  // The lists are in the canonical order when a build sorted them; elsewhere (a restored or grown list) the order
+  // may be any, and the search finds the mirrors.
+  bool linked = false;
+  if (!domain_ && key_sorted_) {
+    linked = link_sorted_mirrors({});
+  } else if (canonical_generation_ == generation_ && canonical_.size() == n) {
+    linked = link_sorted_mirrors(canonical_);
+  }
+  if (!linked) {
 #pragma omp parallel for schedule(static) reduction(max : missing)
     for (std::ptrdiff_t ii = 0; ii < sn; ++ii) {
       const auto i = static_cast<std::size_t>(ii);

@@ -281,7 +281,7 @@ class DemSolver {
   void finish_step_distributed(int& moved_far, int& bad, int& escaped);
   void link_mirrors();
   /// link_mirrors without a search, for lists sorted by partner slot; false (links unfinished) for any other list.
-  bool link_sorted_mirrors();
+  bool link_sorted_mirrors(std::span<const std::uint32_t> visit);
   /// Drop the particles whose centre is beyond an outflow side, keeping the order of the others, their neighbour
   /// entries and contact springs; counts them and their mass.
   std::size_t remove_escaped();
@@ -434,7 +434,7 @@ class DemSolver {
   /// A force evaluation ran on the current list: entry_contact_ marks its touching pairs, the only entries that
   /// can hold a spring to release.
   bool marked_ = false;
-  std::vector<std::uint32_t> mirror_cursor_;  ///< link_sorted_mirrors' count per partner
+  std::vector<std::uint32_t> mirror_cursor_;  ///< link_sorted_mirrors' next entry per partner
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double max_overlap_fraction_ = 0.0;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/vec.hpp"
+#include "dem/selection.hpp"
 
 namespace fluidbed {
 
@@ -41,6 +42,28 @@ struct HeldSprings {
   /// New particle k takes old particle order[k]'s entries; particles order does not name are dropped. The new
   /// arrays are sized exactly (counted first): appended one by one they would hold up to twice their entries.
   void select(const std::vector<std::size_t>& order) {
+    if (is_ascending_selection(order)) {
+      // Each kept particle's entries move towards the front (never past their old place): in place.
+      std::size_t to = 0;
+      for (std::size_t k = 0; k < order.size(); ++k) {
+        const std::size_t from = offset[order[k]], count = offset[order[k] + 1] - from;
+        if (from != to) {
+          const auto f = static_cast<std::ptrdiff_t>(from), t = static_cast<std::ptrdiff_t>(to);
+          const auto c = static_cast<std::ptrdiff_t>(count);
+          std::copy(partner_id.begin() + f, partner_id.begin() + f + c, partner_id.begin() + t);
+          std::copy(xi.begin() + f, xi.begin() + f + c, xi.begin() + t);
+          if (rolling_) std::copy(roll.begin() + f, roll.begin() + f + c, roll.begin() + t);
+        }
+        offset[k] = to;
+        to += count;
+      }
+      offset[order.size()] = to;
+      offset.resize(order.size() + 1);
+      partner_id.resize(to);
+      xi.resize(to);
+      roll.resize(rolling_ ? to : 0);
+      return;
+    }
     HeldSprings out;
     out.rolling_ = rolling_;
     out.offset.resize(order.size() + 1);

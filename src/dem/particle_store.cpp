@@ -1,11 +1,17 @@
 #include "dem/particle_store.hpp"
 
+#include "dem/selection.hpp"
+
 #include <algorithm>
 
 namespace fluidbed {
 
 template <int Dim>
 void ParticleStore<Dim>::permute(const std::vector<std::size_t>& order) {
+  if (is_ascending_selection(order)) {
+    for_each_array([&](const std::string&, auto& a, ArrayRole) { select_in_place(a, order); });
+    return;
+  }
   std::vector<double> d;
   std::vector<std::int32_t> i32;
   std::vector<std::int64_t> i64;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/vec.hpp"
+#include "dem/selection.hpp"
 
 namespace fluidbed {
 
@@ -52,6 +53,11 @@ class WallSprings {
   void push_back() { record_.push_back(-1); }
   /// New slot k takes old slot order[k]; slots order does not name are dropped with their records (a selection).
   void permute(const std::vector<std::size_t>& order) {
+    if (is_ascending_selection(order)) {
+      select_in_place(record_, order);
+      compact();
+      return;
+    }
     std::vector<std::int32_t> next(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) next[k] = record_[order[k]];
     record_.swap(next);
