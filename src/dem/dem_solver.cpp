@@ -307,7 +307,8 @@ void DemSolver<Dim>::rebuild(bool counted) {
   if (domain_) {
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = domain_->comm().seconds_communicating();
-    plan_ = domain_->exchange_ghosts(p_, n_owned_);
+    plan_ = domain_->exchange_ghosts(p_, n_owned_, owned_block_);
+    owned_block_.clear();  // the positions move on
     comm_stats_.rebuild_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     comm_stats_.rebuild_comm_s += domain_->comm().seconds_communicating() - c0;
     comm_stats_.rebuild_bytes += plan_.sent() * ParticleStore<Dim>::bytes_per_particle();
@@ -598,6 +599,17 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order, bool sp
   walls_.permute(order);
   permute_wall_roll(order);
   if (held_.particles() == n_owned_ && !springs_later) held_.select(order);
+  if (owned_block_.size() == n_owned_) {
+    if (is_ascending_selection(order)) {
+      select_in_place(owned_block_, order);
+    } else {
+      std::vector<int> nb(order.size());
+      for (std::size_t k = 0; k < order.size(); ++k) nb[k] = owned_block_[order[k]];
+      owned_block_.swap(nb);
+    }
+  } else {
+    owned_block_.clear();
+  }
   for (int a = 0; a < Dim; ++a) {
     std::vector<double>& b = build_[static_cast<std::size_t>(a)];
     if (b.size() != n_owned_) continue;
@@ -630,8 +642,11 @@ void DemSolver<Dim>::migrate(bool dealt_again) {
   }
   if (held_.particles() != n_owned_) held_.clear(n_owned_, config_.contact.needs_rolling_history());
   std::vector<std::vector<std::uint32_t>> leaving(nr);
+  owned_block_.resize(n_owned_);  // for the ghost search after it (rebuild), which would find them again
   for (std::size_t i = 0; i < n_owned_; ++i) {
-    const int r = domain_->owner_of(p_.pos(i));
+    const int b = domain_->layout().block_at(p_.pos(i));
+    owned_block_[i] = b;
+    const int r = domain_->layout().owner(b);
     if (r == me) {
       keep.push_back(i);
     } else {
@@ -668,6 +683,7 @@ void DemSolver<Dim>::migrate(bool dealt_again) {
     Unpacker u(in[r]);
     while (!u.done()) {
       const std::size_t got = unpack_records<Dim>(u, p_, walls_, wall_roll_, build_, held_);
+      for (std::size_t k = n_owned_; k < n_owned_ + got; ++k) owned_block_.push_back(domain_->layout().block_at(p_.pos(k)));
       n_owned_ += got;
       migrated_ += got;
     }

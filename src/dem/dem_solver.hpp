@@ -367,6 +367,7 @@ class DemSolver {
   mutable std::uint64_t canonical_generation_ = ~0ull;
   std::uint64_t migrated_ = 0, rebalances_ = 0;
   double imbalance_ = 1.0;
+  std::vector<int> owned_block_;  ///< per owned particle its block, from migration to the ghost search of one rebuild
   std::vector<double> cost_;  ///< per owned particle at the last counted rebuild (measure_costs)
   double busy_s_ = 0.0;      ///< compute seconds of this rank since the last balance check (waits left out)
   bool step_built_ = false;  ///< the step under way began with a list build

@@ -99,13 +99,15 @@ class ParticleDomain {
   int owner_of(const Vec<Dim>& x) const { return layout_.owner(layout_.block_at(x)); }
 
   /// The ranks other than this one that need a particle at x as a ghost, ascending, into `out` (cleared first).
-  void ghost_ranks(const Vec<Dim>& x, std::vector<int>& out) const {
+  void ghost_ranks(const Vec<Dim>& x, std::vector<int>& out) const { ghost_ranks(x, layout_.block_at(x), out); }
+  /// The same for a particle known to lie in block `block` (block_at(x)).
+  void ghost_ranks(const Vec<Dim>& x, int block, std::vector<int>& out) const {
     out.clear();
-    const auto b = static_cast<std::size_t>(layout_.block_at(x));
+    const auto b = static_cast<std::size_t>(block);
     const Foreign& f = foreign();
     for (std::uint32_t k = f.offset[b]; k < f.offset[b + 1]; ++k) {
       const int r = f.owner[k];
-      if (std::find(out.begin(), out.end(), r) == out.end() && near(x, f.block[k], f.shift[k])) out.push_back(r);
+      if (std::find(out.begin(), out.end(), r) == out.end() && near(x, f.lo[k], f.hi[k])) out.push_back(r);
     }
     std::sort(out.begin(), out.end());
   }
@@ -146,13 +148,16 @@ class ParticleDomain {
 
   /// Sets up the ghosts of the owned particles p[0, owned): sends each to the ranks that need it (whole records)
   /// and appends the ones received, partner by partner in rank order; returns the plan that forward() follows.
-  GhostPlan exchange_ghosts(ParticleStore<Dim>& p, std::size_t owned) const {
+  /// `block`, when it holds `owned` entries, gives each particle's block (block_at of its position), known already.
+  GhostPlan exchange_ghosts(ParticleStore<Dim>& p, std::size_t owned, std::span<const int> block = {}) const {
     // Only the neighbours talk (ghost_ranks names no other rank).
     const std::vector<int>& nbr = neighbour_ranks();
     std::vector<std::vector<std::uint32_t>> to(nbr.size());
     std::vector<int> ranks;
+    const bool known = block.size() == owned;
     for (std::size_t i = 0; i < owned; ++i) {
-      ghost_ranks(p.pos(i), ranks);
+      const Vec<Dim> x = p.pos(i);
+      ghost_ranks(x, known ? block[i] : layout_.block_at(x), ranks);
       for (int r : ranks) {
         const auto k = static_cast<std::size_t>(std::lower_bound(nbr.begin(), nbr.end(), r) - nbr.begin());
         to[k].push_back(static_cast<std::uint32_t>(i));
@@ -179,14 +184,12 @@ class ParticleDomain {
   }
 
  private:
-  /// Point x within reach of block nb (its image shifted by `shift` periods).
-  bool near(const Vec<Dim>& x, int nb, const Index<Dim>& shift) const {
-    const Vec<Dim> lo = layout_.lo(nb), hi = layout_.hi(nb);
+  /// Point x within reach of the box [lo, hi] (a block's image, shifted by whole periods).
+  bool near(const Vec<Dim>& x, const Vec<Dim>& lo, const Vec<Dim>& hi) const {
     double d2 = 0.0;
     bool in_kernel = true;
     for (int a = 0; a < Dim; ++a) {
-      const double s = shift[a] * layout_.length(a);
-      const double d = std::max({lo[a] + s - x[a], x[a] - (hi[a] + s), 0.0});
+      const double d = std::max({lo[a] - x[a], x[a] - hi[a], 0.0});
       d2 += d * d;
       in_kernel = in_kernel && d <= kernel_[a];
     }
@@ -198,8 +201,8 @@ class ParticleDomain {
   struct Foreign {
     std::uint64_t version = ~std::uint64_t{0};
     std::vector<std::uint32_t> offset;  ///< per block, into the arrays below
-    std::vector<int> block, owner;
-    std::vector<Index<Dim>> shift;
+    std::vector<int> owner;
+    std::vector<Vec<Dim>> lo, hi;  ///< the block's box, shifted to the image next to the block it neighbours
     std::vector<int> neighbours;  ///< the owners of the blocks next to this rank's, ascending
   };
   const Foreign& foreign() const {
@@ -207,9 +210,9 @@ class ParticleDomain {
     if (f.version == layout_.version() && f.offset.size() == static_cast<std::size_t>(layout_.blocks()) + 1) return f;
     const int me = rank();
     f.offset.assign(1, 0);
-    f.block.clear();
     f.owner.clear();
-    f.shift.clear();
+    f.lo.clear();
+    f.hi.clear();
     f.neighbours.clear();
     for (int b = 0; b < layout_.blocks(); ++b) {
       Index<Dim> off{};
@@ -218,16 +221,22 @@ class ParticleDomain {
         Index<Dim> shift{};
         const int nb = layout_.neighbour(b, off, shift);
         if (nb >= 0 && layout_.owner(nb) != me) {
-          f.block.push_back(nb);
           f.owner.push_back(layout_.owner(nb));
-          f.shift.push_back(shift);
+          Vec<Dim> lo = layout_.lo(nb), hi = layout_.hi(nb);
+          for (int a = 0; a < Dim; ++a) {
+            const double period = shift[a] * layout_.length(a);
+            lo[a] = lo[a] + period;
+            hi[a] = hi[a] + period;
+          }
+          f.lo.push_back(lo);
+          f.hi.push_back(hi);
         }
         int a = 0;
         while (a < Dim && off[a] == 1) off[a++] = -1;
         if (a == Dim) break;
         ++off[a];
       }
-      f.offset.push_back(static_cast<std::uint32_t>(f.block.size()));
+      f.offset.push_back(static_cast<std::uint32_t>(f.owner.size()));
       if (layout_.owner(b) == me) {
         f.neighbours.insert(f.neighbours.end(), f.owner.begin() + f.offset[static_cast<std::size_t>(b)], f.owner.end());
       }
