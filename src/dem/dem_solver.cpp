@@ -600,7 +600,7 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order, bool sp
   permute_wall_roll(order);
   if (held_.particles() == n_owned_ && !springs_later) held_.select(order);
   if (owned_block_.size() == n_owned_) {
-    if (is_ascending_selection(order)) {
+    if (reads_forward(order)) {
       select_in_place(owned_block_, order);
     } else {
       std::vector<int> nb(order.size());
@@ -613,7 +613,7 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order, bool sp
   for (int a = 0; a < Dim; ++a) {
     std::vector<double>& b = build_[static_cast<std::size_t>(a)];
     if (b.size() != n_owned_) continue;
-    if (is_ascending_selection(order)) {
+    if (reads_forward(order)) {
       select_in_place(b, order);
       continue;
     }
@@ -631,7 +631,7 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order, bool sp
 template <int Dim>
 void DemSolver<Dim>::migrate(bool dealt_again) {
   // Called with no ghosts in the store: every slot is owned. Particles whose block is another rank's go there,
-  // the others keep their order, the arrivals follow in the order of their senders' ranks.
+  // the last of the others fill their slots, the arrivals follow in the order of their senders' ranks.
   const int me = domain_->rank();
   const auto nr = static_cast<std::size_t>(domain_->size());
   std::vector<Bytes> out(nr);
@@ -677,7 +677,16 @@ void DemSolver<Dim>::migrate(bool dealt_again) {
     in.assign(nr, Bytes{});
     for (std::size_t k = 0; k < nbr.size(); ++k) in[static_cast<std::size_t>(nbr[k])] = std::move(got[k]);
   }
-  if (keep.size() != n_owned_) select_owned(keep);
+  if (keep.size() != n_owned_) {
+    // The slots of those that left are filled by the last of those that stay (the storage order is free: every
+    // sum runs in the canonical order), so only those move, in place.
+    const std::size_t m = keep.size();
+    std::vector<std::size_t> order(m);
+    std::size_t below = 0;
+    auto tail = static_cast<std::size_t>(std::lower_bound(keep.begin(), keep.end(), m) - keep.begin());
+    for (std::size_t k = 0; k < m; ++k) order[k] = below < keep.size() && keep[below] == k ? keep[below++] : keep[tail++];
+    select_owned(order);
+  }
   for (std::size_t r = 0; r < nr; ++r) {
     if (static_cast<int>(r) == me) continue;
     Unpacker u(in[r]);
@@ -756,7 +765,7 @@ template <int Dim>
 void DemSolver<Dim>::permute_wall_roll(const std::vector<std::size_t>& order) {
   constexpr std::size_t nw = 2 * Dim;
   if (wall_roll_.empty()) return;
-  if (is_ascending_selection(order)) {
+  if (reads_forward(order)) {
     select_in_place(wall_roll_, order, nw);
     return;
   }

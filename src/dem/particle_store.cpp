@@ -8,7 +8,7 @@ namespace fluidbed {
 
 template <int Dim>
 void ParticleStore<Dim>::permute(const std::vector<std::size_t>& order) {
-  if (is_ascending_selection(order)) {
+  if (reads_forward(order)) {
     for_each_array([&](const std::string&, auto& a, ArrayRole) { select_in_place(a, order); });
     return;
   }

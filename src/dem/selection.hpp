@@ -1,7 +1,8 @@
 #pragma once
 // Selections of a store's slots (new slot k takes old slot order[k]). The particles that stay on a rank after
-// others left for their new owners are such a selection in ascending order: kept in place, from the front, it
-// needs no second array (no allocation, no page faults, half the memory traffic of a copy).
+// others left for their new owners keep their slots, and the last of them fill the slots of those that left: made
+// in place, such a selection moves only the particles that fill holes, with no second array (no allocation, no
+// page faults, no copy of the store).
 #include <algorithm>
 #include <cstddef>
 #include <vector>
@@ -14,8 +15,16 @@ inline bool is_ascending_selection(const std::vector<std::size_t>& order) {
          order.end();
 }
 
-/// v[k * stride + c] = v[order[k] * stride + c] for an ascending selection (order[k] >= k, so no element is read
-/// after it was overwritten), then v cut to the selection.
+/// Every new slot k takes an old slot at or after k (an ascending selection, or one whose holes are filled from
+/// the end): copied in place from the front, each slot is read before anything overwrites it.
+inline bool reads_forward(const std::vector<std::size_t>& order) {
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (order[k] < k) return false;
+  }
+  return true;
+}
+
+/// v[k * stride + c] = v[order[k] * stride + c] for an order that reads forward, then v cut to the selection.
 template <class V>
 void select_in_place(V& v, const std::vector<std::size_t>& order, std::size_t stride = 1) {
   for (std::size_t k = 0; k < order.size(); ++k) {

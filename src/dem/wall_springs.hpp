@@ -53,7 +53,7 @@ class WallSprings {
   void push_back() { record_.push_back(-1); }
   /// New slot k takes old slot order[k]; slots order does not name are dropped with their records (a selection).
   void permute(const std::vector<std::size_t>& order) {
-    if (is_ascending_selection(order)) {
+    if (reads_forward(order)) {
       select_in_place(record_, order);
       compact();
       return;
