@@ -358,7 +358,7 @@ void DemSolver<Dim>::gather_held_springs() {
     const auto i = static_cast<std::size_t>(ii);
     std::size_t c = 0;
     for (std::size_t q = nbr_.offset[i]; q < nbr_.offset[i + 1]; ++q) c += static_cast<std::size_t>(held(q));
-    h.offset[i + 1] = c;
+    h.offset[i + 1] = static_cast<std::uint32_t>(c);  // at most the list's entries: 32-bit
   }
   for (std::size_t i = 0; i < n; ++i) h.offset[i + 1] += h.offset[i];
   const std::size_t m = h.offset[n];
@@ -403,7 +403,7 @@ void DemSolver<Dim>::carry_held_springs() {
   const auto row = [&from](std::size_t i) { return from.empty() ? i : from[i]; };
   std::vector<std::uint32_t>& at = carry_at_;  // per held spring: 1 + its place u in the half list, or 0
   at.assign(held_.offset[n], 0);
-  std::vector<std::size_t>& first = carry_first_;
+  std::vector<std::uint32_t>& first = carry_first_;
   first.assign(n + 1, 0);
   const auto sn = static_cast<std::ptrdiff_t>(n);
 #pragma omp parallel for schedule(static)
@@ -442,7 +442,7 @@ void DemSolver<Dim>::carry_held_springs() {
 
 template <int Dim>
 void DemSolver<Dim>::number_records() {
-  std::vector<std::size_t>& first = carry_first_;
+  std::vector<std::uint32_t>& first = carry_first_;
   const std::size_t n = first.size() - 1;
   first[0] = 1;  // record 0 is the +0 spring
   for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
@@ -477,7 +477,7 @@ void DemSolver<Dim>::adopt_entry_springs() {
     return keep;
   };
   const std::size_t n = n_owned_;
-  std::vector<std::size_t>& first = carry_first_;
+  std::vector<std::uint32_t>& first = carry_first_;
   first.assign(n + 1, 0);
   for (std::size_t i = 0; springs && i < n; ++i) {
     for (std::size_t u = upper_offset_[i]; u < upper_offset_[i + 1]; ++u) first[i + 1] += held(upper_entry_[u]) ? 1 : 0;

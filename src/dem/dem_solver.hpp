@@ -421,7 +421,7 @@ class DemSolver {
   /// Record g: spring xi (and rolling spring) of the pair at half-list place u, named by both its entries.
   void set_record(std::size_t g, std::size_t u, const Vec<Dim>& xi, const Spin<Dim>& roll);
   std::vector<std::uint32_t> carry_at_;  ///< carry_held_springs: per held spring, 1 + its half-list place (0: none)
-  std::vector<std::size_t> carry_first_;  ///< carry_held_springs, adopt_entry_springs: first record per particle
+  std::vector<std::uint32_t> carry_first_;  ///< carry_held_springs, adopt_entry_springs: first record per particle
   std::vector<std::size_t> contact_base_;  ///< first record of each block
   /// A touching pair of the force pass: its lower slot i and its place u in the half list.
   struct Contact {

@@ -8,6 +8,8 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "core/vec.hpp"
@@ -17,7 +19,8 @@ namespace fluidbed {
 
 template <int Dim>
 struct HeldSprings {
-  std::vector<std::size_t> offset{0};  ///< CSR over the particles, in the store's order
+  // 32-bit, as the list's entries it is a part of (build_neighbor_list refuses a longer list).
+  std::vector<std::uint32_t> offset{0};  ///< CSR over the particles, in the store's order
   std::vector<std::int64_t> partner_id;
   std::vector<Vec<Dim>> xi;      ///< tangential spring, as the particle sees the contact
   std::vector<Spin<Dim>> roll;   ///< rolling spring (laws with one; else empty)
@@ -36,9 +39,13 @@ struct HeldSprings {
     partner_id.push_back(partner);
     xi.push_back(x);
     if (rolling_) roll.push_back(r);
+    if (offset.back() == std::numeric_limits<std::uint32_t>::max()) throw std::length_error("too many held springs for 32-bit offsets");
     ++offset.back();
   }
-  void add_particle() { offset.push_back(offset.back()); }
+  void add_particle() {
+    const std::uint32_t end = offset.back();  // a copy: push_back may move the element it would read
+    offset.push_back(end);
+  }
   /// New particle k takes old particle order[k]'s entries; particles order does not name are dropped. The new
   /// arrays are sized exactly (counted first): appended one by one they would hold up to twice their entries.
   void select(const std::vector<std::size_t>& order) {
@@ -54,10 +61,10 @@ struct HeldSprings {
           std::copy(xi.begin() + f, xi.begin() + f + c, xi.begin() + t);
           if (rolling_) std::copy(roll.begin() + f, roll.begin() + f + c, roll.begin() + t);
         }
-        offset[k] = to;
+        offset[k] = static_cast<std::uint32_t>(to);
         to += count;
       }
-      offset[order.size()] = to;
+      offset[order.size()] = static_cast<std::uint32_t>(to);
       offset.resize(order.size() + 1);
       partner_id.resize(to);
       xi.resize(to);
@@ -66,8 +73,7 @@ struct HeldSprings {
     }
     HeldSprings out;
     out.rolling_ = rolling_;
-    out.offset.resize(order.size() + 1);
-    out.offset[0] = 0;
+    out.offset = std::vector<std::uint32_t>(order.size() + 1, 0u);
     for (std::size_t k = 0; k < order.size(); ++k) out.offset[k + 1] = out.offset[k] + offset[order[k] + 1] - offset[order[k]];
     const std::size_t m = out.offset[order.size()];
     out.partner_id.resize(m);
