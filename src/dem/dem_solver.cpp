@@ -786,7 +786,7 @@ bool DemSolver<Dim>::link_sorted_mirrors(std::span<const std::uint32_t> visit) {
   // sorting rebuild j's lower partners are its list's head and nothing is stepped over. Any entry out of that
   // order sends the list to the search instead.
   const std::size_t n = p_.size();
-  std::vector<std::uint32_t>& cursor = mirror_cursor_;
+  std::vector<std::uint32_t>& cursor = carry_first_;  // free until the springs are carried
   cursor.assign(nbr_.offset.begin(), nbr_.offset.begin() + static_cast<std::ptrdiff_t>(n));
   const std::uint32_t* partner = nbr_.partner.data();
   for (std::size_t c = 0; c < n; ++c) {

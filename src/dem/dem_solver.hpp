@@ -421,7 +421,9 @@ class DemSolver {
   /// Record g: spring xi (and rolling spring) of the pair at half-list place u, named by both its entries.
   void set_record(std::size_t g, std::size_t u, const Vec<Dim>& xi, const Spin<Dim>& roll);
   std::vector<std::uint32_t> carry_at_;  ///< carry_held_springs: per held spring, 1 + its half-list place (0: none)
-  std::vector<std::uint32_t> carry_first_;  ///< carry_held_springs, adopt_entry_springs: first record per particle
+  /// Per particle, of one pass at a time (a build's mirror linking, then its carrying of springs): link_sorted_mirrors'
+  /// next entry per partner; carry_held_springs' and adopt_entry_springs' first record.
+  std::vector<std::uint32_t> carry_first_;
   std::vector<std::size_t> contact_base_;  ///< first record of each block
   /// A touching pair of the force pass: its lower slot i and its place u in the half list.
   struct Contact {
@@ -435,7 +437,6 @@ class DemSolver {
   /// A force evaluation ran on the current list: entry_contact_ marks its touching pairs, the only entries that
   /// can hold a spring to release.
   bool marked_ = false;
-  std::vector<std::uint32_t> mirror_cursor_;  ///< link_sorted_mirrors' next entry per partner
   double cell_size_ = 0.0;
   double max_overlap_ = 0.0;
   double max_overlap_fraction_ = 0.0;
