@@ -570,7 +570,7 @@ double dem_bytes_per_particle(const CaseConfig& c) {
   const double entries = three_d ? 15.0 : 6.0, contacts = three_d ? 7.0 : 3.7;
   const bool rolling = c.dem.contact.needs_rolling_history();
   const double doubles = 3.0 * dim + 2.0 * spin + 4.0 + (c.gas_enabled ? 2.0 * dim + 1.0 : 0.0);
-  const double store = 8.0 * doubles + 24.0 + 8.0 * dim + 36.0;
+  const double store = 8.0 * doubles + 24.0 + 8.0 * dim + 24.0;
   const double record = 8.0 * (dim + 2.0 * spin + 2.0 * dim + (rolling ? 2.0 * spin : 0.0));
   const double held = 8.0 + 8.0 * dim + (rolling ? 8.0 * spin : 0.0) + 4.0;
   return store + 1.125 * (18.0 * entries + 0.5 * contacts * record) + contacts * held;
