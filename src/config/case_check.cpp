@@ -556,10 +556,10 @@ bool frictionless(const DemConfig& dem) {
   return none;
 }
 
-// The DEM solver's data a particle of a packed bed, as it holds it (docs/performance.md section 39: 1,264 B for
+// The DEM solver's data a particle of a packed bed, as it holds it (docs/performance.md section 39: 1,252 B for
 // the 3D settle, whose heap measured 1,470 B a sphere with 16.6 entries and the program's own allocations): the
 // store, 8 bytes a double array and 24 of ids and keys, the fluid's five (2D) or seven (3D) arrays only with gas;
-// the list-build positions; per-particle offsets and orders, 36; E list entries of 18 bytes (partner, contact mark,
+// the list-build positions; per-particle offsets and orders, 24; E list entries of 18 bytes (partner, contact mark,
 // half-list links, the scan's room); C / 2 contact records (force, two torques, the spring and its next value, the
 // rolling springs' too for a law with them); the C springs by partner id a rebuild carries (id, spring, its
 // place). Lists and records keep an eighth to spare (dem/growth.hpp). E and C are those counted on packed beds at

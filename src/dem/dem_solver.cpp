@@ -600,26 +600,12 @@ void DemSolver<Dim>::select_owned(const std::vector<std::size_t>& order, bool sp
   permute_wall_roll(order);
   if (held_.particles() == n_owned_ && !springs_later) held_.select(order);
   if (owned_block_.size() == n_owned_) {
-    if (reads_forward(order)) {
-      select_in_place(owned_block_, order);
-    } else {
-      std::vector<int> nb(order.size());
-      for (std::size_t k = 0; k < order.size(); ++k) nb[k] = owned_block_[order[k]];
-      owned_block_.swap(nb);
-    }
+    select_slots(owned_block_, order);
   } else {
     owned_block_.clear();
   }
-  for (int a = 0; a < Dim; ++a) {
-    std::vector<double>& b = build_[static_cast<std::size_t>(a)];
-    if (b.size() != n_owned_) continue;
-    if (reads_forward(order)) {
-      select_in_place(b, order);
-      continue;
-    }
-    std::vector<double> nb(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) nb[k] = b[order[k]];
-    b.swap(nb);
+  for (std::vector<double>& b : build_) {
+    if (b.size() == n_owned_) select_slots(b, order);
   }
   n_owned_ = order.size();
   nbr_.offset.clear();  // the list named the old slots
@@ -684,7 +670,9 @@ void DemSolver<Dim>::migrate(bool dealt_again) {
     std::vector<std::size_t> order(m);
     std::size_t below = 0;
     auto tail = static_cast<std::size_t>(std::lower_bound(keep.begin(), keep.end(), m) - keep.begin());
-    for (std::size_t k = 0; k < m; ++k) order[k] = below < keep.size() && keep[below] == k ? keep[below++] : keep[tail++];
+    for (std::size_t k = 0; k < m; ++k) {
+      order[k] = below < keep.size() && keep[below] == k ? keep[below++] : keep[tail++];
+    }
     select_owned(order);
   }
   for (std::size_t r = 0; r < nr; ++r) {
@@ -692,7 +680,9 @@ void DemSolver<Dim>::migrate(bool dealt_again) {
     Unpacker u(in[r]);
     while (!u.done()) {
       const std::size_t got = unpack_records<Dim>(u, p_, walls_, wall_roll_, build_, held_);
-      for (std::size_t k = n_owned_; k < n_owned_ + got; ++k) owned_block_.push_back(domain_->layout().block_at(p_.pos(k)));
+      for (std::size_t k = n_owned_; k < n_owned_ + got; ++k) {
+        owned_block_.push_back(domain_->layout().block_at(p_.pos(k)));
+      }
       n_owned_ += got;
       migrated_ += got;
     }
@@ -764,16 +754,7 @@ bool DemSolver<Dim>::rebalance_if_needed() {
 template <int Dim>
 void DemSolver<Dim>::permute_wall_roll(const std::vector<std::size_t>& order) {
   constexpr std::size_t nw = 2 * Dim;
-  if (wall_roll_.empty()) return;
-  if (reads_forward(order)) {
-    select_in_place(wall_roll_, order, nw);
-    return;
-  }
-  std::vector<Spin<Dim>> next(order.size() * nw);
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    for (std::size_t w = 0; w < nw; ++w) next[k * nw + w] = wall_roll_[order[k] * nw + w];
-  }
-  wall_roll_.swap(next);
+  if (!wall_roll_.empty()) select_slots(wall_roll_, order, nw);
 }
 
 template <int Dim>

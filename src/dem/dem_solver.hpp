@@ -280,7 +280,8 @@ class DemSolver {
   /// Distributed: ghosts follow their owners; the flags and largest overlaps of the step reduced over ranks.
   void finish_step_distributed(int& moved_far, int& bad, int& escaped);
   void link_mirrors();
-  /// link_mirrors without a search, for lists sorted by partner slot; false (links unfinished) for any other list.
+  /// link_mirrors without a search, for lists in the canonical order, visited in it (`visit`: the slots in that
+  /// order; empty when it is the slots' own); false (links unfinished) for any other list.
   bool link_sorted_mirrors(std::span<const std::uint32_t> visit);
   /// Drop the particles whose centre is beyond an outflow side, keeping the order of the others, their neighbour
   /// entries and contact springs; counts them and their mass.
@@ -368,7 +369,7 @@ class DemSolver {
   std::uint64_t migrated_ = 0, rebalances_ = 0;
   double imbalance_ = 1.0;
   std::vector<int> owned_block_;  ///< per owned particle its block, from migration to the ghost search of one rebuild
-  std::vector<double> cost_;  ///< per owned particle at the last counted rebuild (measure_costs)
+  std::vector<double> cost_;  ///< per owned particle when the last verdict dealt (measure_costs)
   double busy_s_ = 0.0;      ///< compute seconds of this rank since the last balance check (waits left out)
   bool step_built_ = false;  ///< the step under way began with a list build
   std::chrono::steady_clock::time_point step_start_{};

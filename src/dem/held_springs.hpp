@@ -39,7 +39,9 @@ struct HeldSprings {
     partner_id.push_back(partner);
     xi.push_back(x);
     if (rolling_) roll.push_back(r);
-    if (offset.back() == std::numeric_limits<std::uint32_t>::max()) throw std::length_error("too many held springs for 32-bit offsets");
+    if (offset.back() == std::numeric_limits<std::uint32_t>::max()) {
+      throw std::length_error("too many held springs for 32-bit offsets");
+    }
     ++offset.back();
   }
   void add_particle() {

@@ -98,9 +98,8 @@ class ParticleDomain {
 
   int owner_of(const Vec<Dim>& x) const { return layout_.owner(layout_.block_at(x)); }
 
-  /// The ranks other than this one that need a particle at x as a ghost, ascending, into `out` (cleared first).
-  void ghost_ranks(const Vec<Dim>& x, std::vector<int>& out) const { ghost_ranks(x, layout_.block_at(x), out); }
-  /// The same for a particle known to lie in block `block` (block_at(x)).
+  /// The ranks other than this one that need a particle at x, which lies in block `block` (block_at(x)), as a
+  /// ghost, ascending, into `out` (cleared first).
   void ghost_ranks(const Vec<Dim>& x, int block, std::vector<int>& out) const {
     out.clear();
     const auto b = static_cast<std::size_t>(block);

@@ -34,4 +34,18 @@ void select_in_place(V& v, const std::vector<std::size_t>& order, std::size_t st
   v.resize(order.size() * stride);
 }
 
+/// v[k * stride + c] = v[order[k] * stride + c] for any order: in place when it reads forward, else through a copy.
+template <class V>
+void select_slots(V& v, const std::vector<std::size_t>& order, std::size_t stride = 1) {
+  if (reads_forward(order)) {
+    select_in_place(v, order, stride);
+    return;
+  }
+  V next(order.size() * stride);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    for (std::size_t c = 0; c < stride; ++c) next[k * stride + c] = v[order[k] * stride + c];
+  }
+  v.swap(next);
+}
+
 }  // namespace fluidbed

@@ -53,14 +53,7 @@ class WallSprings {
   void push_back() { record_.push_back(-1); }
   /// New slot k takes old slot order[k]; slots order does not name are dropped with their records (a selection).
   void permute(const std::vector<std::size_t>& order) {
-    if (reads_forward(order)) {
-      select_in_place(record_, order);
-      compact();
-      return;
-    }
-    std::vector<std::int32_t> next(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) next[k] = record_[order[k]];
-    record_.swap(next);
+    select_slots(record_, order);
     compact();
   }
   /// Keeps the records that some slot names and that hold a component other than +0, laid out in slot order.

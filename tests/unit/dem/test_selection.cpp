@@ -29,6 +29,14 @@ TEST(DemSelection, InPlaceWithAStrideKeepsTheNamedSlots) {
   EXPECT_EQ(v, (std::vector<int>{0, 1, 20, 21, 40, 41}));
 }
 
+TEST(DemSelection, AnyOrderWithAStrideGoesThroughACopy) {
+  std::vector<int> v{0, 1, 10, 11, 20, 21, 30, 31};
+  select_slots(v, {3, 0, 2}, 2);  // slot 0 takes slot 3: not in place
+  EXPECT_EQ(v, (std::vector<int>{30, 31, 0, 1, 20, 21}));
+  select_slots(v, {1, 2}, 2);  // reads forward: in place
+  EXPECT_EQ(v, (std::vector<int>{0, 1, 20, 21}));
+}
+
 // The store's arrays, the wall springs and the held springs each under one ascending selection (in place) and under
 // the same selection followed by a no-op swap that forces the copying path: the same contents.
 TEST(DemSelection, HoldersGiveTheSameContentsInPlaceAndByCopy) {
